@@ -1,0 +1,129 @@
+//! The command line: what each subcommand takes.
+
+use crate::format::Format;
+use clap::{Args, Parser, Subcommand};
+use std::path::PathBuf;
+
+/// Ray traces in fixed point the way a microcontroller would, and measures what that costs
+/// against a floating-point reference.
+#[derive(Debug, Parser)]
+#[command(name = "obscura", version, about)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// List the built-in scenes.
+    Scenes,
+    /// Render a scene to a PNG file.
+    Render(RenderArgs),
+    /// Render a scene in a format and in f64, and report how far apart they are.
+    Compare(CompareArgs),
+    /// Time single-thread renders per format against f32, and the speed-up of more threads.
+    Bench(BenchArgs),
+}
+
+/// What to render, at what size, in which format.
+#[derive(Debug, Args)]
+pub struct SceneArgs {
+    /// A built-in scene (see `obscura scenes`).
+    pub scene: String,
+    /// The number format.
+    #[arg(long, value_enum, default_value_t = Format::I16f16)]
+    pub format: Format,
+    /// The image size, WIDTHxHEIGHT.
+    #[arg(long, value_parser = parse_size, default_value = "512x512")]
+    pub size: (u32, u32),
+}
+
+/// `obscura render`.
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// The PNG file to write.
+    #[arg(short, long, default_value = "out.png")]
+    pub output: PathBuf,
+    /// Threads to render on (rows are shared out one at a time).
+    #[arg(long, default_value_t = default_threads(), value_parser = clap::value_parser!(u16).range(1..=1024))]
+    pub threads: u16,
+}
+
+/// `obscura compare`.
+#[derive(Debug, Args)]
+pub struct CompareArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Where to write FORMAT.png, f64.png and diff.png.
+    #[arg(long, default_value = "out")]
+    pub out_dir: PathBuf,
+    /// Also write the figures as JSON to this file.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+    /// Single-thread renders to time per format; the median is reported.
+    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u16).range(1..=1000))]
+    pub runs: u16,
+}
+
+/// `obscura bench`.
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    /// A built-in scene.
+    pub scene: String,
+    /// The image size, WIDTHxHEIGHT.
+    #[arg(long, value_parser = parse_size, default_value = "512x512")]
+    pub size: (u32, u32),
+    /// The formats to time; each is compared with f32.
+    #[arg(long, value_enum, value_delimiter = ',', default_values_t = [Format::I16f16, Format::I32f32, Format::F32, Format::F64])]
+    pub formats: Vec<Format>,
+    /// Renders per measurement; the median is reported.
+    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u16).range(1..=1000))]
+    pub runs: u16,
+    /// The thread counts to time the first format with.
+    #[arg(long, value_delimiter = ',', default_values_t = [1_u16, 2])]
+    pub threads: Vec<u16>,
+    /// Also write the figures as JSON to this file.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+}
+
+fn default_threads() -> u16 {
+    std::thread::available_parallelism().map_or(1, |n| u16::try_from(n.get()).unwrap_or(u16::MAX))
+}
+
+/// Parses "WIDTHxHEIGHT".
+pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let usage = || format!("`{text}` is not a size; write WIDTHxHEIGHT, e.g. 512x512");
+    let (w, h) = text.split_once(['x', 'X']).ok_or_else(usage)?;
+    let side = |s: &str| -> Result<u32, String> {
+        let n: u32 = s.trim().parse().map_err(|_| usage())?;
+        if (1..=obscura::MAX_IMAGE_SIDE).contains(&n) {
+            Ok(n)
+        } else {
+            Err(format!(
+                "each side must be 1 to {} pixels, not {n}",
+                obscura::MAX_IMAGE_SIDE
+            ))
+        }
+    };
+    Ok((side(w)?, side(h)?))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_parse_and_bad_ones_say_why() {
+        assert_eq!(parse_size("512x384"), Ok((512, 384)));
+        assert_eq!(parse_size("64X64"), Ok((64, 64)));
+        assert!(parse_size("512").unwrap_err().contains("WIDTHxHEIGHT"));
+        assert!(parse_size("0x5").unwrap_err().contains("1 to 8192"));
+        assert!(parse_size("axb").unwrap_err().contains("not a size"));
+        assert!(parse_size("9000x5").unwrap_err().contains("1 to 8192"));
+    }
+}

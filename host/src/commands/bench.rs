@@ -1,0 +1,147 @@
+//! `obscura bench`: host speed, as ratios measured in one run (absolute times drift between
+//! machines and runs; ratios taken side by side, interleaved, do not).
+
+use crate::cli::BenchArgs;
+use crate::format::Format;
+use crate::render::{Request, prepare};
+use crate::timing::interleaved_median_ms;
+use anyhow::{Context, Result};
+use serde::Serialize;
+
+#[derive(Debug, Serialize)]
+struct FormatTime {
+    format: &'static str,
+    ms_per_frame: f64,
+    ratio_to_f32: f64,
+}
+
+#[derive(Debug, Serialize)]
+struct ThreadTime {
+    format: &'static str,
+    threads: u16,
+    ms_per_frame: f64,
+    speedup: f64,
+}
+
+#[derive(Debug, Serialize)]
+struct Bench {
+    scene: &'static str,
+    width: u32,
+    height: u32,
+    runs: u16,
+    formats: Vec<FormatTime>,
+    threads: Vec<ThreadTime>,
+}
+
+pub fn run(args: &BenchArgs) -> Result<()> {
+    let scene = super::scene(&args.scene)?;
+    let (width, height) = args.size;
+    let first = *args.formats.first().context("give at least one format")?;
+    let request = Request {
+        desc: &scene.desc,
+        width,
+        height,
+    };
+    let mut formats = args.formats.clone();
+    if !formats.contains(&Format::F32) {
+        formats.push(Format::F32);
+    }
+    let renderers = formats
+        .iter()
+        .map(|&format| prepare(format, &request))
+        .collect::<Result<Vec<_>>>()?;
+
+    // Every format on one thread, then the first format on each thread count, all interleaved.
+    let mut configs: Vec<(usize, u16)> = (0..formats.len()).map(|i| (i, 1)).collect();
+    configs.extend(args.threads.iter().filter(|&&n| n != 1).map(|&n| (0, n)));
+    let tasks: Vec<Box<dyn Fn() + '_>> = configs
+        .iter()
+        .map(|&(i, threads)| -> Box<dyn Fn() + '_> {
+            let render = &renderers[i];
+            Box::new(move || drop(render.render(usize::from(threads), None)))
+        })
+        .collect();
+    eprintln!(
+        "timing {} configurations of {}, {} runs each, interleaved",
+        tasks.len(),
+        scene.name,
+        args.runs
+    );
+    let task_refs: Vec<&dyn Fn()> = tasks.iter().map(|task| &**task).collect();
+    let times = interleaved_median_ms(usize::from(args.runs), &task_refs);
+
+    let time_of = |format_index: usize, threads: u16| {
+        configs
+            .iter()
+            .position(|&c| c == (format_index, threads))
+            .map(|k| times[k])
+    };
+    let f32_index = formats
+        .iter()
+        .position(|&f| f == Format::F32)
+        .context("f32 is timed")?;
+    let f32_ms = time_of(f32_index, 1).context("f32 is timed on one thread")?;
+    let format_times = args
+        .formats
+        .iter()
+        .enumerate()
+        .filter_map(|(i, format)| {
+            let ms = time_of(i, 1)?;
+            Some(FormatTime {
+                format: format.name(),
+                ms_per_frame: ms,
+                ratio_to_f32: ms / f32_ms,
+            })
+        })
+        .collect();
+    let one_thread = time_of(0, 1).context("the first format is timed on one thread")?;
+    let thread_times = args
+        .threads
+        .iter()
+        .filter_map(|&n| {
+            let ms = time_of(0, n)?;
+            Some(ThreadTime {
+                format: first.name(),
+                threads: n,
+                ms_per_frame: ms,
+                speedup: one_thread / ms,
+            })
+        })
+        .collect();
+    let bench = Bench {
+        scene: scene.name,
+        width,
+        height,
+        runs: args.runs,
+        formats: format_times,
+        threads: thread_times,
+    };
+
+    println!(
+        "{} {width}x{height}, median of {} interleaved runs:",
+        bench.scene, bench.runs
+    );
+    println!("| format | ms/frame (1 thread) | time ÷ f32 |");
+    println!("|---|---:|---:|");
+    for f in &bench.formats {
+        println!(
+            "| {} | {:.1} | {:.2} |",
+            f.format, f.ms_per_frame, f.ratio_to_f32
+        );
+    }
+    println!();
+    println!("| format | threads | ms/frame | speed-up over 1 thread |");
+    println!("|---|---:|---:|---:|");
+    for t in &bench.threads {
+        println!(
+            "| {} | {} | {:.1} | {:.2} |",
+            t.format, t.threads, t.ms_per_frame, t.speedup
+        );
+    }
+    if let Some(path) = &args.json {
+        let text = serde_json::to_string_pretty(&bench)?;
+        std::fs::write(path, text + "\n")
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    Ok(())
+}

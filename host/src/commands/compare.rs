@@ -1,0 +1,137 @@
+//! `obscura compare`: a format against the f64 reference, in numbers and pictures.
+
+use crate::cli::CompareArgs;
+use crate::format::Format;
+use crate::heatmap::heatmap;
+use crate::metrics::{Accuracy, accuracy};
+use crate::render::{Request, prepare};
+use crate::timing::interleaved_median_ms;
+use anyhow::{Context, Result};
+use serde::Serialize;
+
+/// The figures `compare` prints and writes as JSON.
+#[derive(Debug, Serialize)]
+pub struct Report {
+    pub format: &'static str,
+    pub reference: &'static str,
+    pub scene: &'static str,
+    pub width: u32,
+    pub height: u32,
+    /// `null` in JSON when the images are identical (infinite PSNR).
+    pub psnr_db: f64,
+    pub mean_abs_error: f64,
+    pub max_abs_error: u8,
+    pub differing_pixels_pct: f64,
+    pub object_mismatch_pct: f64,
+    pub ms_per_frame: f64,
+    pub reference_ms_per_frame: f64,
+    pub runs: u16,
+}
+
+pub fn run(args: &CompareArgs) -> Result<()> {
+    let scene = super::scene(&args.scene.scene)?;
+    let (width, height) = args.scene.size;
+    let format = args.scene.format;
+    let reference = Format::F64;
+    let request = Request {
+        desc: &scene.desc,
+        width,
+        height,
+    };
+    let contender = prepare(format, &request)?;
+    let baseline = prepare(reference, &request)?;
+    let threads = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
+    let (image, truth) = (
+        contender.render(threads, None),
+        baseline.render(threads, None),
+    );
+    eprintln!(
+        "timing {format} and {reference} on 1 thread, {} interleaved runs each",
+        args.runs
+    );
+    let times = interleaved_median_ms(
+        usize::from(args.runs),
+        &[&|| drop(contender.render(1, None)), &|| {
+            drop(baseline.render(1, None))
+        }],
+    );
+
+    std::fs::create_dir_all(&args.out_dir)
+        .with_context(|| format!("cannot create {}", args.out_dir.display()))?;
+    let files = [
+        (args.out_dir.join(format!("{format}.png")), &image),
+        (args.out_dir.join(format!("{reference}.png")), &truth),
+    ];
+    for (path, image) in &files {
+        super::save(image, path)?;
+    }
+    let diff_path = args.out_dir.join("diff.png");
+    super::save(&heatmap(&image, &truth), &diff_path)?;
+
+    let Accuracy {
+        psnr_db,
+        mean_abs_error,
+        max_abs_error,
+        differing_pixels_pct,
+        object_mismatch_pct,
+    } = accuracy(
+        &image,
+        &truth,
+        &contender.object_map(),
+        &baseline.object_map(),
+    );
+    let report = Report {
+        format: format.name(),
+        reference: reference.name(),
+        scene: scene.name,
+        width,
+        height,
+        psnr_db,
+        mean_abs_error,
+        max_abs_error,
+        differing_pixels_pct,
+        object_mismatch_pct,
+        ms_per_frame: times[0],
+        reference_ms_per_frame: times[1],
+        runs: args.runs,
+    };
+    print_table(&report);
+    println!(
+        "wrote {}, {} and {} (diff: largest channel error per pixel, log scale, legend below)",
+        files[0].0.display(),
+        files[1].0.display(),
+        diff_path.display()
+    );
+    if let Some(path) = &args.json {
+        let text = serde_json::to_string_pretty(&report)?;
+        std::fs::write(path, text + "\n")
+            .with_context(|| format!("cannot write {}", path.display()))?;
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+fn print_table(r: &Report) {
+    let psnr = if r.psnr_db.is_infinite() {
+        "∞ (identical)".to_owned()
+    } else {
+        format!("{:.2}", r.psnr_db)
+    };
+    println!(
+        "| scene | size | format | PSNR (dB) | mean error | max error | pixels differing | object mismatch | ms/frame | f64 ms/frame |"
+    );
+    println!("|---|---|---|---:|---:|---:|---:|---:|---:|---:|");
+    println!(
+        "| {} | {}x{} | {} | {psnr} | {:.4} | {} | {:.3} % | {:.4} % | {:.1} | {:.1} |",
+        r.scene,
+        r.width,
+        r.height,
+        r.format,
+        r.mean_abs_error,
+        r.max_abs_error,
+        r.differing_pixels_pct,
+        r.object_mismatch_pct,
+        r.ms_per_frame,
+        r.reference_ms_per_frame
+    );
+}

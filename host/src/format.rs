@@ -1,0 +1,69 @@
+//! The number formats the harness can run the core in, chosen at run time.
+
+use clap::ValueEnum;
+use obscura::Scalar;
+use std::fmt;
+
+/// A number format of the core, by its command-line name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, ValueEnum)]
+pub enum Format {
+    /// Signed 16.16 fixed point (32-bit): the firmware's default.
+    I16f16,
+    /// Signed 32.32 fixed point (64-bit).
+    I32f32,
+    /// IEEE single precision.
+    F32,
+    /// IEEE double precision: the reference.
+    F64,
+}
+
+/// Work that is generic over the number format: `Format::run` picks the instantiation.
+pub trait FormatJob {
+    /// What the work produces.
+    type Output;
+    /// Does the work in format `S`.
+    fn run<S: Scalar>(self) -> Self::Output;
+}
+
+impl Format {
+    /// Runs `job` in this format.
+    pub fn run<J: FormatJob>(self, job: J) -> J::Output {
+        match self {
+            Self::I16f16 => job.run::<obscura::I16F16>(),
+            Self::I32f32 => job.run::<obscura::I32F32>(),
+            Self::F32 => job.run::<f32>(),
+            Self::F64 => job.run::<f64>(),
+        }
+    }
+
+    /// The name the core gives the format.
+    pub fn name(self) -> &'static str {
+        struct Name;
+        impl FormatJob for Name {
+            type Output = &'static str;
+            fn run<S: Scalar>(self) -> &'static str {
+                S::NAME
+            }
+        }
+        self.run(Name)
+    }
+}
+
+impl fmt::Display for Format {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn command_line_names_are_the_core_names() {
+        for format in Format::value_variants() {
+            let cli = format.to_possible_value().unwrap();
+            assert_eq!(cli.get_name(), format.name());
+        }
+    }
+}

@@ -1,0 +1,195 @@
+//! Whole frames on the desktop: the core's scanline renderer run on several threads, row by
+//! row, into an image.
+
+use crate::canvas::Canvas;
+use crate::format::{Format, FormatJob};
+use anyhow::{Context, Result};
+use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
+use image::RgbImage;
+use obscura::{Camera, Scalar, Scene, SceneDesc, render_rows};
+use std::convert::Infallible;
+use std::io::Write;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicU32, Ordering};
+use std::time::{Duration, Instant};
+
+/// Objects a scene on the host may have.
+pub const MAX_OBJECTS: usize = 64;
+/// Lights a scene on the host may have.
+pub const MAX_LIGHTS: usize = 16;
+/// The host's ray stack: ray trees up to 15 levels deep.
+pub const RAY_STACK: usize = 16;
+
+/// A scene in format `S` with the host's capacities.
+pub type HostScene<S> = Scene<S, MAX_OBJECTS, MAX_LIGHTS, RAY_STACK>;
+
+/// A render request: a scene and an image size.
+#[derive(Clone, Copy, Debug)]
+pub struct Request<'a> {
+    /// The scene.
+    pub desc: &'a SceneDesc<'a>,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+}
+
+/// A scene built and a camera placed for one request.
+#[derive(Debug)]
+pub struct Prepared<S: Scalar> {
+    scene: HostScene<S>,
+    camera: Camera<S>,
+}
+
+impl<S: Scalar> Prepared<S> {
+    /// Builds the scene in format `S` and its camera.
+    pub fn new(request: &Request<'_>) -> Result<Self> {
+        let scene = HostScene::<S>::build(request.desc)
+            .with_context(|| format!("the scene cannot be built in {}", S::NAME))?;
+        let camera = scene.camera(request.width, request.height)?;
+        Ok(Self { scene, camera })
+    }
+
+    /// Renders the frame on `threads` threads, each taking the next row not yet taken.
+    pub fn render(&self, threads: usize, progress: Option<&str>) -> RgbImage {
+        let (width, height) = (self.camera.width(), self.camera.height());
+        let image = Mutex::new(RgbImage::new(width, height));
+        let next_row = AtomicU32::new(0);
+        let rows_done = AtomicU32::new(0);
+        std::thread::scope(|scope| {
+            for _ in 0..threads.max(1) {
+                scope.spawn(|| {
+                    let mut line = vec![Rgb888::BLACK; width as usize];
+                    let mut target = SharedImage(&image);
+                    loop {
+                        let y = next_row.fetch_add(1, Ordering::Relaxed);
+                        if y >= height {
+                            break;
+                        }
+                        let rendered = render_rows(
+                            &self.scene,
+                            &self.camera,
+                            y..y + 1,
+                            &mut line,
+                            &mut target,
+                        );
+                        // The camera fits the image, the line holds a row and the target is
+                        // infallible: no error is possible here.
+                        debug_assert!(rendered.is_ok());
+                        rows_done.fetch_add(1, Ordering::Relaxed);
+                    }
+                });
+            }
+            if let Some(label) = progress {
+                report_progress(label, &rows_done, height);
+            }
+        });
+        image
+            .into_inner()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+
+    /// The index of the object each pixel's primary ray hits first, row by row.
+    pub fn object_map(&self) -> Vec<Option<usize>> {
+        let (width, height) = (self.camera.width(), self.camera.height());
+        (0..height)
+            .flat_map(|y| (0..width).map(move |x| (x, y)))
+            .map(|(x, y)| self.scene.first_hit(&self.camera.ray(x, y)))
+            .collect()
+    }
+}
+
+/// A prepared render whose number format was chosen at run time.
+pub trait AnyFormat {
+    /// See [`Prepared::render`].
+    fn render(&self, threads: usize, progress: Option<&str>) -> RgbImage;
+    /// See [`Prepared::object_map`].
+    fn object_map(&self) -> Vec<Option<usize>>;
+}
+
+impl<S: Scalar> AnyFormat for Prepared<S> {
+    fn render(&self, threads: usize, progress: Option<&str>) -> RgbImage {
+        Prepared::render(self, threads, progress)
+    }
+    fn object_map(&self) -> Vec<Option<usize>> {
+        Prepared::object_map(self)
+    }
+}
+
+/// Builds the request's scene in `format`.
+pub fn prepare(format: Format, request: &Request<'_>) -> Result<Box<dyn AnyFormat>> {
+    struct Job<'a, 'b>(&'a Request<'b>);
+    impl FormatJob for Job<'_, '_> {
+        type Output = Result<Box<dyn AnyFormat>>;
+        fn run<S: Scalar>(self) -> Self::Output {
+            Ok(Box::new(Prepared::<S>::new(self.0)?))
+        }
+    }
+    format.run(Job(request))
+}
+
+/// Prints "label: 42%" on stderr every 100 ms once a second has passed, until every row is
+/// done. It looks every 10 ms, so a short render is not held up waiting for it.
+fn report_progress(label: &str, rows_done: &AtomicU32, height: u32) {
+    let start = Instant::now();
+    let mut last_shown = None;
+    loop {
+        let done = rows_done.load(Ordering::Relaxed);
+        if done >= height {
+            break;
+        }
+        let due = last_shown.is_none_or(|at: Instant| at.elapsed() >= Duration::from_millis(100));
+        if start.elapsed() > Duration::from_secs(1) && due {
+            eprint!(
+                "\r{label}: {:3}%",
+                u64::from(done) * 100 / u64::from(height)
+            );
+            let _ = std::io::stderr().flush();
+            last_shown = Some(Instant::now());
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    if last_shown.is_some() {
+        eprintln!("\r{label}: 100%");
+    }
+}
+
+/// An image shared by the render threads; each row is written under the lock once.
+struct SharedImage<'a>(&'a Mutex<RgbImage>);
+
+impl SharedImage<'_> {
+    fn canvas<T>(&self, draw: impl FnOnce(&mut Canvas<'_>) -> T) -> T {
+        let mut image = self
+            .0
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        draw(&mut Canvas(&mut image))
+    }
+}
+
+impl OriginDimensions for SharedImage<'_> {
+    fn size(&self) -> Size {
+        self.canvas(|canvas| canvas.size())
+    }
+}
+
+impl DrawTarget for SharedImage<'_> {
+    type Color = Rgb888;
+    type Error = Infallible;
+
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Infallible>
+    where
+        I: IntoIterator<Item = Pixel<Rgb888>>,
+    {
+        self.canvas(|canvas| canvas.draw_iter(pixels))
+    }
+
+    fn fill_contiguous<I>(&mut self, area: &Rectangle, colours: I) -> Result<(), Infallible>
+    where
+        I: IntoIterator<Item = Rgb888>,
+    {
+        self.canvas(|canvas| canvas.fill_contiguous(area, colours))
+    }
+}

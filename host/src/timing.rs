@@ -1,0 +1,50 @@
+//! Wall-clock timing by the median of repeated runs, with the contenders interleaved run by
+//! run, so that a machine that speeds up or slows down during the measurement affects them all
+//! alike. Compare only times taken in the same call.
+
+use std::time::Instant;
+
+/// Runs each task `runs` times (at least once), round-robin, and returns each task's median
+/// time in milliseconds.
+pub fn interleaved_median_ms(runs: usize, tasks: &[&dyn Fn()]) -> Vec<f64> {
+    let mut times = vec![Vec::with_capacity(runs.max(1)); tasks.len()];
+    for _ in 0..runs.max(1) {
+        for (task, times) in tasks.iter().zip(&mut times) {
+            let start = Instant::now();
+            task();
+            times.push(start.elapsed().as_secs_f64() * 1e3);
+        }
+    }
+    times.into_iter().map(median).collect()
+}
+
+fn median(mut times: Vec<f64>) -> f64 {
+    times.sort_by(f64::total_cmp);
+    let mid = times.len() / 2;
+    if times.len() % 2 == 0 {
+        (times[mid - 1] + times[mid]) / 2.0
+    } else {
+        times[mid]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn runs_every_task_round_robin() {
+        let order = std::cell::RefCell::new(Vec::new());
+        let a = || order.borrow_mut().push('a');
+        let b = || order.borrow_mut().push('b');
+        let times = interleaved_median_ms(3, &[&a, &b]);
+        assert_eq!(times.len(), 2);
+        assert_eq!(order.into_inner(), ['a', 'b', 'a', 'b', 'a', 'b']);
+    }
+
+    #[test]
+    fn median_of_odd_and_even_counts() {
+        assert_eq!(median(vec![5.0, 1.0, 3.0]), 3.0);
+        assert_eq!(median(vec![4.0, 1.0, 3.0, 2.0]), 2.5);
+    }
+}

@@ -1,0 +1,201 @@
+//! The `obscura` command as a user runs it.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn obscura(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_obscura"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn stdout(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stdout).into_owned()
+}
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+/// A fresh directory for one test's files.
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn read_json(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+#[test]
+fn scenes_lists_the_built_in_scenes() {
+    let output = obscura(&["scenes"]);
+    assert!(output.status.success());
+    let text = stdout(&output);
+    assert!(
+        text.contains("whitted") && text.contains("shapes"),
+        "{text}"
+    );
+}
+
+#[test]
+fn render_writes_a_png_of_the_requested_size() {
+    let dir = scratch("render");
+    let file = dir.join("shapes.png");
+    let file = file.to_str().unwrap();
+    let output = obscura(&[
+        "render", "shapes", "--format", "i16f16", "--size", "40x24", "-o", file,
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let image = image::open(file).unwrap();
+    assert_eq!((image.width(), image.height()), (40, 24));
+}
+
+#[test]
+fn compare_writes_three_images_a_table_and_json() {
+    let dir = scratch("compare");
+    let json = dir.join("report.json");
+    let output = obscura(&[
+        "compare",
+        "whitted",
+        "--format",
+        "i16f16",
+        "--size",
+        "48x32",
+        "--runs",
+        "1",
+        "--out-dir",
+        dir.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    for name in ["i16f16.png", "f64.png", "diff.png"] {
+        assert!(dir.join(name).exists(), "{name} missing");
+    }
+    assert!(
+        stdout(&output).contains("| whitted | 48x32 | i16f16 |"),
+        "{}",
+        stdout(&output)
+    );
+    let report = read_json(&json);
+    for key in [
+        "format",
+        "reference",
+        "scene",
+        "width",
+        "height",
+        "psnr_db",
+        "mean_abs_error",
+        "max_abs_error",
+        "differing_pixels_pct",
+        "object_mismatch_pct",
+        "ms_per_frame",
+        "reference_ms_per_frame",
+    ] {
+        assert!(report.get(key).is_some(), "no {key} in {report}");
+    }
+    assert_eq!(report["format"], "i16f16");
+    assert_eq!(report["reference"], "f64");
+    assert_eq!(
+        (report["width"].as_u64(), report["height"].as_u64()),
+        (Some(48), Some(32))
+    );
+    assert!(report["psnr_db"].as_f64().unwrap() > 30.0, "{report}");
+    assert!(
+        report["object_mismatch_pct"].as_f64().unwrap() < 1.0,
+        "{report}"
+    );
+}
+
+#[test]
+fn comparing_f64_with_itself_is_identical() {
+    let dir = scratch("identical");
+    let json = dir.join("report.json");
+    let output = obscura(&[
+        "compare",
+        "shapes",
+        "--format",
+        "f64",
+        "--size",
+        "16x16",
+        "--runs",
+        "1",
+        "--out-dir",
+        dir.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert!(stdout(&output).contains("identical"));
+    let report = read_json(&json);
+    assert!(
+        report["psnr_db"].is_null(),
+        "infinite PSNR is null in JSON: {report}"
+    );
+    assert_eq!(report["max_abs_error"], 0);
+}
+
+#[test]
+fn bench_reports_ratios_and_thread_speedup() {
+    let output = obscura(&[
+        "bench",
+        "shapes",
+        "--size",
+        "16x16",
+        "--runs",
+        "1",
+        "--formats",
+        "i16f16",
+        "--threads",
+        "1,2",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    assert!(text.contains("| i16f16 |"), "{text}");
+    assert!(
+        text.contains("time ÷ f32") && text.contains("| i16f16 | 2 |"),
+        "{text}"
+    );
+}
+
+#[test]
+fn bad_arguments_fail_with_a_clear_message() {
+    let cases: [(&[&str], &str); 5] = [
+        (
+            &["render", "teapot"],
+            "the built-in scenes are: whitted, shapes",
+        ),
+        (&["render", "whitted", "--size", "512"], "WIDTHxHEIGHT"),
+        (&["render", "whitted", "--size", "0x10"], "1 to 8192"),
+        (&["render", "whitted", "--format", "q15"], "i16f16"),
+        (&["compare", "whitted", "--runs", "0"], "runs"),
+    ];
+    for (args, expected) in cases {
+        let output = obscura(args);
+        assert!(!output.status.success(), "{args:?} succeeded");
+        let message = stderr(&output);
+        assert!(message.contains(expected), "{args:?}: {message}");
+    }
+}
+
+#[test]
+fn an_unwritable_output_is_reported() {
+    let output = obscura(&[
+        "render",
+        "shapes",
+        "--size",
+        "8x8",
+        "-o",
+        "/nonexistent/dir/x.png",
+    ]);
+    assert!(!output.status.success());
+    let message = stderr(&output);
+    assert!(
+        message.contains("cannot write /nonexistent/dir/x.png"),
+        "{message}"
+    );
+}

@@ -1,0 +1,193 @@
+//! [`Camera`]: the pinhole camera of the lecture, which turns a pixel into a primary ray
+//! r(t) = e + t·(s − e) through the pixel's centre s on the image plane.
+
+use crate::desc::CameraDesc;
+use crate::ray::Ray;
+use crate::scalar::Scalar;
+use crate::vec3::Vec3;
+
+/// The largest image side: it keeps every pixel coordinate exact in every format.
+pub const MAX_IMAGE_SIDE: u32 = 8192;
+
+/// A pinhole camera for one image size. Coordinates are relative to the eye, which is at the
+/// origin.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera<S> {
+    width: u32,
+    height: u32,
+    /// s for the image's top-left corner (not a pixel centre), one unit in front of the eye.
+    top_left: Vec3<S>,
+    /// From the left edge of the image plane to the right edge.
+    across: Vec3<S>,
+    /// From the top edge to the bottom edge.
+    down: Vec3<S>,
+}
+
+/// The camera's frame in double precision: where it looks and how wide, per unit distance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Frame {
+    pub(crate) forward: Vec3<f64>,
+    pub(crate) right: Vec3<f64>,
+    pub(crate) up: Vec3<f64>,
+    /// tan(vfov / 2): half the image plane's height one unit ahead.
+    pub(crate) half_height: f64,
+}
+
+impl Frame {
+    /// The orthonormal frame of a camera description, or `None` when the view direction is
+    /// zero or parallel to `up` (the scene build reports which).
+    pub(crate) fn new(desc: &CameraDesc) -> Option<Self> {
+        let forward = (Vec3::from_f32(desc.look_at) - Vec3::from_f32(desc.eye)).direction()?;
+        let right = forward.cross(Vec3::from_f32(desc.up)).direction()?;
+        let up = right.cross(forward);
+        let half_height = libm::tan(f64::from(desc.vfov_degrees).to_radians() / 2.0);
+        Some(Self {
+            forward,
+            right,
+            up,
+            half_height,
+        })
+    }
+
+    /// Half the image plane's width one unit ahead, for an image of this size.
+    pub(crate) fn half_width(&self, width: u32, height: u32) -> f64 {
+        self.half_height * f64::from(width) / f64::from(height)
+    }
+}
+
+impl<S: Scalar> Camera<S> {
+    /// The camera of `frame` for an image of `width × height` pixels (each in
+    /// 1..=[`MAX_IMAGE_SIDE`], which the caller has checked), or `None` if its image plane does
+    /// not fit format `S`.
+    pub(crate) fn new(frame: &Frame, width: u32, height: u32) -> Option<Self> {
+        let half_width = frame.half_width(width, height);
+        let top_left = frame.forward - frame.right * half_width + frame.up * frame.half_height;
+        Some(Self {
+            width,
+            height,
+            top_left: top_left.convert()?,
+            across: (frame.right * (2.0 * half_width)).convert()?,
+            down: (frame.up * (-2.0 * frame.half_height)).convert()?,
+        })
+    }
+
+    /// The image width in pixels.
+    #[must_use]
+    pub const fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// The image height in pixels.
+    #[must_use]
+    pub const fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Row y of the image (counting down from the top), ready to give its pixels' rays.
+    #[must_use]
+    pub fn row(&self, y: u32) -> Row<S> {
+        let start = self
+            .top_left
+            .add_scaled(self.down, pixel_centre::<S>(y, self.height));
+        Row {
+            start,
+            across: self.across,
+            width: self.width,
+        }
+    }
+
+    /// The primary ray through the centre of pixel (x, y); see [`Row::ray`].
+    #[must_use]
+    pub fn ray(&self, x: u32, y: u32) -> Ray<S> {
+        self.row(y).ray(x)
+    }
+}
+
+/// One row of a camera's image.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Row<S> {
+    /// s at the left edge of the row, at its vertical centre.
+    start: Vec3<S>,
+    across: Vec3<S>,
+    width: u32,
+}
+
+impl<S: Scalar> Row<S> {
+    /// The primary ray through the centre of pixel x: with e at the origin and
+    /// s = top_left + down·(y + ½)/height + across·(x + ½)/width, the direction is
+    /// (s − e)/|s − e|. Each fraction is one exact ratio, so no error accumulates along a row.
+    #[must_use]
+    pub fn ray(&self, x: u32) -> Ray<S> {
+        let s = self
+            .start
+            .add_scaled(self.across, pixel_centre::<S>(x, self.width));
+        Ray::new(Vec3::ZERO, s.normalized())
+    }
+}
+
+/// (i + ½) / n = (2i + 1) / 2n, exact in every format up to [`MAX_IMAGE_SIDE`].
+#[inline]
+fn pixel_centre<S: Scalar>(i: u32, n: u32) -> S {
+    let num = i32::try_from(2 * i + 1).unwrap_or(i32::MAX);
+    let den = i32::try_from(2 * n).unwrap_or(i32::MAX);
+    S::ratio(num, den)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_util::{assert_close, for_each_format};
+
+    const DESC: CameraDesc = CameraDesc {
+        eye: [1.0, 2.0, 3.0],
+        look_at: [1.0, 2.0, 10.0],
+        up: [0.0, 1.0, 0.0],
+        vfov_degrees: 90.0,
+    };
+
+    #[test]
+    fn centre_pixel_looks_at_the_target_and_corners_span_the_field_of_view() {
+        for_each_format!(S, {
+            let frame = Frame::new(&DESC).unwrap();
+            // An odd size has a pixel whose centre is the image centre.
+            let camera = Camera::<S>::new(&frame, 3, 3).unwrap();
+            let centre = camera.ray(1, 1);
+            assert_eq!(centre.origin, Vec3::ZERO);
+            assert_close(centre.dir.z, 1.0, 1e-4);
+            // With vfov 90°, the top-left pixel centre of a 3×3 image is at s = (−⅔, ⅔, 1)
+            // (x to the left: right = forward × up = −x for this frame).
+            let corner = camera.ray(0, 0).dir;
+            let n = (2.0_f64 * 4.0 / 9.0 + 1.0).sqrt();
+            assert_close(corner.x, 2.0 / 3.0 / n, 1e-4);
+            assert_close(corner.y, 2.0 / 3.0 / n, 1e-4);
+            assert_close(corner.z, 1.0 / n, 1e-4);
+        });
+    }
+
+    #[test]
+    fn a_wide_image_widens_the_horizontal_field() {
+        let frame = Frame::new(&DESC).unwrap();
+        let camera = Camera::<f64>::new(&frame, 4, 2).unwrap();
+        // vfov 90° on a 4×2 image: the plane spans 2 units vertically and 4 across, so the
+        // first pixel centre is 1.5 units from the axis (right = forward × up = −x here).
+        let first = camera.ray(0, 0).dir;
+        let last = camera.ray(3, 0).dir;
+        assert_close(first.x / first.z, 1.5, 1e-12);
+        assert_close(last.x / last.z, -1.5, 1e-12);
+        assert_close(first.y / first.z, 0.5, 1e-12);
+    }
+
+    #[test]
+    fn degenerate_frames_are_rejected() {
+        let parallel = CameraDesc {
+            up: [0.0, 0.0, 2.0],
+            ..DESC
+        };
+        assert_eq!(Frame::new(&parallel), None);
+        let nowhere = CameraDesc {
+            look_at: DESC.eye,
+            ..DESC
+        };
+        assert_eq!(Frame::new(&nowhere), None);
+    }
+}

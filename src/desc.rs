@@ -1,0 +1,143 @@
+//! Scene descriptions: plain `f32` data in world units, const-constructible so that a firmware
+//! keeps its scene in flash. [`crate::Scene::build`] validates one and converts it into a
+//! number format.
+
+/// A scene as its author writes it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SceneDesc<'a> {
+    /// Where the pinhole camera stands and looks.
+    pub camera: CameraDesc,
+    /// Spheres, planes and triangles, each with its material.
+    pub objects: &'a [ObjectDesc],
+    /// Point lights.
+    pub lights: &'a [LightDesc],
+    /// Light that reaches every surface, shadowed or not (a fraction of the surface colour).
+    pub ambient: [f32; 3],
+    /// What a ray that hits nothing sees.
+    pub background: BackgroundDesc,
+    /// The radius of the world around the eye: nothing farther is seen, and every object and
+    /// light must lie within it. A fixed-point format only has to hold numbers this big, so
+    /// model no more than the scene needs.
+    pub far: f32,
+    /// The deepest ray tree: 0 traces primary rays only, each level adds one reflection or
+    /// refraction.
+    pub max_depth: u8,
+}
+
+/// A pinhole camera. Coordinates are right-handed: with +y up and the camera looking along +z,
+/// +x points to the left of the image.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraDesc {
+    /// The eye: where every primary ray starts.
+    pub eye: [f32; 3],
+    /// The point in the centre of the image.
+    pub look_at: [f32; 3],
+    /// Which way is up (need not be perpendicular to the view direction, must not be parallel).
+    pub up: [f32; 3],
+    /// The vertical field of view in degrees, in (0, 180).
+    pub vfov_degrees: f32,
+}
+
+/// One object: a shape and what it is made of.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ObjectDesc {
+    /// The geometry.
+    pub shape: ShapeDesc,
+    /// The surface.
+    pub material: MaterialDesc,
+}
+
+/// The geometric primitives.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ShapeDesc {
+    /// A sphere.
+    Sphere {
+        /// Its centre.
+        center: [f32; 3],
+        /// Its radius, > 0.
+        radius: f32,
+    },
+    /// A plane through `point` facing `normal`, cut off where it leaves the world (see
+    /// [`SceneDesc::far`]), optionally patterned as a checkerboard.
+    Plane {
+        /// A point on the plane; the checkerboard's squares are aligned to it.
+        point: [f32; 3],
+        /// The plane's normal (any length but zero).
+        normal: [f32; 3],
+        /// A checkerboard of the material's colour and this one.
+        checker: Option<CheckerDesc>,
+    },
+    /// A triangle, visible from both sides.
+    Triangle {
+        /// The corners, in any order.
+        vertices: [[f32; 3]; 3],
+    },
+}
+
+/// A checkerboard on a plane: squares alternate between the material's colour and `colour`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CheckerDesc {
+    /// The second colour.
+    pub colour: [f32; 3],
+    /// The side of one square, in world units.
+    pub size: f32,
+}
+
+/// How a surface reflects, after Whitted (1980).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MaterialDesc {
+    /// The surface colour, linear RGB in [0, 1].
+    pub colour: [f32; 3],
+    /// Lambertian weight.
+    pub diffuse: f32,
+    /// Phong highlight weight.
+    pub specular: f32,
+    /// Phong exponent: larger is a smaller, sharper highlight.
+    pub shininess: u16,
+    /// Mirror reflection weight.
+    pub reflection: f32,
+    /// Transmission weight (refraction, and how much light a shadow lets through).
+    pub transmission: f32,
+    /// Index of refraction (≥ 1) for transmitted rays.
+    pub ior: f32,
+}
+
+impl MaterialDesc {
+    /// A matte surface of the given colour.
+    #[must_use]
+    pub const fn matte(colour: [f32; 3]) -> Self {
+        Self {
+            colour,
+            diffuse: 0.9,
+            specular: 0.0,
+            shininess: 1,
+            reflection: 0.0,
+            transmission: 0.0,
+            ior: 1.0,
+        }
+    }
+}
+
+/// A point light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightDesc {
+    /// Where it is.
+    pub position: [f32; 3],
+    /// Its colour and intensity (linear RGB; 1 is a white light of unit intensity).
+    pub colour: [f32; 3],
+}
+
+/// What rays that hit nothing see.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BackgroundDesc {
+    /// One colour everywhere.
+    Solid([f32; 3]),
+    /// A sky: `horizon` for rays level with the ground or below, blending to `zenith` for a
+    /// ray straight up (the world's +y).
+    Gradient {
+        /// The colour at and below the horizon.
+        horizon: [f32; 3],
+        /// The colour straight up.
+        zenith: [f32; 3],
+    },
+}

@@ -1,0 +1,60 @@
+//! # obscura
+//!
+//! A `no_std` ray tracer for microcontroller displays that computes in fixed point: Whitted's
+//! ray tracer (pinhole camera, spheres, planes and triangles, shadows, reflection, refraction)
+//! written once over a [`Scalar`] number format, drawing scanline by scanline onto any
+//! embedded-graphics [`DrawTarget`](embedded_graphics_core::draw_target::DrawTarget) through a
+//! single line buffer.
+//!
+//! ```
+//! use embedded_graphics::{mock_display::MockDisplay, pixelcolor::Rgb565};
+//! use obscura::{I16F16, Scene, render_rows, scenes};
+//!
+//! // At most 8 objects, 4 lights, and a ray stack for a tree 5 levels deep.
+//! let scene = Scene::<I16F16, 8, 4, 6>::build(&scenes::WHITTED)?;
+//! let camera = scene.camera(32, 32)?;
+//! let mut display = MockDisplay::<Rgb565>::new();
+//! let mut line = [Rgb565::default(); 32];
+//! render_rows(&scene, &camera, 0..32, &mut line, &mut display).unwrap();
+//! # Ok::<(), obscura::SceneError>(())
+//! ```
+//!
+//! The core never allocates and never panics on input: [`Scene::build`] validates a
+//! [`SceneDesc`] and proves that the chosen format holds every value the tracer will compute
+//! for it, or returns a [`SceneError`] that says what is wrong and how to fix it.
+#![cfg_attr(not(test), no_std)]
+#![cfg_attr(
+    not(test),
+    deny(clippy::unwrap_used, clippy::expect_used, clippy::panic)
+)]
+#![cfg_attr(not(test), deny(clippy::indexing_slicing, clippy::unreachable))]
+
+pub mod camera;
+pub mod color;
+pub mod desc;
+pub mod light;
+pub mod material;
+pub mod ray;
+pub mod render;
+pub mod scalar;
+pub mod scene;
+pub mod scenes;
+pub mod shade;
+pub mod shape;
+pub mod vec3;
+
+#[cfg(test)]
+mod test_util;
+
+pub use camera::{Camera, MAX_IMAGE_SIDE};
+pub use color::{DisplayColor, Rgb};
+pub use desc::{
+    BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc,
+    ShapeDesc,
+};
+pub use ray::Ray;
+pub use render::{RenderError, render_rows};
+pub use scalar::{I16F16, I32F32, Scalar};
+pub use scene::{Item, Scene, SceneError};
+pub use shade::Sample;
+pub use vec3::Vec3;

@@ -1,0 +1,39 @@
+//! What lights a scene ([`Light`]) and what a ray sees when it escapes ([`Background`]).
+
+use crate::color::Rgb;
+use crate::scalar::Scalar;
+use crate::vec3::Vec3;
+
+/// A point light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Light<S> {
+    /// Where it is, relative to the eye.
+    pub position: Vec3<S>,
+    /// Its colour and intensity.
+    pub colour: Rgb<S>,
+}
+
+/// The colour of rays that hit nothing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Background<S> {
+    /// One colour.
+    Solid(Rgb<S>),
+    /// A sky: `horizon` at and below the horizon, `horizon + rise` straight up.
+    Gradient {
+        /// The colour at the horizon.
+        horizon: Rgb<S>,
+        /// Zenith minus horizon.
+        rise: Rgb<S>,
+    },
+}
+
+impl<S: Scalar> Background<S> {
+    /// The colour seen along the unit direction `dir`.
+    #[must_use]
+    pub fn colour(&self, dir: Vec3<S>) -> Rgb<S> {
+        match *self {
+            Self::Solid(colour) => colour,
+            Self::Gradient { horizon, rise } => horizon + rise.scale(dir.y.max(S::ZERO)),
+        }
+    }
+}

@@ -1,0 +1,425 @@
+//! Fixed-point formats: [`Fx`], one wrapper over any signed type of the `fixed` crate, so that
+//! every format is written once.
+//!
+//! How each operation meets the end of the range, chosen by what the mathematics needs:
+//!
+//! - `+`, `−`, `×` and dot products are plain: exact while the result fits, and the scene build
+//!   ([`crate::scene::range`]) proves that every sum and product the tracer forms fits. Debug
+//!   builds check every one and panic on overflow, so a hole in that proof fails the tests;
+//!   release builds pay nothing for the proof they rely on.
+//! - Division, reciprocals and negation saturate: a quotient grows without bound as its
+//!   divisor shrinks (a ray grazing a plane), and a saturated value reads as "beyond the
+//!   world" in every comparison the tracer makes.
+
+use super::Scalar;
+use super::isqrt::{isqrt_u64, rsqrt_fixed};
+use core::cmp::Ordering;
+use core::fmt;
+use core::ops::{Add, Div, Mul, Neg, Sub};
+use fixed::traits::{Fixed, FixedSigned};
+
+/// Signed 16.16 fixed point on `i32`: range ±32 768, resolution 1/65 536 ≈ 1.5·10⁻⁵.
+pub type I16F16 = Fx<fixed::types::I16F16>;
+
+/// Signed 32.32 fixed point on `i64`: range ±2.1·10⁹, resolution 2.3·10⁻¹⁰.
+pub type I32F32 = Fx<fixed::types::I32F32>;
+
+/// A fixed-point number (see the module documentation for its overflow rules).
+///
+/// Products are formed exactly in the double-width integer and rounded once to nearest, so a
+/// multiplication is correct to half an LSB.
+#[derive(Clone, Copy, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[repr(transparent)]
+pub struct Fx<F>(F);
+
+impl<F: Fixed> Fx<F> {
+    /// Wraps a number of the `fixed` crate.
+    #[inline]
+    #[must_use]
+    pub const fn new(value: F) -> Self {
+        Self(value)
+    }
+
+    /// The number of the `fixed` crate inside.
+    #[inline]
+    #[must_use]
+    pub const fn get(self) -> F {
+        self.0
+    }
+}
+
+impl<F: fmt::Debug> fmt::Debug for Fx<F> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+impl<F: fmt::Display> fmt::Display for Fx<F> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+/// The raw integer of a fixed format, with the double-width and root operations the format's
+/// arithmetic is built from.
+pub trait WideBits: Copy + Ord {
+    /// An integer twice as wide as `Self`.
+    type Wide: Copy;
+    /// The exact product. It cannot overflow: |a·b| ≤ 2^(2n−2) for n-bit inputs.
+    fn wide_mul(self, rhs: Self) -> Self::Wide;
+    /// The sum of two products; it must fit (checked in debug builds).
+    fn wide_add(a: Self::Wide, b: Self::Wide) -> Self::Wide;
+    /// `wide / 2^frac` rounded to nearest (ties up); it must fit (checked in debug builds).
+    fn narrow(wide: Self::Wide, frac: u32) -> Self;
+    /// ⌊√(self · 2^frac)⌋ for `self` > 0: the square root of a fixed-point number with `frac`
+    /// fraction bits, in raw units (it always fits).
+    fn sqrt_raw(self, frac: u32) -> Self;
+    /// 1/√self in raw units of a format with `frac` fraction bits, within one unit, saturated;
+    /// for `self` > 0.
+    fn rsqrt_raw(self, frac: u32) -> Self;
+}
+
+macro_rules! wide_bits {
+    ($($bits:ident => $wide:ident, roots: $sqrt:path, $rsqrt:path);*) => {$(
+        impl WideBits for $bits {
+            type Wide = $wide;
+            #[inline]
+            fn wide_mul(self, rhs: Self) -> $wide {
+                <$wide>::from(self) * <$wide>::from(rhs)
+            }
+            #[inline]
+            fn wide_add(a: $wide, b: $wide) -> $wide {
+                a + b
+            }
+            #[inline]
+            #[allow(clippy::cast_possible_truncation, reason = "the range proof keeps it in range")]
+            fn narrow(wide: $wide, frac: u32) -> Self {
+                let rounded = (wide + (1 << (frac - 1))) >> frac;
+                debug_assert!(
+                    <$bits>::try_from(rounded).is_ok(),
+                    "fixed-point overflow: the scene's range analysis missed a product"
+                );
+                rounded as $bits
+            }
+            #[inline]
+            fn sqrt_raw(self, frac: u32) -> Self {
+                $sqrt(self, frac)
+            }
+            #[inline]
+            fn rsqrt_raw(self, frac: u32) -> Self {
+                $rsqrt(self, frac)
+            }
+        }
+    )*};
+}
+wide_bits!(
+    i32 => i64, roots: sqrt_raw_32, rsqrt_raw_32;
+    i64 => i128, roots: sqrt_raw_64, rsqrt_raw_64
+);
+
+/// The 32-bit formats' roots: the division-free routines (x·2^frac < 2⁶² for frac ≤ 30).
+#[inline]
+fn sqrt_raw_32(x: i32, frac: u32) -> i32 {
+    i32::try_from(isqrt_u64(u64::from(x.unsigned_abs()) << frac)).unwrap_or(i32::MAX)
+}
+
+#[inline]
+fn rsqrt_raw_32(x: i32, frac: u32) -> i32 {
+    i32::try_from(rsqrt_fixed(x.unsigned_abs(), frac)).unwrap_or(i32::MAX)
+}
+
+/// The 64-bit formats' roots: core's exact integer root on u128, and for the reciprocal one
+/// division, as ⌊√⌊2^(3f)/x⌋⌋ = ⌊2^(3f/2)/√x⌋.
+#[inline]
+fn sqrt_raw_64(x: i64, frac: u32) -> i64 {
+    i64::try_from((u128::from(x.unsigned_abs()) << frac).isqrt()).unwrap_or(i64::MAX)
+}
+
+#[inline]
+fn rsqrt_raw_64(x: i64, frac: u32) -> i64 {
+    let quotient = (1_u128 << (3 * frac)) / u128::from(x.unsigned_abs());
+    i64::try_from(quotient.isqrt()).unwrap_or(i64::MAX)
+}
+
+impl<F> Fx<F>
+where
+    F: FixedSigned,
+    F::Bits: WideBits,
+{
+    /// One, which every format used here has (at least two integer bits are required).
+    const ONE_VALUE: Self = match F::TRY_ONE {
+        Some(one) => Self(one),
+        None => panic!("a tracing format needs integer bits"),
+    };
+
+    #[inline]
+    fn saturate_towards(sign: Ordering) -> Self {
+        match sign {
+            Ordering::Less => Self(F::MIN),
+            Ordering::Equal => Self(F::ZERO),
+            Ordering::Greater => Self(F::MAX),
+        }
+    }
+}
+
+impl<F: FixedSigned> Add for Fx<F> {
+    type Output = Self;
+    /// Plain: checked in debug builds, proven in range by the scene build.
+    #[inline]
+    fn add(self, rhs: Self) -> Self {
+        Self(self.0 + rhs.0)
+    }
+}
+
+impl<F: FixedSigned> Sub for Fx<F> {
+    type Output = Self;
+    /// Plain: checked in debug builds, proven in range by the scene build.
+    #[inline]
+    fn sub(self, rhs: Self) -> Self {
+        Self(self.0 - rhs.0)
+    }
+}
+
+impl<F: FixedSigned> Neg for Fx<F> {
+    type Output = Self;
+    /// Saturating: −MIN is the one negation that does not fit.
+    #[inline]
+    fn neg(self) -> Self {
+        Self(self.0.saturating_neg())
+    }
+}
+
+impl<F> Mul for Fx<F>
+where
+    F: FixedSigned,
+    F::Bits: WideBits,
+{
+    type Output = Self;
+    /// Plain: checked in debug builds, proven in range by the scene build.
+    #[inline]
+    fn mul(self, rhs: Self) -> Self {
+        let wide = self.0.to_bits().wide_mul(rhs.0.to_bits());
+        Self(F::from_bits(F::Bits::narrow(wide, F::FRAC_NBITS)))
+    }
+}
+impl<F> Div for Fx<F>
+where
+    F: FixedSigned,
+    F::Bits: WideBits,
+{
+    type Output = Self;
+    /// Truncating division; division by zero and overflow saturate towards the sign of the
+    /// true quotient (zero for 0/0).
+    #[inline]
+    fn div(self, rhs: Self) -> Self {
+        match self.0.checked_div(rhs.0) {
+            Some(q) => Self(q),
+            None => {
+                let sign = if rhs.0 == F::ZERO {
+                    self.0.cmp(&F::ZERO)
+                } else if (self.0 < F::ZERO) == (rhs.0 < F::ZERO) {
+                    Ordering::Greater
+                } else {
+                    Ordering::Less
+                };
+                Self::saturate_towards(sign)
+            }
+        }
+    }
+}
+
+impl<F> Scalar for Fx<F>
+where
+    F: FixedSigned + fmt::Debug + Default + Send + Sync + 'static,
+    F::Bits: WideBits,
+{
+    const NAME: &'static str = fixed_name::<F>();
+    const ZERO: Self = Self(F::ZERO);
+    const ONE: Self = Self::ONE_VALUE;
+    const MAX: Self = Self(F::MAX);
+    const RANGE: f64 = {
+        // MAX = 2^(INT_NBITS − 1) − 2^−FRAC_NBITS, exact in f64 for the formats used here.
+        let int = (1_u64 << (F::INT_NBITS - 1)) as f64;
+        int - 1.0 / (1_u64 << F::FRAC_NBITS) as f64
+    };
+
+    #[inline]
+    fn from_f64(x: f64) -> Option<Self> {
+        if x.is_finite() {
+            F::checked_from_num(x).map(Self)
+        } else {
+            None
+        }
+    }
+
+    #[inline]
+    fn to_f64(self) -> f64 {
+        self.0.to_num::<f64>()
+    }
+
+    #[inline]
+    fn from_int(n: i32) -> Self {
+        Self(F::saturating_from_num(n))
+    }
+
+    #[inline]
+    fn floor_int(self) -> i32 {
+        self.0.floor().saturating_to_num::<i32>()
+    }
+
+    fn resolution(_magnitude: f64) -> f64 {
+        F::DELTA.to_num::<f64>()
+    }
+
+    #[inline]
+    fn rsqrt(self) -> Self {
+        if self.0 <= F::ZERO {
+            Self::MAX
+        } else {
+            Self(F::from_bits(self.0.to_bits().rsqrt_raw(F::FRAC_NBITS)))
+        }
+    }
+
+    #[inline]
+    fn sqrt(self) -> Self {
+        if self.0 <= F::ZERO {
+            Self::ZERO
+        } else {
+            Self(F::from_bits(self.0.to_bits().sqrt_raw(F::FRAC_NBITS)))
+        }
+    }
+
+    #[inline]
+    fn dot3(a: [Self; 3], b: [Self; 3]) -> Self {
+        let p0 = a[0].0.to_bits().wide_mul(b[0].0.to_bits());
+        let p1 = a[1].0.to_bits().wide_mul(b[1].0.to_bits());
+        let p2 = a[2].0.to_bits().wide_mul(b[2].0.to_bits());
+        let sum = F::Bits::wide_add(F::Bits::wide_add(p0, p1), p2);
+        Self(F::from_bits(F::Bits::narrow(sum, F::FRAC_NBITS)))
+    }
+}
+
+/// `"i16f16"` for `I16F16`: the lowercase name of a `fixed` type, built at compile time.
+const fn fixed_name<F: Fixed>() -> &'static str {
+    match (F::INT_NBITS, F::FRAC_NBITS) {
+        (16, 16) => "i16f16",
+        (32, 32) => "i32f32",
+        (20, 12) => "i20f12",
+        (24, 8) => "i24f8",
+        _ => "fixed",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fx(x: f64) -> I16F16 {
+        I16F16::from_f64(x).unwrap()
+    }
+
+    #[test]
+    fn negation_saturates() {
+        assert_eq!(-Fx(fixed::types::I16F16::MIN), I16F16::MAX);
+    }
+
+    #[test]
+    #[should_panic(expected = "overflow")]
+    fn an_overflowing_dot_product_is_caught_in_debug_builds() {
+        let big = fx(200.0);
+        let _ = I16F16::dot3([big; 3], [big; 3]);
+    }
+
+    #[test]
+    #[should_panic(expected = "overflow")]
+    fn an_overflowing_product_is_caught_in_debug_builds() {
+        let big = fx(30_000.0);
+        let _ = big * big;
+    }
+
+    #[test]
+    #[should_panic(expected = "overflow")]
+    fn an_overflowing_sum_is_caught_in_debug_builds() {
+        let big = fx(30_000.0);
+        let _ = big + big;
+    }
+
+    #[test]
+    fn reciprocal_square_root_is_within_one_lsb() {
+        // Within one LSB, or 2⁻²² of the value for the large roots of tiny inputs.
+        fn check<S: Scalar>(x: f64) {
+            let x = S::from_f64(x).unwrap();
+            let got = x.rsqrt().to_f64();
+            let exact = 1.0 / x.to_f64().sqrt();
+            let tolerance = S::resolution(1.0).max(exact / f64::from(1 << 22));
+            assert!(
+                (got - exact).abs() <= tolerance,
+                "{}: {x:?} gave {got}",
+                S::NAME
+            );
+        }
+        for x in [1e-4, 0.01, 0.5, 1.0, 1.0001, 2.0, 3.7, 100.0, 30_000.0] {
+            check::<I16F16>(x);
+            check::<I32F32>(x);
+        }
+        assert_eq!(I16F16::ZERO.rsqrt(), I16F16::MAX);
+    }
+
+    #[test]
+    fn division_by_zero_saturates_towards_the_numerator() {
+        assert_eq!(fx(2.0) / I16F16::ZERO, I16F16::MAX);
+        assert_eq!(fx(-2.0) / I16F16::ZERO, Fx(fixed::types::I16F16::MIN));
+        assert_eq!(I16F16::ZERO / I16F16::ZERO, I16F16::ZERO);
+        assert_eq!(fx(30_000.0) / fx(-0.001), Fx(fixed::types::I16F16::MIN));
+        assert_eq!(fx(-30_000.0) / fx(-0.001), I16F16::MAX);
+    }
+
+    #[test]
+    fn products_round_to_nearest() {
+        // Exhaustive over a window of small raw values: the product is the exact product of the
+        // raw integers divided by 2^16, rounded half up.
+        for a in -300_i32..300 {
+            for b in [-70_000_i32, -65_536, -1, 1, 3, 32_768, 65_535, 100_000] {
+                let got = (Fx(fixed::types::I16F16::from_bits(a))
+                    * Fx(fixed::types::I16F16::from_bits(b)))
+                .0
+                .to_bits();
+                let exact = f64::from(a) * f64::from(b) / 65_536.0;
+                let expected = (exact + 0.5).floor() as i32;
+                assert_eq!(got, expected, "{a} * {b}");
+            }
+        }
+    }
+
+    #[test]
+    fn dot3_rounds_once() {
+        // Three products of 0.5 LSB each: rounded separately they give 3 LSB, exactly 1.5 LSB
+        // rounds to 2.
+        let half_lsb = Fx(fixed::types::I16F16::from_bits(1 << 8));
+        let a = [half_lsb; 3];
+        let b = [Fx(fixed::types::I16F16::from_bits(1 << 7)); 3];
+        assert_eq!(I16F16::dot3(a, b).0.to_bits(), 2);
+        assert_eq!((a[0] * b[0] + a[1] * b[1] + a[2] * b[2]).0.to_bits(), 3);
+    }
+
+    #[test]
+    fn sqrt_brackets_the_true_root() {
+        // sqrt(x)² ≤ x < (sqrt(x) + δ)² for a sweep of raw values.
+        let mut raw = 1_i32;
+        while raw < i32::MAX / 3 {
+            let x = Fx(fixed::types::I16F16::from_bits(raw));
+            let r = x.sqrt().to_f64();
+            let delta = I16F16::resolution(1.0);
+            assert!(r * r <= x.to_f64(), "{raw}");
+            assert!((r + delta) * (r + delta) > x.to_f64(), "{raw}");
+            raw = raw * 3 / 2 + 1;
+        }
+    }
+
+    #[test]
+    fn names_follow_the_format() {
+        assert_eq!(I16F16::NAME, "i16f16");
+        assert_eq!(I32F32::NAME, "i32f32");
+        assert_eq!(I16F16::RANGE, 32_768.0 - 1.0 / 65_536.0);
+    }
+}

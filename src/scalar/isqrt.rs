@@ -1,0 +1,166 @@
+//! Integer square roots and reciprocal square roots for the 32-bit fixed-point formats, by
+//! multiplication only: no division, and no bit-by-bit loop with a branch per bit.
+//!
+//! Both start from the reciprocal square root of a normalised value ([`rsqrt_q30`]):
+//!
+//! 1. Normalise: shift y left by an even amount 2k so that its top two bits are not both zero,
+//!    and keep the top 32 bits as m, a Q0.32 number in [¼, 1). Then y ≈ m·2^(64 − 2k).
+//! 2. Seed z ≈ 1/√m from a 48-entry table on m's top six bits (about seven correct bits).
+//! 3. Two Newton steps for 1/√m, z ← z·(3 − m·z²)/2, each doubling the correct bits (about
+//!    26 after two), in Q2.30.
+//!
+//! Then √y = m·z·2^(32 − k) and 1/√y = z·2^(k − 32), and the two routines scale accordingly.
+//! [`isqrt_u64`] finishes by stepping to the exact ⌊√y⌋, so its result is the mathematical one;
+//! [`rsqrt_fixed`] rounds. Both are integer arithmetic, so every target computes the same bits.
+
+/// ⌊2³⁰ / √((i + 16.5) / 64)⌋ = ⌊√(2⁶⁷ / (2i + 33))⌋: 1/√m in Q2.30 at the middle of each of
+/// the 48 intervals of m's top six bits (16..64, as m ≥ ¼).
+#[allow(clippy::indexing_slicing, reason = "evaluated at compile time, i < 48")]
+static RSQRT_SEEDS: [u32; 48] = {
+    let mut table = [0_u32; 48];
+    let mut i = 0;
+    while i < 48 {
+        // At most 2³¹: fits u32.
+        table[i] = isqrt_bitwise((1_u128 << 67) / (2 * i as u128 + 33)) as u32;
+        i += 1;
+    }
+    table
+};
+
+/// ⌊√y⌋ one bit at a time: slow, obviously right, and usable at compile time.
+const fn isqrt_bitwise(y: u128) -> u128 {
+    let mut remainder = y;
+    let mut root = 0;
+    let mut bit = 1 << 126;
+    while bit > remainder {
+        bit >>= 2;
+    }
+    while bit != 0 {
+        if remainder >= root + bit {
+            remainder -= root + bit;
+            root = (root >> 1) + bit;
+        } else {
+            root >>= 1;
+        }
+        bit >>= 2;
+    }
+    root
+}
+
+/// Normalises y > 0 to (m, 2k) with y ≈ m·2^(64 − 2k), m in [2³⁰, 2³²), and returns
+/// (m, z ≈ 2³⁰/√(m/2³²), 2k).
+#[inline]
+fn rsqrt_q30(y: u64) -> (u64, u64, u32) {
+    let shift = y.leading_zeros() & !1;
+    let m = (y << shift) >> 32;
+    // m ≥ 2³⁰, so m >> 26 is in 16..64.
+    let index = usize::try_from(m >> 26)
+        .unwrap_or(usize::MAX)
+        .wrapping_sub(16);
+    let mut z = u64::from(RSQRT_SEEDS.get(index).copied().unwrap_or(1 << 30));
+    for _ in 0..2 {
+        // z < 2³¹ and m·z² < 3·2⁶², so every product fits u64.
+        let z_squared = (z * z) >> 30;
+        let m_z_squared = (m * z_squared) >> 32;
+        z = (z * ((3 << 30) - m_z_squared)) >> 31;
+    }
+    (m, z, shift)
+}
+
+/// ⌊√y⌋ for y < 2⁶², exactly.
+#[inline]
+#[must_use]
+pub fn isqrt_u64(y: u64) -> u64 {
+    if y == 0 {
+        return 0;
+    }
+    let (m, z, shift) = rsqrt_q30(y);
+    let mut root = ((m * z) >> 30) >> (shift / 2);
+    while root * root > y {
+        root -= 1;
+    }
+    while (root + 1) * (root + 1) <= y {
+        root += 1;
+    }
+    root
+}
+
+/// 2^(3f/2)/√x, for x > 0 and an even f ≤ 16: the reciprocal square root of a fixed-point
+/// number with f fraction bits, in raw units. Within one unit of the exact value, or 2⁻²² of
+/// it where that is more (the large roots of the smallest inputs); at most 2^(3f/2), for x = 1.
+#[inline]
+#[must_use]
+pub fn rsqrt_fixed(x: u32, frac: u32) -> u32 {
+    if x == 0 {
+        return u32::MAX;
+    }
+    // x = (m/2³²)·2^(64 − 2k), so 2^(3f/2)/√x = z·2^(3f/2 + k − 62) with z in Q2.30; the
+    // exponent is at most 24 + 31 − 62 = −7 for f ≤ 16: always a right shift.
+    let (_, z, shift) = rsqrt_q30(u64::from(x));
+    let right = 62 - 3 * frac / 2 - shift / 2;
+    u32::try_from((z + (1 << (right - 1))) >> right).unwrap_or(u32::MAX)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exact_on_every_small_input() {
+        for y in 0..1_u64 << 20 {
+            assert_eq!(isqrt_u64(y), y.isqrt(), "{y}");
+        }
+    }
+
+    #[test]
+    fn exact_around_every_power_of_two_and_square() {
+        for bits in 20..62 {
+            let p = 1_u64 << bits;
+            for y in [p - 1, p, p + 1] {
+                assert_eq!(isqrt_u64(y), y.isqrt(), "{y}");
+            }
+            let r = p.isqrt();
+            for y in [r * r - 1, r * r, r * r + 1, (r + 1) * (r + 1) - 1] {
+                assert_eq!(isqrt_u64(y), y.isqrt(), "{y}");
+            }
+        }
+    }
+
+    #[test]
+    fn exact_on_a_pseudorandom_sweep() {
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        for _ in 0..2_000_000 {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            let y = state >> (2 + state % 40);
+            assert_eq!(isqrt_u64(y), y.isqrt(), "{y}");
+        }
+    }
+
+    #[test]
+    fn reciprocal_root_is_within_one_unit() {
+        for frac in [8, 12, 16] {
+            let mut x = 1_u32;
+            while x < u32::MAX / 2 {
+                let exact = (1_u64 << (3 * frac / 2)) as f64 / f64::from(x).sqrt();
+                let got = f64::from(rsqrt_fixed(x, frac));
+                let tolerance = (exact / f64::from(1 << 22)).max(1.0);
+                assert!(
+                    (got - exact).abs() <= tolerance,
+                    "frac {frac}, x {x}: {got} vs {exact}"
+                );
+                x = x + x / 97 + 1;
+            }
+        }
+    }
+
+    #[test]
+    fn seeds_are_the_reciprocal_square_roots() {
+        for (i, &seed) in RSQRT_SEEDS.iter().enumerate() {
+            let m = (i as f64 + 16.5) / 64.0;
+            let exact = f64::from(1_u32 << 30) / m.sqrt();
+            assert!((f64::from(seed) - exact).abs() <= 1.0, "{i}");
+        }
+    }
+}

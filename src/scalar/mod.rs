@@ -1,0 +1,222 @@
+//! The number model: one [`Scalar`] trait that every piece of geometry and shading is written
+//! against, and its implementations for fixed-point formats ([`Fx`]) and IEEE floats.
+//!
+//! This module owns how numbers behave at the edges of their range. Every other module calls
+//! only the trait, so swapping the format changes nothing but the numbers. The rules:
+//!
+//! - Arithmetic never wraps. The scene build ([`crate::Scene::build`]) proves that every sum
+//!   and product the tracer forms for that scene fits the format (see [`crate::scene::range`]);
+//!   quotients, which no bound can hold, saturate in fixed point and reach infinity in floats,
+//!   and the tracer reads either as "beyond anything in the world". See [`Fx`] for how the
+//!   fixed formats check the proof in debug builds.
+//! - Nothing panics on a proven scene: the square root of a negative number is zero, a
+//!   fixed-point division by zero saturates towards the sign of the numerator.
+//! - Every tolerance is derived from the format through [`Scalar::resolution`], never typed in.
+
+mod fixed_point;
+mod float;
+mod isqrt;
+
+pub use fixed_point::{Fx, I16F16, I32F32, WideBits};
+
+use core::fmt::Debug;
+use core::ops::{Add, Div, Mul, Neg, Sub};
+
+/// A real number format the tracer can compute in.
+///
+/// The operators are total: they never panic and never wrap (see the module documentation).
+pub trait Scalar:
+    Copy
+    + Default
+    + PartialEq
+    + PartialOrd
+    + Debug
+    + Send
+    + Sync
+    + 'static
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// The format's name as the command line spells it, e.g. `"i16f16"`.
+    const NAME: &'static str;
+    /// Zero.
+    const ZERO: Self;
+    /// One.
+    const ONE: Self;
+    /// The largest finite value: the format's "infinitely far".
+    const MAX: Self;
+    /// [`Self::MAX`] as an `f64`, for range analysis.
+    const RANGE: f64;
+
+    /// Converts from `f64`, or `None` when `x` is not finite or does not fit.
+    fn from_f64(x: f64) -> Option<Self>;
+
+    /// Converts to `f64` (exactly, for every format here but `f64` itself, which is the identity).
+    fn to_f64(self) -> f64;
+
+    /// The integer `n` (saturating when it does not fit).
+    fn from_int(n: i32) -> Self;
+
+    /// The largest integer not greater than `self`, saturated to `i32`.
+    fn floor_int(self) -> i32;
+
+    /// The spacing of representable numbers near `magnitude`: one LSB for a fixed format,
+    /// `magnitude` times the machine epsilon for a float. Tolerances are multiples of it.
+    fn resolution(magnitude: f64) -> f64;
+
+    /// The square root; zero for zero and for negative inputs.
+    #[must_use]
+    fn sqrt(self) -> Self;
+
+    /// `1 / self`, saturating for zero.
+    #[must_use]
+    fn recip(self) -> Self {
+        Self::ONE / self
+    }
+
+    /// `1 / √self`, saturating for zero and negative inputs; within an LSB in fixed point,
+    /// where it costs no division.
+    #[must_use]
+    fn rsqrt(self) -> Self {
+        if self > Self::ZERO {
+            self.sqrt().recip()
+        } else {
+            Self::MAX
+        }
+    }
+
+    /// `a₀b₀ + a₁b₁ + a₂b₂`. Fixed formats override it to add the exact products and round
+    /// once, which is both faster and more precise than three rounded products.
+    #[must_use]
+    fn dot3(a: [Self; 3], b: [Self; 3]) -> Self {
+        a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    }
+
+    /// The absolute value (saturating).
+    #[must_use]
+    fn abs(self) -> Self {
+        if self < Self::ZERO { -self } else { self }
+    }
+
+    /// The smaller of two values.
+    #[must_use]
+    fn min(self, other: Self) -> Self {
+        if other < self { other } else { self }
+    }
+
+    /// The larger of two values.
+    #[must_use]
+    fn max(self, other: Self) -> Self {
+        if other > self { other } else { self }
+    }
+
+    /// `self` limited to `[lo, hi]`.
+    #[must_use]
+    fn clamp(self, lo: Self, hi: Self) -> Self {
+        self.max(lo).min(hi)
+    }
+
+    /// `num / den` for small integers, rounded as the format's division rounds.
+    #[must_use]
+    fn ratio(num: i32, den: i32) -> Self {
+        Self::from_int(num) / Self::from_int(den)
+    }
+
+    /// `self` raised to a non-negative integer power, by repeated squaring.
+    #[must_use]
+    fn powi(self, exponent: u16) -> Self {
+        let mut result = Self::ONE;
+        let mut base = self;
+        let mut e = exponent;
+        while e > 0 {
+            if e & 1 == 1 {
+                result = result * base;
+            }
+            e >>= 1;
+            if e > 0 {
+                base = base * base;
+            }
+        }
+        result
+    }
+}
+
+/// What an error message needs to know of a format it cannot name by type.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FormatInfo {
+    /// [`Scalar::NAME`].
+    pub name: &'static str,
+    /// [`Scalar::RANGE`].
+    pub range: f64,
+}
+
+impl FormatInfo {
+    /// The description of `S`.
+    #[must_use]
+    pub const fn of<S: Scalar>() -> Self {
+        Self {
+            name: S::NAME,
+            range: S::RANGE,
+        }
+    }
+}
+
+/// Every format the tracer is built for, from the smallest range to the largest.
+pub const FORMATS: [FormatInfo; 4] = [
+    FormatInfo::of::<I16F16>(),
+    FormatInfo::of::<I32F32>(),
+    FormatInfo::of::<f32>(),
+    FormatInfo::of::<f64>(),
+];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check_basics<S: Scalar>() {
+        let two = S::from_int(2);
+        assert_eq!((two * two).to_f64(), 4.0, "{}", S::NAME);
+        assert_eq!(S::from_int(-3).abs().to_f64(), 3.0, "{}", S::NAME);
+        assert_eq!(S::from_int(-7).floor_int(), -7, "{}", S::NAME);
+        assert_eq!(S::from_f64(-0.5).map(S::floor_int), Some(-1), "{}", S::NAME);
+        assert_eq!(S::from_f64(2.5).map(S::floor_int), Some(2), "{}", S::NAME);
+        assert_eq!(S::ratio(1, 4).to_f64(), 0.25, "{}", S::NAME);
+        assert_eq!(two.powi(10).to_f64(), 1024.0, "{}", S::NAME);
+        assert_eq!(two.powi(0).to_f64(), 1.0, "{}", S::NAME);
+        assert_eq!(S::from_int(9).sqrt().to_f64(), 3.0, "{}", S::NAME);
+        assert_eq!(S::from_int(-9).sqrt(), S::ZERO, "{}", S::NAME);
+        assert_eq!(
+            S::dot3([S::ONE, two, two], [two, two, S::ONE]).to_f64(),
+            8.0
+        );
+        assert!(S::from_f64(f64::NAN).is_none(), "{}", S::NAME);
+        assert!(S::from_f64(f64::INFINITY).is_none(), "{}", S::NAME);
+        assert!(S::MAX.to_f64() == S::RANGE, "{}", S::NAME);
+        assert!(
+            S::resolution(1.0) > 0.0 && S::resolution(1.0) < 1e-4,
+            "{}",
+            S::NAME
+        );
+    }
+
+    #[test]
+    fn every_format_does_basic_arithmetic() {
+        check_basics::<I16F16>();
+        check_basics::<I32F32>();
+        check_basics::<f32>();
+        check_basics::<f64>();
+    }
+
+    #[test]
+    fn formats_are_distinct_and_ordered_by_range() {
+        for (i, a) in FORMATS.iter().enumerate() {
+            for b in &FORMATS[i + 1..] {
+                assert_ne!(a.name, b.name);
+                assert!(a.range < b.range, "{} before {}", a.name, b.name);
+            }
+        }
+    }
+}

@@ -1,0 +1,233 @@
+//! [`SceneError`]: why a scene description cannot be built, and how to fix it.
+
+use crate::scalar::FORMATS;
+use core::fmt;
+
+/// The part of a scene description an error is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Item {
+    /// The camera.
+    Camera,
+    /// The object at this index of [`crate::SceneDesc::objects`].
+    Object(usize),
+    /// The light at this index of [`crate::SceneDesc::lights`].
+    Light(usize),
+    /// A value of the scene as a whole (ambient light, background, `far`, depth).
+    Scene,
+}
+
+impl fmt::Display for Item {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Camera => f.write_str("the camera"),
+            Self::Object(i) => write!(f, "object {i}"),
+            Self::Light(i) => write!(f, "light {i}"),
+            Self::Scene => f.write_str("the scene"),
+        }
+    }
+}
+
+/// Why [`crate::Scene::build`] refused a description. Each variant's documentation says how
+/// to fix the scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum SceneError {
+    /// A value is NaN or infinite. Give a finite number.
+    NotFinite {
+        /// Whose value.
+        item: Item,
+        /// Which value.
+        field: &'static str,
+    },
+    /// A value lies outside the interval it must lie in. Give one inside it.
+    OutOfBounds {
+        /// Whose value.
+        item: Item,
+        /// Which value.
+        field: &'static str,
+        /// What it is.
+        value: f32,
+        /// What it must be, in words ("> 0", "in (0, 180)", ...).
+        expected: &'static str,
+    },
+    /// A plane's normal or the camera's view direction has zero length. Give it a direction.
+    ZeroLength {
+        /// Whose vector.
+        item: Item,
+        /// Which vector.
+        field: &'static str,
+    },
+    /// The three corners of a triangle lie on one line, so it has no area and no normal.
+    /// Move a corner off the line through the other two, or leave the triangle out.
+    DegenerateTriangle {
+        /// Which object.
+        item: Item,
+    },
+    /// The camera's up vector is parallel to its view direction, so "up" on the image is
+    /// undefined. Choose an up vector that is not along the line from eye to target.
+    UpParallelToView,
+    /// More objects or lights than the scene type has room for. Raise the capacity (the const
+    /// generic of [`crate::Scene`]) or model fewer.
+    TooMany {
+        /// "objects" or "lights".
+        what: &'static str,
+        /// How many the description has.
+        count: usize,
+        /// How many fit.
+        capacity: usize,
+    },
+    /// `max_depth` needs a deeper ray stack than the scene type has. Lower `max_depth` or
+    /// raise the stack capacity (it must be at least `max_depth + 1`).
+    DepthExceedsStack {
+        /// The requested depth.
+        max_depth: u8,
+        /// The ray stack's capacity.
+        capacity: usize,
+    },
+    /// Part of an object or a light lies farther from the eye than `far`, the world's radius.
+    /// Raise `far` or move the item closer.
+    OutsideWorld {
+        /// Which item.
+        item: Item,
+        /// Its farthest point's distance from the eye.
+        distance: f64,
+        /// The world's radius.
+        far: f32,
+    },
+    /// A value the tracer computes for this scene would leave the format's range. Use a
+    /// format with a wider range (the message lists those that fit), or shrink the scene:
+    /// a smaller `far`, objects closer to the eye.
+    OutOfRange {
+        /// Whose computation.
+        item: Item,
+        /// Which value.
+        quantity: &'static str,
+        /// The largest magnitude it reaches.
+        value: f64,
+        /// The format.
+        format: &'static str,
+        /// The format's largest magnitude.
+        range: f64,
+    },
+    /// A feature of the scene is too small for the format to resolve at this world size: its
+    /// shape would be lost to rounding. Use a finer format, enlarge the feature, or shrink
+    /// `far` (a float's resolution grows with the world).
+    BelowResolution {
+        /// Whose feature.
+        item: Item,
+        /// Which feature.
+        quantity: &'static str,
+        /// Its size.
+        value: f64,
+        /// The format.
+        format: &'static str,
+        /// The smallest size the format resolves here.
+        minimum: f64,
+    },
+    /// An image size outside 1..=[`crate::MAX_IMAGE_SIDE`] on a side.
+    ImageSize {
+        /// The requested width.
+        width: u32,
+        /// The requested height.
+        height: u32,
+    },
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Self::NotFinite { item, field } => {
+                write!(
+                    f,
+                    "{item}: {field} is not a finite number; give a finite value"
+                )
+            }
+            Self::OutOfBounds {
+                item,
+                field,
+                value,
+                expected,
+            } => {
+                write!(f, "{item}: {field} is {value}, but it must be {expected}")
+            }
+            Self::ZeroLength { item, field } => {
+                write!(f, "{item}: {field} has zero length; give it a direction")
+            }
+            Self::DegenerateTriangle { item } => write!(
+                f,
+                "{item}: the triangle's corners lie on one line, so it has no area; move a \
+                 corner off that line or leave the triangle out"
+            ),
+            Self::UpParallelToView => f.write_str(
+                "the camera: the up vector is parallel to the view direction; choose an up \
+                 vector that does not point along the line from eye to look_at",
+            ),
+            Self::TooMany {
+                what,
+                count,
+                capacity,
+            } => write!(
+                f,
+                "the scene has {count} {what}, but the scene type holds at most {capacity}; \
+                 raise the capacity or model fewer {what}"
+            ),
+            Self::DepthExceedsStack {
+                max_depth,
+                capacity,
+            } => write!(
+                f,
+                "max_depth {max_depth} needs a ray stack of {}, but it holds {capacity}; \
+                 lower max_depth or raise the stack capacity",
+                usize::from(max_depth) + 1
+            ),
+            Self::OutsideWorld {
+                item,
+                distance,
+                far,
+            } => write!(
+                f,
+                "{item} reaches {distance:.4} from the eye, beyond the world radius far = {far}; \
+                 raise far or move it closer"
+            ),
+            Self::OutOfRange {
+                item,
+                quantity,
+                value,
+                format,
+                range,
+            } => {
+                write!(
+                    f,
+                    "{item}: {quantity} reaches {value:.6e}, beyond {format}'s range of ±{range:.6e}"
+                )?;
+                let mut fits = FORMATS.iter().filter(|fmt| fmt.range >= value).peekable();
+                if fits.peek().is_some() {
+                    f.write_str("; formats that hold it:")?;
+                    for fmt in fits {
+                        write!(f, " {}", fmt.name)?;
+                    }
+                }
+                f.write_str("; or shrink the scene (a smaller far, objects nearer the eye)")
+            }
+            Self::BelowResolution {
+                item,
+                quantity,
+                value,
+                format,
+                minimum,
+            } => write!(
+                f,
+                "{item}: {quantity} is {value:.3e}, below the {minimum:.3e} that {format} \
+                 resolves in a world of this size; use a finer format, enlarge it, or shrink far"
+            ),
+            Self::ImageSize { width, height } => write!(
+                f,
+                "an image of {width}x{height} pixels: each side must be 1 to {}",
+                crate::MAX_IMAGE_SIDE
+            ),
+        }
+    }
+}
+
+impl core::error::Error for SceneError {}

@@ -1,0 +1,360 @@
+//! [`Scene`]: a validated scene in one number format, in fixed-capacity storage, and the build
+//! that proves a description fits that format before converting it.
+
+mod error;
+pub mod range;
+mod validate;
+
+pub use error::{Item, SceneError};
+
+use crate::camera::{Camera, Frame, MAX_IMAGE_SIDE};
+use crate::color::Rgb;
+use crate::desc::{BackgroundDesc, CheckerDesc, MaterialDesc, SceneDesc, ShapeDesc};
+use crate::light::{Background, Light};
+use crate::material::Material;
+use crate::scalar::Scalar;
+use crate::shape::{Checker, Plane, Shape, Sphere, Triangle};
+use crate::vec3::Vec3;
+use core::marker::PhantomData;
+use heapless::Vec;
+
+/// How far a secondary ray starts off its surface, and how near a hit may be, in steps of the
+/// format's resolution at the world's size: enough to clear the rounding of a hit point.
+pub const SURFACE_TOLERANCE_STEPS: f64 = 64.0;
+
+/// A ray whose weight falls below 1/`CUTOFF` on every channel is not traced: it could not move
+/// a pixel by half a level of an 8-bit channel.
+pub const WEIGHT_CUTOFF: i32 = 512;
+
+/// An object: a shape and its material.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Object<S> {
+    /// The geometry.
+    pub shape: Shape<S>,
+    /// The surface.
+    pub material: Material<S>,
+}
+
+/// A scene ready to trace in format `S`, holding up to `OBJECTS` objects and `LIGHTS` lights
+/// and tracing ray trees with a stack of `RAYS` rays (at least `max_depth + 1`).
+///
+/// Positions are stored relative to the eye, which keeps the numbers small.
+#[derive(Clone, Debug)]
+pub struct Scene<S, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize> {
+    pub(crate) objects: Vec<Object<S>, OBJECTS>,
+    pub(crate) lights: Vec<Light<S>, LIGHTS>,
+    pub(crate) ambient: Rgb<S>,
+    pub(crate) background: Background<S>,
+    /// The longest a ray can be: the world's diameter.
+    pub(crate) ray_length: S,
+    /// See [`SURFACE_TOLERANCE_STEPS`].
+    pub(crate) tolerance: S,
+    /// See [`WEIGHT_CUTOFF`].
+    pub(crate) min_weight: S,
+    pub(crate) max_depth: u8,
+    frame: Frame,
+}
+
+impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
+    Scene<S, OBJECTS, LIGHTS, RAYS>
+{
+    /// Validates `desc`, proves that format `S` holds it (see [`range`]) and converts it.
+    ///
+    /// # Errors
+    /// A [`SceneError`] that names the offending value and says how to fix it.
+    pub fn build(desc: &SceneDesc<'_>) -> Result<Self, SceneError> {
+        let frame = validate::validate(desc)?;
+        capacity("objects", desc.objects.len(), OBJECTS)?;
+        capacity("lights", desc.lights.len(), LIGHTS)?;
+        if usize::from(desc.max_depth) + 1 > RAYS {
+            return Err(SceneError::DepthExceedsStack {
+                max_depth: desc.max_depth,
+                capacity: RAYS,
+            });
+        }
+        range::check::<S>(desc)?;
+        let eye = Vec3::from_f32(desc.camera.eye);
+        Converter::<S> {
+            eye,
+            world: f64::from(desc.far),
+            _format: PhantomData,
+        }
+        .scene(desc, frame)
+    }
+
+    /// The camera for an image of `width × height` pixels.
+    ///
+    /// # Errors
+    /// [`SceneError::ImageSize`] when a side is 0 or larger than [`MAX_IMAGE_SIDE`].
+    pub fn camera(&self, width: u32, height: u32) -> Result<Camera<S>, SceneError> {
+        let valid = 1..=MAX_IMAGE_SIDE;
+        if !valid.contains(&width) || !valid.contains(&height) {
+            return Err(SceneError::ImageSize { width, height });
+        }
+        // A pixel's point on the image plane, one unit ahead, is at most this far from the eye.
+        let half_width = self.frame.half_width(width, height);
+        let corner_squared =
+            1.0 + half_width * half_width + self.frame.half_height * self.frame.half_height;
+        let out_of_range = SceneError::OutOfRange {
+            item: Item::Camera,
+            quantity: "|s|² of an image corner (a wide field of view or image)",
+            value: corner_squared,
+            format: S::NAME,
+            range: S::RANGE,
+        };
+        if corner_squared * range::RANGE_HEADROOM > S::RANGE {
+            return Err(out_of_range);
+        }
+        Camera::new(&self.frame, width, height).ok_or(out_of_range)
+    }
+
+    /// The objects, in the order of the description.
+    #[must_use]
+    pub fn objects(&self) -> &[Object<S>] {
+        &self.objects
+    }
+
+    /// The lights, in the order of the description.
+    #[must_use]
+    pub fn lights(&self) -> &[Light<S>] {
+        &self.lights
+    }
+}
+
+fn capacity(what: &'static str, count: usize, capacity: usize) -> Result<(), SceneError> {
+    if count > capacity {
+        Err(SceneError::TooMany {
+            what,
+            count,
+            capacity,
+        })
+    } else {
+        Ok(())
+    }
+}
+
+/// Converts validated `f64` values into format `S`, relative to the eye.
+struct Converter<S> {
+    eye: Vec3<f64>,
+    world: f64,
+    _format: PhantomData<S>,
+}
+
+impl<S: Scalar> Converter<S> {
+    fn scene<const O: usize, const L: usize, const R: usize>(
+        &self,
+        desc: &SceneDesc<'_>,
+        frame: Frame,
+    ) -> Result<Scene<S, O, L, R>, SceneError> {
+        // `build` checked both lengths against the capacities.
+        let too_many = |what, count, capacity| SceneError::TooMany {
+            what,
+            count,
+            capacity,
+        };
+        let mut objects = Vec::new();
+        for (i, object) in desc.objects.iter().enumerate() {
+            let object = self.object(Item::Object(i), &object.shape, &object.material)?;
+            objects
+                .push(object)
+                .map_err(|_| too_many("objects", desc.objects.len(), O))?;
+        }
+        let mut lights = Vec::new();
+        for (i, light) in desc.lights.iter().enumerate() {
+            let item = Item::Light(i);
+            let light = Light {
+                position: self.point(item, "position", light.position)?,
+                colour: self.colour(item, "colour", light.colour)?,
+            };
+            lights
+                .push(light)
+                .map_err(|_| too_many("lights", desc.lights.len(), L))?;
+        }
+        let background = match desc.background {
+            BackgroundDesc::Solid(c) => {
+                Background::Solid(self.colour(Item::Scene, "background", c)?)
+            }
+            BackgroundDesc::Gradient { horizon, zenith } => Background::Gradient {
+                horizon: self.colour(Item::Scene, "background horizon", horizon)?,
+                rise: self.colour_f64(
+                    Item::Scene,
+                    "background zenith − horizon",
+                    Vec3::from_f32(zenith) - Vec3::from_f32(horizon),
+                )?,
+            },
+        };
+        let tolerance = SURFACE_TOLERANCE_STEPS * S::resolution(self.world);
+        Ok(Scene {
+            objects,
+            lights,
+            ambient: self.colour(Item::Scene, "ambient", desc.ambient)?,
+            background,
+            ray_length: self.scalar(Item::Scene, "a ray's length", 2.0 * self.world)?,
+            tolerance: self.scalar(Item::Scene, "the surface tolerance", tolerance)?,
+            min_weight: S::ratio(1, WEIGHT_CUTOFF),
+            max_depth: desc.max_depth,
+            frame,
+        })
+    }
+
+    fn object(
+        &self,
+        item: Item,
+        shape: &ShapeDesc,
+        m: &MaterialDesc,
+    ) -> Result<Object<S>, SceneError> {
+        let shape = match *shape {
+            ShapeDesc::Sphere { center, radius } => Shape::Sphere(Sphere::new(
+                self.point(item, "sphere centre", center)?,
+                self.scalar(item, "sphere radius", f64::from(radius))?,
+            )),
+            ShapeDesc::Plane {
+                point,
+                normal,
+                checker,
+            } => {
+                // Validation guarantees a non-zero normal.
+                let n = Vec3::from_f32(normal)
+                    .direction()
+                    .ok_or(SceneError::ZeroLength {
+                        item,
+                        field: "plane normal",
+                    })?;
+                let checker = match checker {
+                    Some(checker) => {
+                        Some(self.checker(item, Vec3::from_f32(point), n, &checker)?)
+                    }
+                    None => None,
+                };
+                Shape::Plane(Plane::new(
+                    self.point(item, "plane point", point)?,
+                    self.vector(item, "plane normal", n)?,
+                    self.scalar(item, "the world radius", self.world)?,
+                    checker,
+                ))
+            }
+            ShapeDesc::Triangle {
+                vertices: [a, b, c],
+            } => {
+                let (a64, b64, c64) = (Vec3::from_f32(a), Vec3::from_f32(b), Vec3::from_f32(c));
+                // Validation guarantees a non-zero area.
+                let n = (b64 - a64)
+                    .cross(c64 - a64)
+                    .direction()
+                    .ok_or(SceneError::DegenerateTriangle { item })?;
+                let corners = [
+                    self.point(item, "triangle vertex", a)?,
+                    self.point(item, "triangle vertex", b)?,
+                    self.point(item, "triangle vertex", c)?,
+                ];
+                Shape::Triangle(Triangle::new(
+                    corners,
+                    self.vector(item, "triangle normal", n)?,
+                ))
+            }
+        };
+        let ior = f64::from(m.ior);
+        let material = Material {
+            colour: self.colour(item, "material colour", m.colour)?,
+            diffuse: self.scalar(item, "diffuse", f64::from(m.diffuse))?,
+            specular: self.scalar(item, "specular", f64::from(m.specular))?,
+            shininess: m.shininess,
+            reflection: self.scalar(item, "reflection", f64::from(m.reflection))?,
+            transmission: self.scalar(item, "transmission", f64::from(m.transmission))?,
+            ior: self.scalar(item, "ior", ior)?,
+            inv_ior: self.scalar(item, "1 / ior", 1.0 / ior)?,
+        };
+        Ok(Object { shape, material })
+    }
+
+    /// The checkerboard's axes: the world axis least aligned with the normal, made
+    /// perpendicular to it (so a floor's squares follow x and z), and normal × that. Its origin
+    /// is the grid corner nearest the point of the plane closest to the eye, which keeps the
+    /// coordinates small without moving the squares.
+    fn checker(
+        &self,
+        item: Item,
+        point: Vec3<f64>,
+        n: Vec3<f64>,
+        desc: &CheckerDesc,
+    ) -> Result<Checker<S>, SceneError> {
+        let (x, y, z) = (n.x.abs(), n.y.abs(), n.z.abs());
+        let least = if x <= y && x <= z {
+            Vec3::new(1.0, 0.0, 0.0)
+        } else if y <= z {
+            Vec3::new(0.0, 1.0, 0.0)
+        } else {
+            Vec3::new(0.0, 0.0, 1.0)
+        };
+        let u = (least - n * n.dot(least))
+            .direction()
+            .ok_or(SceneError::ZeroLength {
+                item,
+                field: "plane normal",
+            })?;
+        let v = n.cross(u);
+        let size = f64::from(desc.size);
+        let to_eye = self.eye - point;
+        let corner_u = libm::floor(to_eye.dot(u) / size) * size;
+        let corner_v = libm::floor(to_eye.dot(v) / size) * size;
+        let origin = point + u * corner_u + v * corner_v - self.eye;
+        Ok(Checker {
+            colour: self.colour(item, "checker colour", desc.colour)?,
+            origin: self.vector(item, "checker origin", origin)?,
+            u: self.vector(item, "checker axis", u * size.recip())?,
+            v: self.vector(item, "checker axis", v * size.recip())?,
+        })
+    }
+
+    fn point(
+        &self,
+        item: Item,
+        quantity: &'static str,
+        p: [f32; 3],
+    ) -> Result<Vec3<S>, SceneError> {
+        self.vector(item, quantity, Vec3::from_f32(p) - self.eye)
+    }
+
+    fn vector(
+        &self,
+        item: Item,
+        quantity: &'static str,
+        v: Vec3<f64>,
+    ) -> Result<Vec3<S>, SceneError> {
+        v.convert()
+            .ok_or_else(|| self.out_of_range(item, quantity, v))
+    }
+
+    fn colour(
+        &self,
+        item: Item,
+        quantity: &'static str,
+        c: [f32; 3],
+    ) -> Result<Rgb<S>, SceneError> {
+        self.colour_f64(item, quantity, Vec3::from_f32(c))
+    }
+
+    fn colour_f64(
+        &self,
+        item: Item,
+        quantity: &'static str,
+        c: Vec3<f64>,
+    ) -> Result<Rgb<S>, SceneError> {
+        Rgb::from_f64(c.to_f64()).ok_or_else(|| self.out_of_range(item, quantity, c))
+    }
+
+    fn scalar(&self, item: Item, quantity: &'static str, x: f64) -> Result<S, SceneError> {
+        S::from_f64(x).ok_or_else(|| self.out_of_range(item, quantity, Vec3::new(x, x, x)))
+    }
+
+    fn out_of_range(&self, item: Item, quantity: &'static str, v: Vec3<f64>) -> SceneError {
+        let value = v.x.abs().max(v.y.abs()).max(v.z.abs());
+        SceneError::OutOfRange {
+            item,
+            quantity,
+            value,
+            format: S::NAME,
+            range: S::RANGE,
+        }
+    }
+}

@@ -1,0 +1,216 @@
+//! The checks a scene description must pass in every number format: finite values, sensible
+//! intervals, non-degenerate geometry, everything inside the world.
+
+use super::error::{Item, SceneError};
+use crate::camera::Frame;
+use crate::desc::{BackgroundDesc, CameraDesc, LightDesc, MaterialDesc, SceneDesc, ShapeDesc};
+use crate::vec3::Vec3;
+
+/// Validates `desc` and returns its camera frame.
+pub(super) fn validate(desc: &SceneDesc<'_>) -> Result<Frame, SceneError> {
+    finite(Item::Scene, "far", &[desc.far])?;
+    at_least(Item::Scene, "far", desc.far, f32::MIN_POSITIVE, "> 0")?;
+    colour(Item::Scene, "ambient", desc.ambient)?;
+    match desc.background {
+        BackgroundDesc::Solid(c) => colour(Item::Scene, "background colour", c)?,
+        BackgroundDesc::Gradient { horizon, zenith } => {
+            colour(Item::Scene, "background horizon colour", horizon)?;
+            colour(Item::Scene, "background zenith colour", zenith)?;
+        }
+    }
+    let frame = camera(&desc.camera)?;
+    for (i, object) in desc.objects.iter().enumerate() {
+        let item = Item::Object(i);
+        material(item, &object.material)?;
+        let reach = shape(item, &object.shape, desc.camera.eye)?;
+        inside_world(item, reach, desc.far)?;
+    }
+    for (i, light) in desc.lights.iter().enumerate() {
+        let item = Item::Light(i);
+        let LightDesc {
+            position,
+            colour: c,
+        } = *light;
+        finite(item, "position", &position)?;
+        colour(item, "colour", c)?;
+        inside_world(item, distance(position, desc.camera.eye), desc.far)?;
+    }
+    Ok(frame)
+}
+
+fn camera(camera: &CameraDesc) -> Result<Frame, SceneError> {
+    let item = Item::Camera;
+    finite(item, "eye", &camera.eye)?;
+    finite(item, "look_at", &camera.look_at)?;
+    finite(item, "up", &camera.up)?;
+    finite(item, "vfov_degrees", &[camera.vfov_degrees])?;
+    let fov = camera.vfov_degrees;
+    if !(fov > 0.0 && fov < 180.0) {
+        return Err(out_of_bounds(
+            item,
+            "vfov_degrees",
+            fov,
+            "in (0, 180) degrees",
+        ));
+    }
+    if distance(camera.look_at, camera.eye) == 0.0 {
+        return Err(SceneError::ZeroLength {
+            item,
+            field: "the view direction (look_at − eye)",
+        });
+    }
+    if Vec3::from_f32(camera.up).length() == 0.0 {
+        return Err(SceneError::ZeroLength { item, field: "up" });
+    }
+    Frame::new(camera).ok_or(SceneError::UpParallelToView)
+}
+
+/// Colours and weights in [0, 1], reflection + transmission ≤ 1 (a surface passes on no more
+/// light than reaches it), ior ≥ 1.
+fn material(item: Item, m: &MaterialDesc) -> Result<(), SceneError> {
+    unit_colour(item, "material colour", m.colour)?;
+    for (field, value) in [
+        ("diffuse", m.diffuse),
+        ("specular", m.specular),
+        ("reflection", m.reflection),
+        ("transmission", m.transmission),
+    ] {
+        unit_interval(item, field, value)?;
+    }
+    let passed_on = m.reflection + m.transmission;
+    if passed_on > 1.0 {
+        return Err(out_of_bounds(
+            item,
+            "reflection + transmission",
+            passed_on,
+            "≤ 1",
+        ));
+    }
+    finite(item, "ior", &[m.ior])?;
+    at_least(item, "ior", m.ior, 1.0, "≥ 1")
+}
+
+/// Checks a shape and returns how far from `eye` it reaches: its farthest point, or for a
+/// plane, which the world cuts off, its nearest.
+fn shape(item: Item, shape: &ShapeDesc, eye: [f32; 3]) -> Result<f64, SceneError> {
+    match *shape {
+        ShapeDesc::Sphere { center, radius } => {
+            finite(item, "sphere centre", &center)?;
+            finite(item, "sphere radius", &[radius])?;
+            at_least(item, "sphere radius", radius, f32::MIN_POSITIVE, "> 0")?;
+            Ok(distance(center, eye) + f64::from(radius))
+        }
+        ShapeDesc::Plane {
+            point,
+            normal,
+            checker,
+        } => {
+            finite(item, "plane point", &point)?;
+            finite(item, "plane normal", &normal)?;
+            let n = Vec3::from_f32(normal);
+            if n.length() == 0.0 {
+                return Err(SceneError::ZeroLength {
+                    item,
+                    field: "plane normal",
+                });
+            }
+            if let Some(checker) = checker {
+                unit_colour(item, "checker colour", checker.colour)?;
+                finite(item, "checker size", &[checker.size])?;
+                at_least(item, "checker size", checker.size, f32::MIN_POSITIVE, "> 0")?;
+            }
+            let to_eye = Vec3::from_f32(eye) - Vec3::from_f32(point);
+            Ok(n.dot(to_eye).abs() / n.length())
+        }
+        ShapeDesc::Triangle { vertices } => {
+            for v in &vertices {
+                finite(item, "triangle vertex", v)?;
+            }
+            let [a, b, c] = vertices.map(Vec3::from_f32);
+            let (e1, e2) = (b - a, c - a);
+            if e1.cross(e2).length() <= f64::from(f32::EPSILON) * e1.length() * e2.length() {
+                return Err(SceneError::DegenerateTriangle { item });
+            }
+            Ok(vertices
+                .iter()
+                .map(|&v| distance(v, eye))
+                .fold(0.0, f64::max))
+        }
+    }
+}
+
+fn inside_world(item: Item, reach: f64, far: f32) -> Result<(), SceneError> {
+    if reach > f64::from(far) {
+        return Err(SceneError::OutsideWorld {
+            item,
+            distance: reach,
+            far,
+        });
+    }
+    Ok(())
+}
+
+fn unit_colour(item: Item, field: &'static str, c: [f32; 3]) -> Result<(), SceneError> {
+    for channel in c {
+        unit_interval(item, field, channel)?;
+    }
+    Ok(())
+}
+
+fn unit_interval(item: Item, field: &'static str, value: f32) -> Result<(), SceneError> {
+    finite(item, field, &[value])?;
+    if (0.0..=1.0).contains(&value) {
+        Ok(())
+    } else {
+        Err(out_of_bounds(item, field, value, "in [0, 1]"))
+    }
+}
+
+fn colour(item: Item, field: &'static str, c: [f32; 3]) -> Result<(), SceneError> {
+    finite(item, field, &c)?;
+    for channel in c {
+        at_least(item, field, channel, 0.0, "≥ 0 on every channel")?;
+    }
+    Ok(())
+}
+
+fn finite(item: Item, field: &'static str, values: &[f32]) -> Result<(), SceneError> {
+    if values.iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(SceneError::NotFinite { item, field })
+    }
+}
+
+fn at_least(
+    item: Item,
+    field: &'static str,
+    value: f32,
+    min: f32,
+    expected: &'static str,
+) -> Result<(), SceneError> {
+    if value >= min {
+        Ok(())
+    } else {
+        Err(out_of_bounds(item, field, value, expected))
+    }
+}
+
+fn out_of_bounds(
+    item: Item,
+    field: &'static str,
+    value: f32,
+    expected: &'static str,
+) -> SceneError {
+    SceneError::OutOfBounds {
+        item,
+        field,
+        value,
+        expected,
+    }
+}
+
+/// The distance between two points of a description.
+pub(super) fn distance(a: [f32; 3], b: [f32; 3]) -> f64 {
+    (Vec3::from_f32(a) - Vec3::from_f32(b)).length()
+}

@@ -1,0 +1,215 @@
+//! The built-in scenes, as const data that a firmware keeps in flash.
+
+use crate::desc::{
+    BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc,
+    ShapeDesc,
+};
+
+/// A built-in scene with its name and a line about it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BuiltIn {
+    /// The name the command line uses.
+    pub name: &'static str,
+    /// What it shows.
+    pub summary: &'static str,
+    /// The scene.
+    pub desc: SceneDesc<'static>,
+}
+
+/// Every built-in scene.
+pub const BUILT_IN: [BuiltIn; 2] = [
+    BuiltIn {
+        name: "whitted",
+        summary: "Whitted's 1979 spheres and checkerboard: a glass sphere above a mirrored one",
+        desc: WHITTED,
+    },
+    BuiltIn {
+        name: "shapes",
+        summary: "the three primitives: spheres, a checkered plane and triangles, two coloured lights",
+        desc: SHAPES,
+    },
+];
+
+/// The built-in scene called `name`.
+#[must_use]
+pub fn find(name: &str) -> Option<&'static BuiltIn> {
+    BUILT_IN.iter().find(|scene| scene.name == name)
+}
+
+const GLASS: MaterialDesc = MaterialDesc {
+    colour: [1.0, 1.0, 1.0],
+    diffuse: 0.04,
+    specular: 0.7,
+    shininess: 120,
+    reflection: 0.1,
+    transmission: 0.88,
+    ior: 1.5,
+};
+
+const MIRRORED: MaterialDesc = MaterialDesc {
+    colour: [0.75, 0.75, 0.72],
+    diffuse: 0.35,
+    specular: 0.6,
+    shininess: 40,
+    reflection: 0.55,
+    transmission: 0.0,
+    ior: 1.0,
+};
+
+const RED: [f32; 3] = [0.95, 0.08, 0.05];
+const YELLOW: [f32; 3] = [0.98, 0.86, 0.08];
+
+const WHITTED_OBJECTS: [ObjectDesc; 3] = [
+    ObjectDesc {
+        shape: ShapeDesc::Plane {
+            point: [0.0, 0.0, 0.0],
+            normal: [0.0, 1.0, 0.0],
+            checker: Some(CheckerDesc {
+                colour: YELLOW,
+                size: 1.0,
+            }),
+        },
+        material: MaterialDesc::matte(RED),
+    },
+    ObjectDesc {
+        shape: ShapeDesc::Sphere {
+            center: [-1.2, 1.0, 3.2],
+            radius: 1.0,
+        },
+        material: MIRRORED,
+    },
+    ObjectDesc {
+        shape: ShapeDesc::Sphere {
+            center: [0.55, 1.9, 0.6],
+            radius: 1.0,
+        },
+        material: GLASS,
+    },
+];
+
+const WHITTED_LIGHTS: [LightDesc; 1] = [LightDesc {
+    position: [-5.0, 12.0, -8.0],
+    colour: [1.0, 1.0, 1.0],
+}];
+
+/// Whitted's "spheres and checkerboard" (1979): a mostly transmissive, slightly reflective glass
+/// sphere in front of and above an opaque reflective sphere, over a red-and-yellow checkerboard,
+/// under a blue sky, lit by one point light with hard shadows.
+pub const WHITTED: SceneDesc<'static> = SceneDesc {
+    camera: CameraDesc {
+        eye: [0.0, 3.0, -6.0],
+        look_at: [-0.2, 1.0, 2.0],
+        up: [0.0, 1.0, 0.0],
+        vfov_degrees: 45.0,
+    },
+    objects: &WHITTED_OBJECTS,
+    lights: &WHITTED_LIGHTS,
+    ambient: [0.12, 0.12, 0.14],
+    background: BackgroundDesc::Gradient {
+        horizon: [0.55, 0.72, 0.98],
+        zenith: [0.12, 0.3, 0.8],
+    },
+    far: 30.0,
+    max_depth: 5,
+};
+
+const GREEN: MaterialDesc = MaterialDesc {
+    colour: [0.2, 0.75, 0.3],
+    diffuse: 0.85,
+    specular: 0.3,
+    shininess: 20,
+    reflection: 0.0,
+    transmission: 0.0,
+    ior: 1.0,
+};
+
+/// A tetrahedron's apex and base corners, an edge towards the camera so that two faces show,
+/// each lit by a different light (three faces are modelled; the base stays hidden).
+const APEX: [f32; 3] = [0.3, 1.6, 3.2];
+const BASE: [[f32; 3]; 3] = [[0.3, 0.0, 2.25], [1.12, 0.0, 3.675], [-0.52, 0.0, 3.675]];
+
+const SHAPES_OBJECTS: [ObjectDesc; 6] = [
+    ObjectDesc {
+        shape: ShapeDesc::Plane {
+            point: [0.0, 0.0, 0.0],
+            normal: [0.0, 1.0, 0.0],
+            checker: Some(CheckerDesc {
+                colour: [0.35, 0.35, 0.38],
+                size: 0.75,
+            }),
+        },
+        material: MaterialDesc::matte([0.85, 0.85, 0.85]),
+    },
+    ObjectDesc {
+        shape: ShapeDesc::Sphere {
+            center: [-1.7, 0.8, 2.2],
+            radius: 0.8,
+        },
+        material: MaterialDesc {
+            specular: 0.4,
+            shininess: 30,
+            ..MaterialDesc::matte([0.85, 0.15, 0.12])
+        },
+    },
+    ObjectDesc {
+        shape: ShapeDesc::Sphere {
+            center: [1.9, 0.6, 1.6],
+            radius: 0.6,
+        },
+        material: MaterialDesc {
+            colour: [0.2, 0.35, 0.9],
+            diffuse: 0.5,
+            specular: 0.8,
+            shininess: 80,
+            reflection: 0.35,
+            transmission: 0.0,
+            ior: 1.0,
+        },
+    },
+    ObjectDesc {
+        shape: ShapeDesc::Triangle {
+            vertices: [BASE[0], BASE[1], APEX],
+        },
+        material: GREEN,
+    },
+    ObjectDesc {
+        shape: ShapeDesc::Triangle {
+            vertices: [BASE[1], BASE[2], APEX],
+        },
+        material: GREEN,
+    },
+    ObjectDesc {
+        shape: ShapeDesc::Triangle {
+            vertices: [BASE[2], BASE[0], APEX],
+        },
+        material: GREEN,
+    },
+];
+
+const SHAPES_LIGHTS: [LightDesc; 2] = [
+    LightDesc {
+        position: [-4.0, 7.0, -3.0],
+        colour: [0.75, 0.6, 0.45],
+    },
+    LightDesc {
+        position: [5.0, 6.0, -1.0],
+        colour: [0.35, 0.45, 0.75],
+    },
+];
+
+/// The lecture's three primitives together: two spheres, a checkered plane and a tetrahedron
+/// of triangles, lit by a warm and a cool light that cast coloured shadows.
+pub const SHAPES: SceneDesc<'static> = SceneDesc {
+    camera: CameraDesc {
+        eye: [0.0, 2.4, -4.5],
+        look_at: [0.0, 0.8, 2.4],
+        up: [0.0, 1.0, 0.0],
+        vfov_degrees: 50.0,
+    },
+    objects: &SHAPES_OBJECTS,
+    lights: &SHAPES_LIGHTS,
+    ambient: [0.1, 0.1, 0.1],
+    background: BackgroundDesc::Solid([0.08, 0.1, 0.14]),
+    far: 25.0,
+    max_depth: 3,
+};

@@ -1,0 +1,474 @@
+//! Whitted's illumination (1980): the colour a primary ray brings back, from local shading
+//! (ambient, Lambert diffuse, Phong specular, each light tested by a shadow ray), mirror
+//! reflection and refraction by Snell's law. The ray tree is walked with an explicit stack of
+//! fixed capacity, never by recursion.
+
+use crate::color::Rgb;
+use crate::ray::{Ray, Span};
+use crate::scalar::Scalar;
+use crate::scene::{Object, Scene};
+use crate::vec3::Vec3;
+use heapless::Vec;
+
+/// What a primary ray brings back.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample<S> {
+    /// The linear colour.
+    pub colour: Rgb<S>,
+    /// The index of the object the primary ray hit first, if any: comparing it between formats
+    /// separates geometric error from shading error.
+    pub object: Option<usize>,
+}
+
+/// A ray waiting on the stack, with the share of the pixel it contributes.
+#[derive(Clone, Copy, Debug)]
+struct Task<S> {
+    ray: Ray<S>,
+    weight: Rgb<S>,
+    depth: u8,
+}
+
+/// The nearest hit of a ray.
+#[derive(Clone, Copy, Debug)]
+struct Hit<'a, S> {
+    object: &'a Object<S>,
+    index: usize,
+    t: S,
+}
+
+impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
+    Scene<S, OBJECTS, LIGHTS, RAYS>
+{
+    /// Traces a primary ray through the whole ray tree.
+    #[must_use]
+    pub fn trace(&self, primary: Ray<S>) -> Sample<S> {
+        let mut stack: Vec<Task<S>, RAYS> = Vec::new();
+        let mut colour = Rgb::BLACK;
+        let mut object = None;
+        self.push(
+            &mut stack,
+            Task {
+                ray: primary,
+                weight: Rgb::WHITE,
+                depth: 0,
+            },
+        );
+        while let Some(task) = stack.pop() {
+            let Some(hit) = self.nearest(&task.ray) else {
+                colour = colour + task.weight * self.background.colour(task.ray.dir);
+                continue;
+            };
+            if task.depth == 0 {
+                object = Some(hit.index);
+            }
+            colour = colour + task.weight * self.shade(&task, &hit, &mut stack);
+        }
+        Sample { colour, object }
+    }
+
+    /// The index of the first object `ray` hits, if any: what a primary ray sees, without
+    /// shading it.
+    #[must_use]
+    pub fn first_hit(&self, ray: &Ray<S>) -> Option<usize> {
+        self.nearest(ray).map(|hit| hit.index)
+    }
+
+    /// The nearest object along `ray` within the world, beyond the surface tolerance.
+    fn nearest(&self, ray: &Ray<S>) -> Option<Hit<'_, S>> {
+        let mut span = Span {
+            min: self.tolerance,
+            max: self.ray_length,
+        };
+        let mut nearest = None;
+        for (index, object) in self.objects.iter().enumerate() {
+            if let Some(t) = object.shape.intersect(ray, span) {
+                span.max = t;
+                nearest = Some(Hit { object, index, t });
+            }
+        }
+        nearest
+    }
+
+    /// The local colour at a hit, pushing its reflected and transmitted rays.
+    fn shade(&self, task: &Task<S>, hit: &Hit<'_, S>, stack: &mut Vec<Task<S>, RAYS>) -> Rgb<S> {
+        let material = &hit.object.material;
+        let shape = &hit.object.shape;
+        let d = task.ray.dir;
+        let (point, normal) = shape.surface(task.ray.at(hit.t));
+        // Shade the side the ray arrived on: for a sphere hit from inside, that is the inside.
+        let cos_in = -d.dot(normal);
+        let entering = cos_in >= S::ZERO;
+        let (facing, cos_in) = if entering {
+            (normal, cos_in)
+        } else {
+            (-normal, -cos_in)
+        };
+        let two = S::from_int(2);
+        // The mirror direction serves both the reflected ray and the Phong highlight.
+        let mirror = d.add_scaled(facing, two * cos_in);
+        let above = point.add_scaled(facing, self.tolerance);
+
+        let surface = shape.surface_colour(point, material.colour);
+        let mut local = self.ambient * surface;
+        for light in &self.lights {
+            let (l, distance) = (light.position - above).normalized_with_length();
+            let lambert = facing.dot(l);
+            if lambert <= S::ZERO {
+                continue;
+            }
+            let shadow = self.transmittance(&Ray::new(above, l), distance);
+            if shadow == S::ZERO {
+                continue;
+            }
+            let mut reflected = surface.scale(material.diffuse * lambert);
+            let highlight = mirror.dot(l);
+            if material.specular > S::ZERO && highlight > S::ZERO {
+                let phong = material.specular * highlight.powi(material.shininess);
+                reflected = reflected + Rgb::new(phong, phong, phong);
+            }
+            local = local + light.colour.scale(shadow) * reflected;
+        }
+
+        if task.depth < self.max_depth {
+            let depth = task.depth + 1;
+            let mut reflection = material.reflection;
+            if material.transmission > S::ZERO {
+                if shape.is_solid() {
+                    // Snell: η = n₁/n₂; k = 1 − η²(1 − cos²θᵢ) is cos²θₜ, negative beyond the
+                    // critical angle, where all the light is reflected instead.
+                    let eta = if entering {
+                        material.inv_ior
+                    } else {
+                        material.ior
+                    };
+                    let k = S::ONE - eta * eta * (S::ONE - cos_in * cos_in);
+                    if k < S::ZERO {
+                        reflection = reflection + material.transmission;
+                    } else {
+                        let dir = (d * eta).add_scaled(facing, eta * cos_in - k.sqrt());
+                        self.spawn(
+                            stack,
+                            point.add_scaled(facing, -self.tolerance),
+                            dir,
+                            task,
+                            material.transmission,
+                            depth,
+                        );
+                    }
+                } else {
+                    // A sheet has no inside: the light passes straight through.
+                    self.spawn(
+                        stack,
+                        point.add_scaled(facing, -self.tolerance),
+                        d,
+                        task,
+                        material.transmission,
+                        depth,
+                    );
+                }
+            }
+            if reflection > S::ZERO {
+                self.spawn(stack, above, mirror, task, reflection, depth);
+            }
+        }
+        local
+    }
+
+    /// Pushes a secondary ray unless its weight is too small to show.
+    fn spawn(
+        &self,
+        stack: &mut Vec<Task<S>, RAYS>,
+        origin: Vec3<S>,
+        dir: Vec3<S>,
+        parent: &Task<S>,
+        share: S,
+        depth: u8,
+    ) {
+        let weight = parent.weight.scale(share);
+        if weight.max_channel() >= self.min_weight {
+            self.push(
+                stack,
+                Task {
+                    ray: Ray::new(origin, dir),
+                    weight,
+                    depth,
+                },
+            );
+        }
+    }
+
+    fn push(&self, stack: &mut Vec<Task<S>, RAYS>, task: Task<S>) {
+        // Cannot fail: a task of depth k leaves at most one sibling per level on the stack, so
+        // it never holds more than max_depth + 1 ≤ RAYS tasks (checked by `Scene::build`).
+        let pushed = stack.push(task);
+        debug_assert!(pushed.is_ok(), "ray stack overflow");
+    }
+
+    /// How much light passes from `ray.origin` to a light `distance` away: 1 in the open, the
+    /// product of the occluders' transmissions, 0 behind an opaque object.
+    fn transmittance(&self, ray: &Ray<S>, distance: S) -> S {
+        let span = Span {
+            min: self.tolerance,
+            max: distance,
+        };
+        let mut passed = S::ONE;
+        for object in &self.objects {
+            if object.shape.intersect(ray, span).is_some() {
+                passed = passed * object.material.transmission;
+                if passed == S::ZERO {
+                    break;
+                }
+            }
+        }
+        passed
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::desc::{
+        BackgroundDesc, CameraDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc, ShapeDesc,
+    };
+    use crate::test_util::{assert_close, for_each_format, v};
+
+    const CAMERA: CameraDesc = CameraDesc {
+        eye: [0.0, 0.0, 0.0],
+        look_at: [0.0, 0.0, 1.0],
+        up: [0.0, 1.0, 0.0],
+        vfov_degrees: 60.0,
+    };
+
+    fn desc<'a>(
+        objects: &'a [ObjectDesc],
+        lights: &'a [LightDesc],
+        ambient: f32,
+        max_depth: u8,
+    ) -> SceneDesc<'a> {
+        SceneDesc {
+            camera: CAMERA,
+            objects,
+            lights,
+            ambient: [ambient; 3],
+            background: BackgroundDesc::Solid([0.2, 0.4, 0.6]),
+            far: 20.0,
+            max_depth,
+        }
+    }
+
+    fn trace<S: Scalar>(desc: &SceneDesc<'_>, origin: [f64; 3], dir: [f64; 3]) -> [f64; 3] {
+        let scene = Scene::<S, 4, 2, 8>::build(desc).unwrap();
+        let length = dir.iter().map(|c| c * c).sum::<f64>().sqrt();
+        let ray = Ray::new(
+            v(origin[0], origin[1], origin[2]),
+            v(dir[0] / length, dir[1] / length, dir[2] / length),
+        );
+        scene.trace(ray).colour.to_f64()
+    }
+
+    #[track_caller]
+    fn assert_colour<S: Scalar>(got: [f64; 3], want: [f64; 3], tol: f64) {
+        for (g, w) in got.into_iter().zip(want) {
+            assert_close(S::from_f64(g).unwrap(), w, tol);
+        }
+    }
+
+    const FLOOR_COLOUR: [f32; 3] = [1.0, 0.5, 0.25];
+
+    fn floor(material: MaterialDesc) -> ObjectDesc {
+        ObjectDesc {
+            shape: ShapeDesc::Plane {
+                point: [0.0, -2.0, 0.0],
+                normal: [0.0, 1.0, 0.0],
+                checker: None,
+            },
+            material,
+        }
+    }
+
+    /// The view ray from the eye along (0, −1, 1) meets the floor y = −2 at (0, −2, 2); the
+    /// light at (0, 2, 4) is then along (0, 4, 2)/√20, so Lambert's cosine is 4/√20.
+    const LIGHT: LightDesc = LightDesc {
+        position: [0.0, 2.0, 4.0],
+        colour: [1.0, 1.0, 1.0],
+    };
+    const TO_FLOOR: [f64; 3] = [0.0, -1.0, 1.0];
+
+    fn lambert() -> f64 {
+        4.0 / 20.0_f64.sqrt()
+    }
+
+    fn occluder(transmission: f32) -> ObjectDesc {
+        // Centred on the segment from the floor point to the light, clear of the view ray.
+        ObjectDesc {
+            shape: ShapeDesc::Sphere {
+                center: [0.0, 0.0, 3.0],
+                radius: 0.5,
+            },
+            material: MaterialDesc {
+                transmission,
+                ..MaterialDesc::matte([0.0, 1.0, 0.0])
+            },
+        }
+    }
+
+    #[test]
+    fn lit_surface_is_ambient_plus_lambert() {
+        for_each_format!(S, {
+            let objects = [floor(MaterialDesc {
+                diffuse: 1.0,
+                ..MaterialDesc::matte(FLOOR_COLOUR)
+            })];
+            let got = trace::<S>(&desc(&objects, &[LIGHT], 0.1, 0), [0.0; 3], TO_FLOOR);
+            assert_colour::<S>(
+                got,
+                FLOOR_COLOUR.map(|c| f64::from(c) * (0.1 + lambert())),
+                1e-3,
+            );
+        });
+    }
+
+    #[test]
+    fn phong_highlight_adds_white() {
+        for_each_format!(S, {
+            // Straight on: the mirror direction of the view ray points at the light behind the
+            // eye, so the highlight is 1 whatever the exponent.
+            let material = MaterialDesc {
+                diffuse: 0.8,
+                specular: 0.5,
+                shininess: 10,
+                ..MaterialDesc::matte([0.5, 0.25, 1.0])
+            };
+            let objects = [ObjectDesc {
+                shape: ShapeDesc::Sphere {
+                    center: [0.0, 0.0, 5.0],
+                    radius: 1.0,
+                },
+                material,
+            }];
+            let light = LightDesc {
+                position: [0.0, 0.0, -10.0],
+                colour: [1.0; 3],
+            };
+            let got = trace::<S>(&desc(&objects, &[light], 0.1, 0), [0.0; 3], [0.0, 0.0, 1.0]);
+            assert_colour::<S>(
+                got,
+                [0.5 * 0.9 + 0.5, 0.25 * 0.9 + 0.5, 1.0 * 0.9 + 0.5],
+                1e-3,
+            );
+        });
+    }
+
+    #[test]
+    fn shadowed_surface_gets_ambient_only() {
+        for_each_format!(S, {
+            let objects = [
+                floor(MaterialDesc {
+                    diffuse: 1.0,
+                    ..MaterialDesc::matte(FLOOR_COLOUR)
+                }),
+                occluder(0.0),
+            ];
+            let got = trace::<S>(&desc(&objects, &[LIGHT], 0.1, 0), [0.0; 3], TO_FLOOR);
+            assert_colour::<S>(got, FLOOR_COLOUR.map(|c| f64::from(c) * 0.1), 1e-3);
+        });
+    }
+
+    #[test]
+    fn a_glass_occluder_lets_its_transmission_through() {
+        for_each_format!(S, {
+            let objects = [
+                floor(MaterialDesc {
+                    diffuse: 1.0,
+                    ..MaterialDesc::matte(FLOOR_COLOUR)
+                }),
+                occluder(0.5),
+            ];
+            let got = trace::<S>(&desc(&objects, &[LIGHT], 0.1, 0), [0.0; 3], TO_FLOOR);
+            assert_colour::<S>(
+                got,
+                FLOOR_COLOUR.map(|c| f64::from(c) * (0.1 + 0.5 * lambert())),
+                1e-3,
+            );
+        });
+    }
+
+    #[test]
+    fn a_mirror_shows_the_background_and_depth_zero_does_not() {
+        for_each_format!(S, {
+            let mirror = MaterialDesc {
+                diffuse: 0.0,
+                reflection: 1.0,
+                ..MaterialDesc::matte(FLOOR_COLOUR)
+            };
+            let objects = [floor(mirror)];
+            let got = trace::<S>(&desc(&objects, &[], 0.0, 1), [0.0; 3], TO_FLOOR);
+            assert_colour::<S>(got, [0.2, 0.4, 0.6], 1e-3);
+            let got = trace::<S>(&desc(&objects, &[], 0.0, 0), [0.0; 3], TO_FLOOR);
+            assert_colour::<S>(got, [0.0; 3], 1e-3);
+        });
+    }
+
+    #[test]
+    fn glass_splits_the_ray_tree_by_its_weights() {
+        for_each_format!(S, {
+            // Along the axis of a glass ball nothing bends. Depth 0 hits the front: 0.1 reflects
+            // to the sky; 0.9 refracts to the back (depth 1), where 0.81 leaves for the sky and
+            // 0.09 reflects to the front (depth 2, the last level, which adds nothing).
+            let glass = MaterialDesc {
+                diffuse: 0.0,
+                reflection: 0.1,
+                transmission: 0.9,
+                ior: 1.5,
+                ..MaterialDesc::matte([1.0; 3])
+            };
+            let objects = [ObjectDesc {
+                shape: ShapeDesc::Sphere {
+                    center: [0.0, 0.0, 5.0],
+                    radius: 1.0,
+                },
+                material: glass,
+            }];
+            let got = trace::<S>(&desc(&objects, &[], 0.0, 2), [0.0; 3], [0.0, 0.0, 1.0]);
+            assert_colour::<S>(got, [0.2 * 0.91, 0.4 * 0.91, 0.6 * 0.91], 1e-3);
+        });
+    }
+
+    #[test]
+    fn total_internal_reflection_keeps_the_light_inside() {
+        for_each_format!(S, {
+            // From (0, 0.9, 0) along +x inside a unit glass ball, every bounce meets the surface
+            // at 64° from the normal, beyond glass's critical angle of 41.8°: the ray never
+            // leaves and never sees the sky; each of the four levels adds the ambient 0.1.
+            let glass = MaterialDesc {
+                diffuse: 0.0,
+                transmission: 1.0,
+                ior: 1.5,
+                ..MaterialDesc::matte([1.0; 3])
+            };
+            let objects = [ObjectDesc {
+                shape: ShapeDesc::Sphere {
+                    center: [0.0, 0.0, 0.0],
+                    radius: 1.0,
+                },
+                material: glass,
+            }];
+            let got = trace::<S>(
+                &desc(&objects, &[], 0.1, 3),
+                [0.0, 0.9, 0.0],
+                [1.0, 0.0, 0.0],
+            );
+            assert_colour::<S>(got, [0.4; 3], 1e-3);
+        });
+    }
+
+    #[test]
+    fn a_miss_sees_the_background_and_names_no_object() {
+        for_each_format!(S, {
+            let scene = Scene::<S, 4, 2, 8>::build(&desc(&[], &[], 0.1, 2)).unwrap();
+            let sample = scene.trace(Ray::new(Vec3::ZERO, v(0.0, 0.0, 1.0)));
+            assert_eq!(sample.object, None);
+            assert_colour::<S>(sample.colour.to_f64(), [0.2, 0.4, 0.6], 1e-4);
+        });
+    }
+}

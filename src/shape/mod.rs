@@ -1,0 +1,69 @@
+//! The geometric primitives, one file each, and [`Shape`], which dispatches between them.
+
+mod plane;
+mod sphere;
+mod triangle;
+
+pub use plane::{Checker, Plane};
+pub use sphere::Sphere;
+pub use triangle::{Triangle, TriangleHit};
+
+use crate::color::Rgb;
+use crate::ray::{Ray, Span};
+use crate::scalar::Scalar;
+use crate::vec3::Vec3;
+
+/// Any primitive.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shape<S> {
+    /// A sphere.
+    Sphere(Sphere<S>),
+    /// A plane.
+    Plane(Plane<S>),
+    /// A triangle.
+    Triangle(Triangle<S>),
+}
+
+impl<S: Scalar> Shape<S> {
+    /// The nearest distance in `span` at which `ray` meets the shape.
+    #[inline]
+    #[must_use]
+    pub fn intersect(&self, ray: &Ray<S>, span: Span<S>) -> Option<S> {
+        match self {
+            Self::Sphere(sphere) => sphere.intersect(ray, span),
+            Self::Plane(plane) => plane.intersect(ray, span),
+            Self::Triangle(triangle) => triangle.intersect(ray, span).map(|hit| hit.t),
+        }
+    }
+
+    /// The surface point nearest a computed hit point, and the unit normal there (outward for
+    /// a sphere). Secondary rays start from the surface itself, not from wherever the rounding
+    /// of o + t·d put the hit.
+    #[inline]
+    #[must_use]
+    pub fn surface(&self, point: Vec3<S>) -> (Vec3<S>, Vec3<S>) {
+        match self {
+            Self::Sphere(sphere) => sphere.surface(point),
+            Self::Plane(plane) => (plane.project(point), plane.normal()),
+            Self::Triangle(triangle) => (triangle.project(point), triangle.normal()),
+        }
+    }
+
+    /// The colour of the surface at a point: the material's, or a pattern's.
+    #[inline]
+    #[must_use]
+    pub fn surface_colour(&self, point: Vec3<S>, material_colour: Rgb<S>) -> Rgb<S> {
+        match self {
+            Self::Plane(plane) => plane.pattern_colour(point).unwrap_or(material_colour),
+            Self::Sphere(_) | Self::Triangle(_) => material_colour,
+        }
+    }
+
+    /// Whether the shape encloses a volume, so that a ray can be inside it and refraction
+    /// bends rays in and out. Planes and triangles are thin sheets.
+    #[inline]
+    #[must_use]
+    pub const fn is_solid(&self) -> bool {
+        matches!(self, Self::Sphere(_))
+    }
+}

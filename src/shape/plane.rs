@@ -1,0 +1,193 @@
+//! Ray–plane intersection, and the checkerboard a plane can carry.
+
+use crate::color::Rgb;
+use crate::ray::{Ray, Span};
+use crate::scalar::Scalar;
+use crate::vec3::Vec3;
+
+/// A plane n·p = offset, cut off at the edge of the world.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Plane<S> {
+    normal: Vec3<S>,
+    offset: S,
+    world_radius: S,
+    world_radius_squared: S,
+    checker: Option<Checker<S>>,
+}
+
+/// A checkerboard on a plane: the two in-plane axes, pre-divided by the square size, so that
+/// (p − origin)·axis counts squares, and the colour of every other square.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Checker<S> {
+    /// The colour of the squares whose two coordinates sum to an odd number.
+    pub colour: Rgb<S>,
+    /// A point on a corner of a square.
+    pub origin: Vec3<S>,
+    /// The first in-plane axis divided by the square size.
+    pub u: Vec3<S>,
+    /// The second in-plane axis divided by the square size.
+    pub v: Vec3<S>,
+}
+
+impl<S: Scalar> Plane<S> {
+    /// The plane through `point` with the unit normal `normal`, seen only within
+    /// `world_radius` of the origin (the eye).
+    #[must_use]
+    pub fn new(
+        point: Vec3<S>,
+        normal: Vec3<S>,
+        world_radius: S,
+        checker: Option<Checker<S>>,
+    ) -> Self {
+        Self {
+            normal,
+            offset: normal.dot(point),
+            world_radius,
+            world_radius_squared: world_radius * world_radius,
+            checker,
+        }
+    }
+
+    /// The nearest t in `span` where `ray` meets the plane within the world: t = (offset − n·o)
+    /// / (n·d). A ray parallel to the plane (n·d = 0) misses it.
+    #[must_use]
+    pub fn intersect(&self, ray: &Ray<S>, span: Span<S>) -> Option<S> {
+        let denominator = self.normal.dot(ray.dir);
+        if denominator == S::ZERO {
+            return None;
+        }
+        let numerator = self.offset - self.normal.dot(ray.origin);
+        // t lies in the span iff the numerator lies between min·(n·d) and max·(n·d): testing
+        // that first spares the division for every ray that points away from the plane or
+        // meets it beyond the nearest hit so far.
+        let (low, high) = if denominator > S::ZERO {
+            (span.min * denominator, span.max * denominator)
+        } else {
+            (span.max * denominator, span.min * denominator)
+        };
+        if numerator < low || numerator > high {
+            return None;
+        }
+        let t = numerator / denominator;
+        if !span.contains(t) {
+            return None;
+        }
+        self.inside_world(ray.at(t)).then_some(t)
+    }
+
+    /// |p| ≤ R. Each coordinate is tested first: a point that passes has |p|² ≤ 3R², inside the
+    /// range the scene build proved, while |p|² of a point up to 3R away might not be.
+    fn inside_world(&self, p: Vec3<S>) -> bool {
+        let r = self.world_radius;
+        let within = |c: S| c <= r && c >= -r;
+        within(p.x) && within(p.y) && within(p.z) && p.length_squared() <= self.world_radius_squared
+    }
+
+    /// The unit normal (the same everywhere).
+    #[inline]
+    #[must_use]
+    pub const fn normal(&self) -> Vec3<S> {
+        self.normal
+    }
+
+    /// The point of the plane nearest `point`.
+    #[inline]
+    #[must_use]
+    pub fn project(&self, point: Vec3<S>) -> Vec3<S> {
+        point.onto_plane(self.normal, self.offset)
+    }
+
+    /// The checker colour at a point, where the point falls on a square of the second colour.
+    #[must_use]
+    pub fn pattern_colour(&self, point: Vec3<S>) -> Option<Rgb<S>> {
+        let checker = self.checker?;
+        let local = point - checker.origin;
+        let squares = local
+            .dot(checker.u)
+            .floor_int()
+            .wrapping_add(local.dot(checker.v).floor_int());
+        (squares & 1 == 1).then_some(checker.colour)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_util::{assert_close, for_each_format, span, v};
+
+    fn floor<S: Scalar>(checker: Option<Checker<S>>) -> Plane<S> {
+        Plane::new(
+            v(0.0, -1.0, 0.0),
+            v(0.0, 1.0, 0.0),
+            S::from_int(50),
+            checker,
+        )
+    }
+
+    #[test]
+    fn hits_the_floor_at_the_known_point() {
+        for_each_format!(S, {
+            let plane = floor::<S>(None);
+            let d = v::<S>(0.0, -0.6, 0.8);
+            let ray = Ray::new(v(0.0, 2.0, 0.0), d);
+            let t = plane.intersect(&ray, span(100.0)).unwrap();
+            assert_close(t, 5.0, 1e-3);
+            let p = ray.at(t);
+            assert_close(p.y, -1.0, 1e-3);
+            assert_close(p.z, 4.0, 1e-3);
+            assert_close(plane.normal().y, 1.0, 0.0);
+            let snapped = plane.project(v(0.3, -0.98, 4.0));
+            assert_close(snapped.y, -1.0, 1e-4);
+            assert_close(snapped.x, 0.3, 1e-4);
+        });
+    }
+
+    #[test]
+    fn hits_from_below_too() {
+        for_each_format!(S, {
+            let plane = floor::<S>(None);
+            let ray = Ray::new(v(0.0, -3.0, 0.0), v(0.0, 1.0, 0.0));
+            assert_close(plane.intersect(&ray, span(100.0)).unwrap(), 2.0, 1e-4);
+        });
+    }
+
+    #[test]
+    fn misses_parallel_receding_and_beyond_the_world() {
+        for_each_format!(S, {
+            let plane = floor::<S>(None);
+            let parallel = Ray::new(v(0.0, 0.0, 0.0), v(0.0, 0.0, 1.0));
+            assert_eq!(plane.intersect(&parallel, span(100.0)), None);
+            let parallel_in_plane = Ray::new(v(0.0, -1.0, 0.0), v(1.0, 0.0, 0.0));
+            assert_eq!(plane.intersect(&parallel_in_plane, span(100.0)), None);
+            let up = Ray::new(v(0.0, 0.0, 0.0), v(0.0, 1.0, 0.0));
+            assert_eq!(
+                plane.intersect(&up, span(100.0)),
+                None,
+                "plane behind the origin"
+            );
+            // Grazing: it meets the plane 100 units away, outside the world of radius 50.
+            let d = v::<S>(0.0, -0.01, 0.99995);
+            let grazing = Ray::new(v(0.0, 0.0, 0.0), d);
+            assert_eq!(plane.intersect(&grazing, span(1000.0)), None);
+        });
+    }
+
+    #[test]
+    fn checker_alternates_by_square() {
+        for_each_format!(S, {
+            let colour = Rgb::WHITE;
+            let checker = Checker {
+                colour,
+                origin: v::<S>(0.0, -1.0, 0.0),
+                u: v(0.5, 0.0, 0.0),
+                v: v(0.0, 0.0, 0.5),
+            };
+            let plane = floor(Some(checker));
+            assert_eq!(plane.pattern_colour(v(0.5, -1.0, 0.5)), None);
+            assert_eq!(plane.pattern_colour(v(2.5, -1.0, 0.5)), Some(colour));
+            assert_eq!(plane.pattern_colour(v(-0.5, -1.0, 0.5)), Some(colour));
+            assert_eq!(plane.pattern_colour(v(-0.5, -1.0, -0.5)), None);
+            assert_eq!(floor::<S>(None).pattern_colour(v(2.5, -1.0, 0.5)), None);
+        });
+    }
+}

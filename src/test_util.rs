@@ -1,0 +1,52 @@
+//! Helpers shared by the unit tests.
+
+use crate::ray::Span;
+use crate::scalar::Scalar;
+use crate::vec3::Vec3;
+
+/// Runs a block once per number format, with `$s` naming the format.
+macro_rules! for_each_format {
+    ($s:ident, $body:block) => {{
+        {
+            type $s = crate::scalar::I16F16;
+            $body
+        }
+        {
+            type $s = crate::scalar::I32F32;
+            $body
+        }
+        {
+            type $s = f32;
+            $body
+        }
+        {
+            type $s = f64;
+            $body
+        }
+    }};
+}
+pub(crate) use for_each_format;
+
+/// A vector from `f64` coordinates that fit every format.
+pub(crate) fn v<S: Scalar>(x: f64, y: f64, z: f64) -> Vec3<S> {
+    Vec3::from_f64([x, y, z]).expect("test values fit every format")
+}
+
+/// The span (1/1000, max): a small positive epsilon that every format resolves.
+pub(crate) fn span<S: Scalar>(max: f64) -> Span<S> {
+    Span {
+        min: S::ratio(1, 1000),
+        max: S::from_f64(max).expect("test values fit"),
+    }
+}
+
+/// Asserts |got − want| ≤ tol, naming the format.
+#[track_caller]
+pub(crate) fn assert_close<S: Scalar>(got: S, want: f64, tol: f64) {
+    let got = got.to_f64();
+    assert!(
+        (got - want).abs() <= tol,
+        "{}: got {got}, want {want} ± {tol}",
+        S::NAME
+    );
+}
