@@ -7,7 +7,10 @@ cd "$(dirname "$0")/.."
 
 step() { printf '\n==> %s\n' "$*"; }
 
-THUMB_TARGETS=(thumbv7em-none-eabihf thumbv6m-none-eabi)
+M4F=thumbv7em-none-eabihf
+M0=thumbv6m-none-eabi
+ALL_FRAMES=qemu,scene-whitted,scene-shapes,format-i16f16,format-i32f32,format-f32
+BOARD=st7789,scene-whitted,format-i16f16
 
 step "toolchain: rustfmt, clippy and the thumb targets"
 installed_components=$(rustup component list --installed)
@@ -15,9 +18,21 @@ for component in rustfmt clippy; do
     grep -q "^$component" <<<"$installed_components" || rustup component add "$component"
 done
 installed_targets=$(rustup target list --installed)
-for target in "${THUMB_TARGETS[@]}"; do
+for target in "$M4F" "$M0"; do
     grep -qx "$target" <<<"$installed_targets" || rustup target add "$target"
 done
+
+step "QEMU"
+if ! command -v qemu-system-arm >/dev/null; then
+    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
+        apt-get update -qq
+        DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends qemu-system-arm
+    else
+        echo "qemu-system-arm is missing; install it with: sudo apt-get install qemu-system-arm" >&2
+        exit 1
+    fi
+fi
+qemu-system-arm --version | head -n 1
 
 step "format"
 cargo fmt --all -- --check
@@ -26,14 +41,28 @@ step "clippy, host"
 cargo clippy --workspace --all-targets --locked -- -D warnings
 
 step "clippy, core on a 32-bit target"
-cargo clippy -p obscura --target thumbv6m-none-eabi --locked -- -D warnings
+cargo clippy -p obscura --target "$M0" --locked -- -D warnings
+
+step "clippy, firmware on both targets and the ST7789 board"
+cargo clippy --release --bin firmware --target "$M4F" --features "$ALL_FRAMES" --locked -- -D warnings
+cargo clippy --release --bin firmware --target "$M0" --features "$ALL_FRAMES" --locked -- -D warnings
+cargo clippy --release --bin firmware --target "$M4F" --features "$BOARD" --locked -- -D warnings
 
 step "documentation"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --quiet
 
-for target in "${THUMB_TARGETS[@]}"; do
+for target in "$M4F" "$M0"; do
     step "no_std core for $target"
     cargo build -p obscura --release --target "$target" --locked
+done
+
+step "firmware for the ST7789 on an STM32F411 Black Pill"
+cargo build --release --bin firmware --target "$M4F" --features "$BOARD" --locked
+
+for target in m4f m0; do
+    step "firmware under QEMU ($target), bit for bit against the host"
+    cargo run --release --locked -p obscura-host -- firmware --target "$target" \
+        --scene whitted,shapes --format i16f16
 done
 
 step "tests"

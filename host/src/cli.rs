@@ -1,5 +1,6 @@
 //! The command line: what each subcommand takes.
 
+use crate::firmware::Target;
 use crate::format::Format;
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
@@ -25,6 +26,9 @@ pub enum Command {
     Compare(CompareArgs),
     /// Time single-thread renders per format against f32, and the speed-up of more threads.
     Bench(BenchArgs),
+    /// Build the firmware, run it under QEMU, and check its frames against the host's, bit for
+    /// bit; report instructions, stack, flash and RAM.
+    Firmware(FirmwareArgs),
 }
 
 /// What to render, at what size, in which format.
@@ -89,6 +93,30 @@ pub struct BenchArgs {
     /// Also write the figures as JSON to this file.
     #[arg(long)]
     pub json: Option<PathBuf>,
+}
+
+/// `obscura firmware`.
+#[derive(Debug, Args)]
+pub struct FirmwareArgs {
+    /// The microcontroller: m4f (Cortex-M4F, QEMU's netduinoplus2) or m0 (Cortex-M0, QEMU's
+    /// microbit).
+    #[arg(long, value_enum)]
+    pub target: Target,
+    /// Built-in scenes to render, in one firmware run.
+    #[arg(long, value_delimiter = ',', default_value = "whitted")]
+    pub scene: Vec<String>,
+    /// Formats to render each scene in: i16f16, i32f32, f32.
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "i16f16")]
+    pub format: Vec<Format>,
+    /// Also write the figures as JSON (an array, one object per frame) to this file.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+    /// Where QEMU runs: the firmware's frames land here as raw RGB565 and as PNG.
+    #[arg(long, default_value = "out/firmware")]
+    pub out_dir: PathBuf,
+    /// Seconds QEMU may run before it is stopped.
+    #[arg(long, default_value_t = 900)]
+    pub timeout: u64,
 }
 
 fn default_threads() -> u16 {

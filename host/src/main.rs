@@ -4,6 +4,7 @@
 mod canvas;
 mod cli;
 mod commands;
+mod firmware;
 mod format;
 mod heatmap;
 mod metrics;

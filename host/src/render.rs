@@ -4,7 +4,7 @@
 use crate::canvas::Canvas;
 use crate::format::{Format, FormatJob};
 use anyhow::{Context, Result};
-use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+use embedded_graphics::pixelcolor::{IntoStorage, Rgb565, Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use image::RgbImage;
@@ -91,6 +91,21 @@ impl<S: Scalar> Prepared<S> {
             .unwrap_or_else(std::sync::PoisonError::into_inner)
     }
 
+    /// The frame in RGB565, as a display receives it, rendered on one thread through the same
+    /// scanline renderer as the firmware's.
+    pub fn rgb565_frame(&self) -> Vec<u16> {
+        let (width, height) = (self.camera.width(), self.camera.height());
+        let mut frame = Rgb565Frame {
+            width,
+            pixels: vec![0; (width * height) as usize],
+        };
+        let mut line = vec![Rgb565::BLACK; width as usize];
+        let rendered = render_rows(&self.scene, &self.camera, 0..height, &mut line, &mut frame);
+        // The camera fits the frame and the line holds a row: no error is possible here.
+        debug_assert!(rendered.is_ok());
+        frame.pixels
+    }
+
     /// The index of the object each pixel's primary ray hits first, row by row.
     pub fn object_map(&self) -> Vec<Option<usize>> {
         let (width, height) = (self.camera.width(), self.camera.height());
@@ -107,6 +122,8 @@ pub trait AnyFormat {
     fn render(&self, threads: usize, progress: Option<&str>) -> RgbImage;
     /// See [`Prepared::object_map`].
     fn object_map(&self) -> Vec<Option<usize>>;
+    /// See [`Prepared::rgb565_frame`].
+    fn rgb565_frame(&self) -> Vec<u16>;
 }
 
 impl<S: Scalar> AnyFormat for Prepared<S> {
@@ -115,6 +132,9 @@ impl<S: Scalar> AnyFormat for Prepared<S> {
     }
     fn object_map(&self) -> Vec<Option<usize>> {
         Prepared::object_map(self)
+    }
+    fn rgb565_frame(&self) -> Vec<u16> {
+        Prepared::rgb565_frame(self)
     }
 }
 
@@ -153,6 +173,42 @@ fn report_progress(label: &str, rows_done: &AtomicU32, height: u32) {
     }
     if last_shown.is_some() {
         eprintln!("\r{label}: 100%");
+    }
+}
+
+/// A frame of raw RGB565 values, row after row.
+struct Rgb565Frame {
+    width: u32,
+    pixels: Vec<u16>,
+}
+
+impl OriginDimensions for Rgb565Frame {
+    fn size(&self) -> Size {
+        Size::new(
+            self.width,
+            u32::try_from(self.pixels.len()).unwrap_or(0) / self.width.max(1),
+        )
+    }
+}
+
+impl DrawTarget for Rgb565Frame {
+    type Color = Rgb565;
+    type Error = Infallible;
+
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Infallible>
+    where
+        I: IntoIterator<Item = Pixel<Rgb565>>,
+    {
+        for Pixel(point, colour) in pixels {
+            if let (Ok(x), Ok(y)) = (u32::try_from(point.x), u32::try_from(point.y)) {
+                if x < self.width {
+                    if let Some(pixel) = self.pixels.get_mut((y * self.width + x) as usize) {
+                        *pixel = colour.into_storage();
+                    }
+                }
+            }
+        }
+        Ok(())
     }
 }
 

@@ -199,3 +199,37 @@ fn an_unwritable_output_is_reported() {
         "{message}"
     );
 }
+
+#[test]
+fn firmware_refuses_f64_and_unknown_targets() {
+    let output = obscura(&["firmware", "--target", "m4f", "--format", "f64"]);
+    assert!(!output.status.success());
+    assert!(stderr(&output).contains("not f64"), "{}", stderr(&output));
+    let output = obscura(&["firmware", "--target", "riscv"]);
+    assert!(!output.status.success());
+    assert!(stderr(&output).contains("m4f"), "{}", stderr(&output));
+}
+
+#[test]
+fn firmware_without_qemu_says_how_to_install_it() {
+    // A PATH with rustc on it and nothing else: no QEMU (and perhaps no thumb target).
+    let dir = scratch("no-qemu");
+    let rustc = Command::new("sh")
+        .args(["-c", "command -v rustc"])
+        .output()
+        .unwrap();
+    let rustc = String::from_utf8_lossy(&rustc.stdout).trim().to_owned();
+    std::os::unix::fs::symlink(&rustc, dir.join("rustc")).unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_obscura"))
+        .args(["firmware", "--target", "m0"])
+        .env("PATH", &dir)
+        .output()
+        .unwrap();
+    assert!(!output.status.success());
+    let message = stderr(&output);
+    assert!(
+        message.contains("apt-get install qemu-system-arm")
+            || message.contains("rustup target add thumbv6m-none-eabi"),
+        "{message}"
+    );
+}

@@ -1,10 +1,45 @@
 //! IEEE floats as scalars: `f64` is the reference every other format is measured against,
 //! `f32` is what a Cortex-M4F computes in hardware.
 //!
-//! Square roots come from `libm` (correctly rounded, pure Rust), so that a host and a
-//! microcontroller compute the very same bits.
+//! Square roots are IEEE's correctly rounded ones everywhere, so that a host and a
+//! microcontroller compute the very same bits: `libm`'s in software, or for `f32` on a
+//! Cortex-M4F the FPU's `vsqrt.f32` (a handful of instructions against several hundred).
 
 use super::Scalar;
+
+/// The correctly rounded square root of an `f32` by the FPU of a Cortex-M4F.
+#[cfg(all(target_arch = "arm", target_abi = "eabihf"))]
+#[allow(unsafe_code, reason = "calls a leaf function written in assembly")]
+mod vsqrt {
+    // A leaf function in its own section; the FPU is declared for this one instruction (the
+    // core does not rely on the assembler's default), and the hard-float ABI passes the
+    // argument and the result in s0.
+    core::arch::global_asm!(
+        ".section .text.obscura_vsqrt_f32,\"ax\",%progbits",
+        ".global obscura_vsqrt_f32",
+        ".type obscura_vsqrt_f32,%function",
+        ".fpu fpv4-sp-d16",
+        ".thumb_func",
+        "obscura_vsqrt_f32:",
+        "vsqrt.f32 s0, s0",
+        "bx lr",
+    );
+
+    unsafe extern "C" {
+        fn obscura_vsqrt_f32(x: f32) -> f32;
+    }
+
+    #[inline]
+    pub(super) fn sqrtf(x: f32) -> f32 {
+        // SAFETY: the function reads s0, writes s0 and returns; it touches no memory.
+        unsafe { obscura_vsqrt_f32(x) }
+    }
+}
+
+#[cfg(not(all(target_arch = "arm", target_abi = "eabihf")))]
+use libm::sqrtf;
+#[cfg(all(target_arch = "arm", target_abi = "eabihf"))]
+use vsqrt::sqrtf;
 
 macro_rules! float_scalar {
     ($($t:ident: $sqrt:path),*) => {$(
@@ -54,4 +89,4 @@ macro_rules! float_scalar {
     )*};
 }
 
-float_scalar!(f32: libm::sqrtf, f64: libm::sqrt);
+float_scalar!(f32: sqrtf, f64: libm::sqrt);

@@ -2,6 +2,7 @@
 
 mod bench;
 mod compare;
+mod firmware;
 mod render;
 
 use crate::cli::Command;
@@ -20,6 +21,7 @@ pub fn run(command: Command) -> Result<()> {
         Command::Render(args) => render::run(&args),
         Command::Compare(args) => compare::run(&args),
         Command::Bench(args) => bench::run(&args),
+        Command::Firmware(args) => firmware::run(&args),
     }
 }
 

@@ -1,0 +1,233 @@
+//! `obscura firmware`: the firmware under QEMU against the host, bit for bit, and what it costs.
+
+use crate::cli::FirmwareArgs;
+use crate::firmware::{self, Target};
+use crate::format::Format;
+use crate::heatmap::heatmap;
+use crate::render::{Request, prepare};
+use anyhow::{Context, Result, bail};
+use image::RgbImage;
+use serde::Serialize;
+use std::path::Path;
+use std::time::Duration;
+
+/// The figures of one frame, as printed and written to JSON.
+#[derive(Debug, Serialize)]
+struct Report {
+    target: &'static str,
+    scene: String,
+    format: String,
+    width: u32,
+    height: u32,
+    identical: bool,
+    differing_pixels: usize,
+    instructions_per_frame: u64,
+    instructions_per_pixel: u64,
+    stack_bytes: u64,
+    flash_bytes: u64,
+    ram_bytes: u64,
+}
+
+/// How many differing pixels are listed when a frame does not match.
+const LISTED: usize = 10;
+
+pub fn run(args: &FirmwareArgs) -> Result<()> {
+    let target = args.target;
+    let scenes = args
+        .scene
+        .iter()
+        .map(|name| super::scene(name))
+        .collect::<Result<Vec<_>>>()?;
+    let mut features: Vec<String> = scenes.iter().map(|s| format!("scene-{}", s.name)).collect();
+    for &format in &args.format {
+        features.push(firmware::firmware_format(format)?.to_owned());
+    }
+    firmware::check_prerequisites(target)?;
+    let elf = firmware::build(target, &features)?;
+    let size = firmware::image_size(&elf)?;
+    let dir = args.out_dir.join(target.name());
+    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    eprintln!("running {} under QEMU in {}", elf.display(), dir.display());
+    let frames = firmware::run(target, &elf, &dir, Duration::from_secs(args.timeout))?;
+
+    let mut reports = Vec::new();
+    let mut mismatched = Vec::new();
+    for scene in &scenes {
+        for &format in &args.format {
+            let frame = frames
+                .iter()
+                .find(|f| f.scene == scene.name && f.format == format.name())
+                .with_context(|| {
+                    format!(
+                        "the firmware reported no frame of {} in {format}",
+                        scene.name
+                    )
+                })?;
+            let request = Request {
+                desc: &scene.desc,
+                width: frame.width,
+                height: frame.height,
+            };
+            let host = prepare(format, &request)?.rgb565_frame();
+            let device = read_frame(&dir.join(&frame.file), host.len())?;
+            let differing: Vec<usize> = (0..host.len()).filter(|&i| host[i] != device[i]).collect();
+            let stem = dir.join(format!("{}-{format}", scene.name));
+            crate::commands::save(&to_image(&device, frame.width), &stem.with_extension("png"))?;
+            if !differing.is_empty() {
+                let diff = heatmap(
+                    &to_image(&device, frame.width),
+                    &to_image(&host, frame.width),
+                );
+                let path = dir.join(format!("{}-{format}-diff.png", scene.name));
+                crate::commands::save(&diff, &path)?;
+                list_differences(
+                    scene.name,
+                    format,
+                    frame.width,
+                    &differing,
+                    &device,
+                    &host,
+                    &path,
+                );
+                if is_fixed_point(format) {
+                    mismatched.push(format!("{} in {format}", scene.name));
+                }
+            }
+            let pixels = u64::from(frame.width) * u64::from(frame.height);
+            let instructions = target.instructions(frame.ticks);
+            reports.push(Report {
+                target: target.name(),
+                scene: frame.scene.clone(),
+                format: frame.format.clone(),
+                width: frame.width,
+                height: frame.height,
+                identical: differing.is_empty(),
+                differing_pixels: differing.len(),
+                instructions_per_frame: instructions,
+                instructions_per_pixel: instructions / pixels.max(1),
+                stack_bytes: frame.stack_bytes,
+                flash_bytes: size.flash,
+                ram_bytes: size.ram,
+            });
+        }
+    }
+    print_table(target, &reports);
+    if let Some(path) = &args.json {
+        let text = serde_json::to_string_pretty(&reports)?;
+        std::fs::write(path, text + "\n")
+            .with_context(|| format!("cannot write {}", path.display()))?;
+        println!("wrote {}", path.display());
+    }
+    if !mismatched.is_empty() {
+        bail!(
+            "the firmware's frames differ from the host's in fixed point: {}",
+            mismatched.join(", ")
+        );
+    }
+    Ok(())
+}
+
+fn is_fixed_point(format: Format) -> bool {
+    matches!(format, Format::I16f16 | Format::I32f32)
+}
+
+/// Reads a frame file of `pixels` big-endian RGB565 values.
+fn read_frame(path: &Path, pixels: usize) -> Result<Vec<u16>> {
+    let bytes = std::fs::read(path)
+        .with_context(|| format!("cannot read the firmware's frame {}", path.display()))?;
+    if bytes.len() != 2 * pixels {
+        bail!(
+            "{} holds {} bytes, not the {} of a whole frame",
+            path.display(),
+            bytes.len(),
+            2 * pixels
+        );
+    }
+    Ok(bytes
+        .chunks_exact(2)
+        .map(|pair| u16::from_be_bytes([pair[0], pair[1]]))
+        .collect())
+}
+
+/// An RGB565 frame as an RGB888 image, each channel scaled to 8 bits with rounding.
+fn to_image(frame: &[u16], width: u32) -> RgbImage {
+    let height = u32::try_from(frame.len()).unwrap_or(0) / width.max(1);
+    RgbImage::from_fn(width, height, |x, y| {
+        let v = u32::from(frame[(y * width + x) as usize]);
+        let scale = |value: u32, max: u32| ((value * 255 + max / 2) / max) as u8;
+        image::Rgb([
+            scale(v >> 11, 31),
+            scale((v >> 5) & 63, 63),
+            scale(v & 31, 31),
+        ])
+    })
+}
+
+fn list_differences(
+    scene: &str,
+    format: Format,
+    width: u32,
+    differing: &[usize],
+    device: &[u16],
+    host: &[u16],
+    diff: &Path,
+) {
+    println!(
+        "{scene} in {format}: {} pixels differ (firmware vs host, RGB565):",
+        differing.len()
+    );
+    for &i in differing.iter().take(LISTED) {
+        let (x, y) = (i as u32 % width, i as u32 / width);
+        println!("  ({x}, {y}): {:#06x} vs {:#06x}", device[i], host[i]);
+    }
+    if differing.len() > LISTED {
+        println!(
+            "  … and {} more; see {}",
+            differing.len() - LISTED,
+            diff.display()
+        );
+    }
+}
+
+fn print_table(target: Target, reports: &[Report]) {
+    println!(
+        "| target | scene | format | identical to host | differing pixels | instructions/frame | instructions/pixel | stack (bytes) | flash (bytes) | static RAM (bytes) | RAM + stack (bytes) |"
+    );
+    println!("|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|");
+    for r in reports {
+        println!(
+            "| {} ({}) | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            r.target,
+            target.triple(),
+            r.scene,
+            r.format,
+            if r.identical { "yes" } else { "no" },
+            r.differing_pixels,
+            r.instructions_per_frame,
+            r.instructions_per_pixel,
+            r.stack_bytes,
+            r.flash_bytes,
+            r.ram_bytes,
+            r.ram_bytes + r.stack_bytes
+        );
+    }
+    println!(
+        "(instructions, not cycles: QEMU counts one per instruction and models no wait states or multi-cycle instructions)"
+    );
+    let mhz = target.core_hz() / 1_000_000;
+    for r in reports {
+        let frame_pixels = f64::from(r.width) * f64::from(r.height);
+        let seconds = |pixels: u64| {
+            r.instructions_per_frame as f64 * pixels as f64 / frame_pixels / target.core_hz() as f64
+        };
+        println!(
+            "{} in {} at {mhz} MHz, estimated at one instruction per cycle: {:.2} s per {}x{} frame, {:.1} s at 512x512",
+            r.scene,
+            r.format,
+            seconds(u64::from(r.width) * u64::from(r.height)),
+            r.width,
+            r.height,
+            seconds(512 * 512)
+        );
+    }
+}

@@ -1,0 +1,311 @@
+//! The firmware from the host's side: which microcontrollers it runs on under QEMU, how to
+//! build it for a set of scenes and formats, how to run it and read what it reports, and how
+//! much flash and RAM its image takes.
+
+use crate::format::Format;
+use anyhow::{Context, Result, bail};
+use clap::ValueEnum;
+use object::{Object, ObjectSection, SectionFlags, SectionKind};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// A microcontroller the firmware is built for, with the QEMU machine that emulates it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Target {
+    /// Cortex-M4F with a single-precision FPU (STM32F405, QEMU's netduinoplus2).
+    M4f,
+    /// Cortex-M0, no FPU, 16 KiB of RAM (nRF51 of the BBC micro:bit, QEMU's microbit).
+    M0,
+}
+
+impl Target {
+    /// The Rust target triple.
+    pub fn triple(self) -> &'static str {
+        match self {
+            Self::M4f => "thumbv7em-none-eabihf",
+            Self::M0 => "thumbv6m-none-eabi",
+        }
+    }
+
+    /// The name the command line uses.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::M4f => "m4f",
+            Self::M0 => "m0",
+        }
+    }
+
+    /// QEMU's CPU and machine.
+    fn qemu_machine(self) -> [&'static str; 4] {
+        match self {
+            Self::M4f => ["-cpu", "cortex-m4", "-machine", "netduinoplus2"],
+            Self::M0 => ["-cpu", "cortex-m0", "-machine", "microbit"],
+        }
+    }
+
+    /// The emulated core clock, which SysTick counts. With `-icount shift=0`, QEMU advances its
+    /// virtual clock one nanosecond per instruction, so a tick is 10⁹/f instructions.
+    pub fn core_hz(self) -> u64 {
+        match self {
+            Self::M4f => 168_000_000,
+            Self::M0 => 16_000_000,
+        }
+    }
+
+    /// Instructions executed in `ticks` SysTick ticks.
+    pub fn instructions(self, ticks: u64) -> u64 {
+        ticks * 1_000_000_000 / self.core_hz()
+    }
+}
+
+/// The formats the firmware computes in (f64 stays on the host).
+pub fn firmware_format(format: Format) -> Result<&'static str> {
+    match format {
+        Format::I16f16 => Ok("format-i16f16"),
+        Format::I32f32 => Ok("format-i32f32"),
+        Format::F32 => Ok("format-f32"),
+        Format::F64 => bail!("the firmware computes in i16f16, i32f32 or f32, not f64"),
+    }
+}
+
+/// The workspace the harness was built from, which holds the firmware's sources.
+pub fn workspace() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .map_or_else(|| PathBuf::from("."), Path::to_path_buf)
+}
+
+/// Fails with the command that installs it unless the Rust target and QEMU are there.
+pub fn check_prerequisites(target: Target) -> Result<()> {
+    let sysroot = Command::new("rustc")
+        .args(["--print", "sysroot"])
+        .output()
+        .context("cannot run rustc")?;
+    let sysroot = String::from_utf8_lossy(&sysroot.stdout).trim().to_owned();
+    if !Path::new(&sysroot)
+        .join("lib/rustlib")
+        .join(target.triple())
+        .exists()
+    {
+        bail!(
+            "the Rust target {triple} is not installed; install it with: rustup target add {triple}",
+            triple = target.triple()
+        );
+    }
+    let qemu = Command::new("qemu-system-arm")
+        .arg("--version")
+        .stdout(Stdio::null())
+        .status();
+    if !qemu.is_ok_and(|status| status.success()) {
+        bail!(
+            "qemu-system-arm is not installed; install it with: sudo apt-get install \
+             qemu-system-arm (Debian, Ubuntu), or see https://www.qemu.org/download/"
+        );
+    }
+    Ok(())
+}
+
+/// Builds the firmware for `target`, rendering each of `scenes` in each of `formats` (cargo
+/// feature names), and returns the path of its ELF image.
+pub fn build(target: Target, features: &[String]) -> Result<PathBuf> {
+    let workspace = workspace();
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let mut all = vec!["qemu".to_owned()];
+    all.extend_from_slice(features);
+    let status = Command::new(cargo)
+        .current_dir(&workspace)
+        .args([
+            "build",
+            "--release",
+            "--bin",
+            "firmware",
+            "--target",
+            target.triple(),
+        ])
+        .args(["--features", &all.join(",")])
+        .status()
+        .context("cannot run cargo")?;
+    if !status.success() {
+        bail!(
+            "building the firmware for {} failed (see cargo's messages above)",
+            target.triple()
+        );
+    }
+    Ok(workspace
+        .join("target")
+        .join(target.triple())
+        .join("release/firmware"))
+}
+
+/// One frame as the firmware reported it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Frame {
+    /// The scene's name.
+    pub scene: String,
+    /// The format's name.
+    pub format: String,
+    /// The image width.
+    pub width: u32,
+    /// The image height.
+    pub height: u32,
+    /// SysTick ticks of the core clock the frame took.
+    pub ticks: u64,
+    /// The stack's high-water mark, in bytes.
+    pub stack_bytes: u64,
+    /// The frame file, in QEMU's working directory.
+    pub file: String,
+}
+
+/// Runs `elf` under QEMU in `dir` (where the frames land), waiting at most `timeout`, and
+/// returns the frames it reported.
+pub fn run(target: Target, elf: &Path, dir: &Path, timeout: Duration) -> Result<Vec<Frame>> {
+    let mut child = Command::new("qemu-system-arm")
+        .current_dir(dir)
+        .args(target.qemu_machine())
+        .args(["-nographic", "-monitor", "none", "-serial", "none"])
+        .args([
+            "-semihosting-config",
+            "enable=on,target=native",
+            "-icount",
+            "shift=0",
+        ])
+        .arg("-kernel")
+        .arg(elf)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .context("cannot start qemu-system-arm")?;
+    let start = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait()? {
+            break status;
+        }
+        if start.elapsed() > timeout {
+            let _ = child.kill();
+            bail!(
+                "the firmware did not finish within {} s under QEMU (raise --timeout?)",
+                timeout.as_secs()
+            );
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    let output = child.wait_with_output()?;
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let errors: Vec<&str> = stdout
+        .lines()
+        .filter(|line| line.starts_with("error "))
+        .collect();
+    if !status.success() || !errors.is_empty() {
+        bail!(
+            "the firmware failed under QEMU ({status}):\n{}{}",
+            stdout.trim_end(),
+            String::from_utf8_lossy(&output.stderr)
+        );
+    }
+    stdout
+        .lines()
+        .filter(|line| line.starts_with("frame "))
+        .map(parse_frame)
+        .collect()
+}
+
+/// Parses `frame scene=… format=… width=… height=… ticks=… stack_bytes=… file=…`.
+fn parse_frame(line: &str) -> Result<Frame> {
+    let field = |key: &str| {
+        line.split_whitespace()
+            .find_map(|pair| {
+                pair.strip_prefix(key)
+                    .and_then(|rest| rest.strip_prefix('='))
+            })
+            .with_context(|| format!("no {key} in the firmware's line `{line}`"))
+    };
+    let number = |key: &str| -> Result<u64> {
+        field(key)?
+            .parse()
+            .with_context(|| format!("{key} is not a number in `{line}`"))
+    };
+    Ok(Frame {
+        scene: field("scene")?.to_owned(),
+        format: field("format")?.to_owned(),
+        width: u32::try_from(number("width")?)?,
+        height: u32::try_from(number("height")?)?,
+        ticks: number("ticks")?,
+        stack_bytes: number("stack_bytes")?,
+        file: field("file")?.to_owned(),
+    })
+}
+
+/// What an image occupies: flash (code, constants and the initial values of data) and static
+/// RAM (data and zeroed data; the stack comes on top).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ImageSize {
+    /// Bytes of flash.
+    pub flash: u64,
+    /// Bytes of statically allocated RAM.
+    pub ram: u64,
+}
+
+/// Sizes an ELF image from its allocated sections, as `size` does.
+pub fn image_size(elf: &Path) -> Result<ImageSize> {
+    let data = std::fs::read(elf).with_context(|| format!("cannot read {}", elf.display()))?;
+    let file = object::File::parse(&*data).context("the firmware image is not an ELF file")?;
+    let mut size = ImageSize { flash: 0, ram: 0 };
+    for section in file.sections() {
+        let allocated = matches!(section.flags(), SectionFlags::Elf { sh_flags } if sh_flags & u64::from(object::elf::SHF_ALLOC) != 0);
+        if !allocated {
+            continue;
+        }
+        match section.kind() {
+            // Zero-initialised and uninitialised data take RAM only.
+            SectionKind::UninitializedData | SectionKind::UninitializedTls => {
+                size.ram += section.size()
+            }
+            // Initialised data takes RAM, and its initial values take flash.
+            SectionKind::Data | SectionKind::Tls => {
+                size.ram += section.size();
+                size.flash += section.size();
+            }
+            _ => size.flash += section.size(),
+        }
+    }
+    Ok(size)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn frame_lines_parse_and_bad_ones_say_why() {
+        let line = "frame scene=whitted format=i16f16 width=240 height=240 ticks=22633551 stack_bytes=4568 file=whitted-i16f16.rgb565";
+        let frame = parse_frame(line).unwrap();
+        assert_eq!(frame.scene, "whitted");
+        assert_eq!(
+            (frame.width, frame.ticks, frame.stack_bytes),
+            (240, 22_633_551, 4568)
+        );
+        assert_eq!(frame.file, "whitted-i16f16.rgb565");
+        let error = parse_frame("frame scene=whitted").unwrap_err().to_string();
+        assert!(error.contains("no format"), "{error}");
+    }
+
+    #[test]
+    fn ticks_convert_to_instructions_by_the_core_clock() {
+        // 168 MHz: a tick is 1000/168 ≈ 5.95 instructions; 16 MHz: 62.5.
+        assert_eq!(Target::M4f.instructions(168), 1000);
+        assert_eq!(Target::M0.instructions(16), 1000);
+    }
+
+    #[test]
+    fn f64_is_not_a_firmware_format() {
+        assert!(
+            firmware_format(Format::F64)
+                .unwrap_err()
+                .to_string()
+                .contains("not f64")
+        );
+        assert_eq!(firmware_format(Format::I16f16).unwrap(), "format-i16f16");
+    }
+}

@@ -1,0 +1,187 @@
+//! The QEMU back-end: each frame streams, row by row, into a file on the host through ARM
+//! semihosting (`SCENE-FORMAT.rgb565`: 240×240 big-endian RGB565, row after row, in QEMU's
+//! working directory), and each report is a line on the host's standard output:
+//!
+//! ```text
+//! frame scene=whitted format=i16f16 width=240 height=240 ticks=… stack_bytes=… file=whitted-i16f16.rgb565
+//! ```
+//!
+//! The firmware then exits through semihosting: 0 when every frame was drawn, 1 otherwise, and
+//! 1 on a panic (panic-semihosting) or a hard fault.
+#![allow(
+    unsafe_code,
+    reason = "semihosting calls are raw system calls to the debugger"
+)]
+
+use crate::SIDE;
+use crate::clock::Clock;
+use crate::frames::{self, Backend, Report};
+use core::fmt::{self, Write as _};
+use cortex_m_rt::{ExceptionFrame, exception};
+use cortex_m_semihosting::debug::{self, EXIT_FAILURE, EXIT_SUCCESS};
+use cortex_m_semihosting::{hprintln, nr, syscall};
+use embedded_graphics_core::pixelcolor::{IntoStorage, Rgb565};
+use embedded_graphics_core::prelude::*;
+use embedded_graphics_core::primitives::Rectangle;
+use panic_semihosting as _;
+
+/// Renders every enabled frame, then exits QEMU with the outcome.
+pub fn run() -> ! {
+    let Some(peripherals) = cortex_m::Peripherals::take() else {
+        exit(false);
+    };
+    let clock = Clock::start(peripherals.SYST);
+    let mut host = Host { all_drawn: true };
+    frames::render_all(&mut host, &clock);
+    exit(host.all_drawn);
+}
+
+fn exit(success: bool) -> ! {
+    debug::exit(if success { EXIT_SUCCESS } else { EXIT_FAILURE });
+    // Without a debugger to end it, wait for one.
+    loop {
+        cortex_m::asm::wfi();
+    }
+}
+
+#[exception]
+unsafe fn HardFault(frame: &ExceptionFrame) -> ! {
+    hprintln!("error hard fault at pc={:#010x}", frame.pc());
+    exit(false);
+}
+
+/// The host at the other end of the debugger.
+struct Host {
+    all_drawn: bool,
+}
+
+impl Backend for Host {
+    type Display = FrameFile;
+
+    fn frame<R>(&mut self, scene: &str, format: &str, draw: impl FnOnce(&mut FrameFile) -> R) -> R {
+        let mut file = FrameFile::create(scene, format);
+        let result = draw(&mut file);
+        file.close();
+        result
+    }
+
+    fn report(&mut self, r: &Report<'_>) {
+        hprintln!(
+            "frame scene={} format={} width={SIDE} height={SIDE} ticks={} stack_bytes={} file={}-{}.rgb565",
+            r.scene,
+            r.format,
+            r.ticks,
+            r.stack_bytes,
+            r.scene,
+            r.format
+        );
+    }
+
+    fn failed(&mut self, scene: &str, format: &str, why: &dyn fmt::Display) {
+        self.all_drawn = false;
+        hprintln!("error scene={scene} format={format} message={why}");
+    }
+}
+
+/// A frame file on the host, written as a 240×240 RGB565 display.
+struct FrameFile {
+    /// The host's file handle, or `None` when it could not be opened.
+    handle: Option<usize>,
+}
+
+/// Why a frame could not be written.
+#[derive(Debug)]
+struct HostFileError;
+
+impl FrameFile {
+    /// Creates (or truncates) `SCENE-FORMAT.rgb565` on the host.
+    fn create(scene: &str, format: &str) -> Self {
+        let mut name = heapless::String::<64>::new();
+        let named = write!(name, "{scene}-{format}.rgb565\0").is_ok();
+        let handle = named.then(|| {
+            let length = name.len() - 1;
+            // SAFETY: OPEN reads `length` bytes of the NUL-terminated name, which outlives it.
+            unsafe { syscall!(OPEN, name.as_ptr(), nr::open::W_TRUNC_BINARY, length) }
+        });
+        Self {
+            handle: handle.filter(|&h| h as isize != -1),
+        }
+    }
+
+    /// Writes `bytes` at byte offset `at`.
+    fn write_at(&mut self, at: usize, bytes: &[u8]) -> Result<(), HostFileError> {
+        let handle = self.handle.ok_or(HostFileError)?;
+        // SAFETY: SEEK and WRITE read only their arguments and `bytes`, which outlives them.
+        let sought = unsafe { syscall!(SEEK, handle, at) };
+        let unwritten = unsafe { syscall!(WRITE, handle, bytes.as_ptr(), bytes.len()) };
+        if sought == 0 && unwritten == 0 {
+            Ok(())
+        } else {
+            Err(HostFileError)
+        }
+    }
+
+    fn close(self) {
+        if let Some(handle) = self.handle {
+            // SAFETY: CLOSE takes the handle OPEN returned, once.
+            unsafe { syscall!(CLOSE, handle) };
+        }
+    }
+}
+
+impl OriginDimensions for FrameFile {
+    fn size(&self) -> Size {
+        Size::new(SIDE, SIDE)
+    }
+}
+
+impl DrawTarget for FrameFile {
+    type Color = Rgb565;
+    type Error = HostFileError;
+
+    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(
+        &mut self,
+        pixels: I,
+    ) -> Result<(), HostFileError> {
+        for Pixel(point, colour) in pixels {
+            if let Some(offset) = offset(point) {
+                self.write_at(offset, &colour.into_storage().to_be_bytes())?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Each row of the area (clipped to the display) is one seek and one write.
+    fn fill_contiguous<I: IntoIterator<Item = Rgb565>>(
+        &mut self,
+        area: &Rectangle,
+        colours: I,
+    ) -> Result<(), HostFileError> {
+        let mut colours = colours.into_iter();
+        let mut row = [0_u8; 2 * SIDE as usize];
+        for y in area.rows() {
+            let mut start = None;
+            let mut length = 0;
+            for (x, colour) in area.columns().zip(&mut colours) {
+                let Some(offset) = offset(Point::new(x, y)) else {
+                    continue;
+                };
+                start.get_or_insert(offset);
+                if let Some(pair) = row.get_mut(length..length + 2) {
+                    pair.copy_from_slice(&colour.into_storage().to_be_bytes());
+                    length += 2;
+                }
+            }
+            if let (Some(start), Some(bytes)) = (start, row.get(..length)) {
+                self.write_at(start, bytes)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The byte offset of a pixel in the frame file, or `None` outside the display.
+fn offset(point: Point) -> Option<usize> {
+    let (x, y) = (u32::try_from(point.x).ok()?, u32::try_from(point.y).ok()?);
+    (x < SIDE && y < SIDE).then(|| 2 * (y * SIDE + x) as usize)
+}
