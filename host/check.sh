@@ -9,7 +9,8 @@ step() { printf '\n==> %s\n' "$*"; }
 
 M4F=thumbv7em-none-eabihf
 M0=thumbv6m-none-eabi
-ALL_FRAMES=qemu,scene-whitted,scene-shapes,format-i16f16,format-i32f32,format-f32
+ALL_FRAMES=qemu,scene-whitted,scene-shapes,format-i16f16,format-i20f12,format-i32f32,format-f32-approx,format-f32,chart
+ALL_METHODS=qemu,scene-whitted,scene-shapes,format-i16f16,sphere-stable,triangle-watertight,sqrt-approx,rays-stepped,bias-exclude
 BOARD=st7789,scene-whitted,format-i16f16
 
 step "toolchain: rustfmt, clippy and the thumb targets"
@@ -46,6 +47,7 @@ cargo clippy -p obscura --target "$M0" --locked -- -D warnings
 step "clippy, firmware on both targets and the ST7789 board"
 cargo clippy --release --bin firmware --target "$M4F" --features "$ALL_FRAMES" --locked -- -D warnings
 cargo clippy --release --bin firmware --target "$M0" --features "$ALL_FRAMES" --locked -- -D warnings
+cargo clippy --release --bin firmware --target "$M4F" --features "$ALL_METHODS" --locked -- -D warnings
 cargo clippy --release --bin firmware --target "$M4F" --features "$BOARD" --locked -- -D warnings
 
 step "documentation"
@@ -64,6 +66,12 @@ for target in m4f m0; do
     cargo run --release --locked -p obscura-host -- firmware --target "$target" \
         --scene whitted,shapes --format i16f16
 done
+
+step "firmware under QEMU (m4f), the other formats and methods, bit for bit against the host"
+cargo run --release --locked -p obscura-host -- firmware --target m4f --scene whitted,shapes \
+    --format i16f16,i20f12 --sphere stable --triangle watertight --sqrt approx --rays stepped --bias exclude
+cargo run --release --locked -p obscura-host -- firmware --target m4f --scene whitted,shapes \
+    --format i32f32,f32-approx,f32 --triangle moller-trumbore
 
 step "tests"
 cargo test --workspace --locked

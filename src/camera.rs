@@ -2,6 +2,7 @@
 //! r(t) = e + t·(s − e) through the pixel's centre s on the image plane.
 
 use crate::desc::CameraDesc;
+use crate::methods::{Methods, RayMethod, RootMethod};
 use crate::ray::Ray;
 use crate::scalar::Scalar;
 use crate::vec3::Vec3;
@@ -21,6 +22,8 @@ pub struct Camera<S> {
     across: Vec3<S>,
     /// From the top edge to the bottom edge.
     down: Vec3<S>,
+    rays: RayMethod,
+    roots: RootMethod,
 }
 
 /// The camera's frame in double precision: where it looks and how wide, per unit distance.
@@ -57,9 +60,9 @@ impl Frame {
 
 impl<S: Scalar> Camera<S> {
     /// The camera of `frame` for an image of `width × height` pixels (each in
-    /// 1..=[`MAX_IMAGE_SIDE`], which the caller has checked), or `None` if its image plane does
-    /// not fit format `S`.
-    pub(crate) fn new(frame: &Frame, width: u32, height: u32) -> Option<Self> {
+    /// 1..=[`MAX_IMAGE_SIDE`], which the caller has checked), generating rays by `methods`, or
+    /// `None` if its image plane does not fit format `S`.
+    pub(crate) fn new(frame: &Frame, width: u32, height: u32, methods: &Methods) -> Option<Self> {
         let half_width = frame.half_width(width, height);
         let top_left = frame.forward - frame.right * half_width + frame.up * frame.half_height;
         Some(Self {
@@ -68,6 +71,8 @@ impl<S: Scalar> Camera<S> {
             top_left: top_left.convert()?,
             across: (frame.right * (2.0 * half_width)).convert()?,
             down: (frame.up * (-2.0 * frame.half_height)).convert()?,
+            rays: methods.rays,
+            roots: methods.roots,
         })
     }
 
@@ -86,17 +91,15 @@ impl<S: Scalar> Camera<S> {
     /// Row y of the image (counting down from the top), ready to give its pixels' rays.
     #[must_use]
     pub fn row(&self, y: u32) -> Row<S> {
-        let start = self
-            .top_left
-            .add_scaled(self.down, pixel_centre::<S>(y, self.height));
+        let fy = pixel_centre::<S>(y, self.height, self.roots);
         Row {
-            start,
-            across: self.across,
-            width: self.width,
+            start: self.top_left.add_scaled(self.down, fy),
+            camera: *self,
         }
     }
 
-    /// The primary ray through the centre of pixel (x, y); see [`Row::ray`].
+    /// The primary ray through the centre of pixel (x, y), computed for that pixel alone
+    /// (whichever [`RayMethod`] the camera's rows use).
     #[must_use]
     pub fn ray(&self, x: u32, y: u32) -> Ray<S> {
         self.row(y).ray(x)
@@ -108,8 +111,7 @@ impl<S: Scalar> Camera<S> {
 pub struct Row<S> {
     /// s at the left edge of the row, at its vertical centre.
     start: Vec3<S>,
-    across: Vec3<S>,
-    width: u32,
+    camera: Camera<S>,
 }
 
 impl<S: Scalar> Row<S> {
@@ -118,19 +120,75 @@ impl<S: Scalar> Row<S> {
     /// (s − e)/|s − e|. Each fraction is one exact ratio, so no error accumulates along a row.
     #[must_use]
     pub fn ray(&self, x: u32) -> Ray<S> {
-        let s = self
+        let fx = pixel_centre::<S>(x, self.camera.width, self.camera.roots);
+        self.through(self.start.add_scaled(self.camera.across, fx))
+    }
+
+    /// The primary rays of the row's pixels, left to right, by the camera's [`RayMethod`].
+    #[must_use]
+    pub fn rays(self) -> Rays<S> {
+        let width = self.camera.width;
+        let roots = self.camera.roots;
+        // Stepping starts half a pixel in and adds a whole one each time.
+        let first = self
             .start
-            .add_scaled(self.across, pixel_centre::<S>(x, self.width));
-        Ray::new(Vec3::ZERO, s.normalized())
+            .add_scaled(self.camera.across, pixel_centre::<S>(0, width, roots));
+        let step = self.camera.across
+            * roots.div(
+                S::ONE,
+                S::from_int(i32::try_from(width).unwrap_or(i32::MAX)),
+            );
+        Rays {
+            row: self,
+            x: 0,
+            s: first,
+            step,
+        }
+    }
+
+    fn through(&self, s: Vec3<S>) -> Ray<S> {
+        Ray::new(Vec3::ZERO, s.normalized(self.camera.roots))
     }
 }
 
-/// (i + ½) / n = (2i + 1) / 2n, exact in every format up to [`MAX_IMAGE_SIDE`].
+/// The primary rays of one row, left to right (see [`Row::rays`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Rays<S> {
+    row: Row<S>,
+    x: u32,
+    /// The stepped point on the image plane.
+    s: Vec3<S>,
+    step: Vec3<S>,
+}
+
+impl<S: Scalar> Iterator for Rays<S> {
+    type Item = Ray<S>;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<Ray<S>> {
+        if self.x >= self.row.camera.width {
+            return None;
+        }
+        let ray = match self.row.camera.rays {
+            RayMethod::PerPixel => self.row.ray(self.x),
+            RayMethod::Stepped => {
+                let ray = self.row.through(self.s);
+                self.s = self.s + self.step;
+                ray
+            }
+        };
+        self.x += 1;
+        Some(ray)
+    }
+}
+
+/// (i + ½) / n = (2i + 1) / 2n, one quotient of integers that every format holds exactly up
+/// to [`MAX_IMAGE_SIDE`].
 #[inline]
-fn pixel_centre<S: Scalar>(i: u32, n: u32) -> S {
+fn pixel_centre<S: Scalar>(i: u32, n: u32, roots: RootMethod) -> S {
     let num = i32::try_from(2 * i + 1).unwrap_or(i32::MAX);
     let den = i32::try_from(2 * n).unwrap_or(i32::MAX);
-    S::ratio(num, den)
+    roots.div(S::from_int(num), S::from_int(den))
 }
 
 #[cfg(test)]
@@ -150,7 +208,7 @@ mod tests {
         for_each_format!(S, {
             let frame = Frame::new(&DESC).unwrap();
             // An odd size has a pixel whose centre is the image centre.
-            let camera = Camera::<S>::new(&frame, 3, 3).unwrap();
+            let camera = Camera::<S>::new(&frame, 3, 3, &Methods::LECTURE).unwrap();
             let centre = camera.ray(1, 1);
             assert_eq!(centre.origin, Vec3::ZERO);
             assert_close(centre.dir.z, 1.0, 1e-4);
@@ -167,7 +225,7 @@ mod tests {
     #[test]
     fn a_wide_image_widens_the_horizontal_field() {
         let frame = Frame::new(&DESC).unwrap();
-        let camera = Camera::<f64>::new(&frame, 4, 2).unwrap();
+        let camera = Camera::<f64>::new(&frame, 4, 2, &Methods::LECTURE).unwrap();
         // vfov 90° on a 4×2 image: the plane spans 2 units vertically and 4 across, so the
         // first pixel centre is 1.5 units from the axis (right = forward × up = −x here).
         let first = camera.ray(0, 0).dir;
@@ -175,6 +233,30 @@ mod tests {
         assert_close(first.x / first.z, 1.5, 1e-12);
         assert_close(last.x / last.z, -1.5, 1e-12);
         assert_close(first.y / first.z, 0.5, 1e-12);
+    }
+
+    #[test]
+    fn stepped_rays_follow_the_per_pixel_ones() {
+        for_each_format!(S, {
+            let frame = Frame::new(&DESC).unwrap();
+            let stepped = Methods {
+                rays: RayMethod::Stepped,
+                ..Methods::LECTURE
+            };
+            let per_pixel = Camera::<S>::new(&frame, 64, 8, &Methods::LECTURE).unwrap();
+            let camera = Camera::<S>::new(&frame, 64, 8, &stepped).unwrap();
+            let row = camera.row(3);
+            assert_eq!(row.rays().count(), 64);
+            for (x, ray) in (0..64).zip(row.rays()) {
+                let exact = per_pixel.ray(x, 3).dir;
+                assert_close(ray.dir.x, exact.x.to_f64(), 1e-3);
+                assert_close(ray.dir.y, exact.y.to_f64(), 1e-3);
+            }
+            assert_eq!(
+                per_pixel.row(3).rays().collect::<Vec<_>>(),
+                (0..64).map(|x| per_pixel.ray(x, 3)).collect::<Vec<_>>()
+            );
+        });
     }
 
     #[test]

@@ -34,6 +34,7 @@ pub mod color;
 pub mod desc;
 pub mod light;
 pub mod material;
+pub mod methods;
 pub mod ray;
 pub mod render;
 pub mod scalar;
@@ -52,9 +53,10 @@ pub use desc::{
     BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc,
     ShapeDesc,
 };
+pub use methods::{BiasMethod, Methods, RayMethod, RootMethod, SphereMethod, TriangleMethod};
 pub use ray::Ray;
 pub use render::{RenderError, render_rows};
-pub use scalar::{I16F16, I32F32, Scalar};
+pub use scalar::{F32Approx, I16F16, I20F12, I32F32, Scalar};
 pub use scene::{Item, Scene, SceneError};
 pub use shade::Sample;
 pub use vec3::Vec3;

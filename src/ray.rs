@@ -39,7 +39,7 @@ pub struct Span<S> {
 
 impl<S: Scalar> Span<S> {
     /// Whether `t` lies strictly inside the span.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn contains(&self, t: S) -> bool {
         t > self.min && t < self.max

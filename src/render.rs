@@ -89,9 +89,8 @@ where
         });
     }
     for y in rows {
-        let row = camera.row(y);
-        for (x, pixel) in (0..width).zip(line.iter_mut()) {
-            *pixel = scene.trace(row.ray(x)).colour.quantize();
+        for (pixel, ray) in line.iter_mut().zip(camera.row(y).rays()) {
+            *pixel = scene.trace(ray).colour.quantize();
         }
         // Both fit i32: they are at most MAX_IMAGE_SIDE.
         let top = i32::try_from(y).unwrap_or(i32::MAX);

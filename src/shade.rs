@@ -4,11 +4,12 @@
 //! fixed capacity, never by recursion.
 
 use crate::color::Rgb;
+use crate::light::Light;
+use crate::methods::BiasMethod;
 use crate::ray::{Ray, Span};
 use crate::scalar::Scalar;
-use crate::scene::{Object, Scene};
-use crate::vec3::Vec3;
-use heapless::Vec;
+use crate::scene::{Object, Scene, Settings};
+use heapless::{Vec, VecView};
 
 /// What a primary ray brings back.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -26,6 +27,16 @@ struct Task<S> {
     ray: Ray<S>,
     weight: Rgb<S>,
     depth: u8,
+    /// The surface the ray leaves, for the exclude bias method.
+    from: Option<Leaving>,
+}
+
+/// The surface a secondary ray leaves: the object, and whether the ray goes into it (a solid
+/// entered, or crossed from inside).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Leaving {
+    object: usize,
+    into: bool,
 }
 
 /// The nearest hit of a ray.
@@ -39,49 +50,110 @@ struct Hit<'a, S> {
 impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
     Scene<S, OBJECTS, LIGHTS, RAYS>
 {
+    /// Bytes of RAM the scene and the ray stack of one trace take: what the capacities cost.
+    #[must_use]
+    pub const fn storage_bytes() -> usize {
+        size_of::<Self>() + size_of::<Vec<Task<S>, RAYS>>()
+    }
+
     /// Traces a primary ray through the whole ray tree.
     #[must_use]
     pub fn trace(&self, primary: Ray<S>) -> Sample<S> {
         let mut stack: Vec<Task<S>, RAYS> = Vec::new();
-        let mut colour = Rgb::BLACK;
-        let mut object = None;
-        self.push(
-            &mut stack,
-            Task {
-                ray: primary,
-                weight: Rgb::WHITE,
-                depth: 0,
-            },
-        );
-        while let Some(task) = stack.pop() {
-            let Some(hit) = self.nearest(&task.ray) else {
-                colour = colour + task.weight * self.background.colour(task.ray.dir);
-                continue;
-            };
-            if task.depth == 0 {
-                object = Some(hit.index);
-            }
-            colour = colour + task.weight * self.shade(&task, &hit, &mut stack);
-        }
-        Sample { colour, object }
+        self.tracer().trace(primary, stack.as_mut_view())
     }
 
     /// The index of the first object `ray` hits, if any: what a primary ray sees, without
     /// shading it.
     #[must_use]
     pub fn first_hit(&self, ray: &Ray<S>) -> Option<usize> {
-        self.nearest(ray).map(|hit| hit.index)
+        self.tracer().nearest(ray, None).map(|hit| hit.index)
     }
 
-    /// The nearest object along `ray` within the world, beyond the surface tolerance.
-    fn nearest(&self, ray: &Ray<S>) -> Option<Hit<'_, S>> {
-        let mut span = Span {
-            min: self.tolerance,
-            max: self.ray_length,
+    fn tracer(&self) -> Tracer<'_, S> {
+        Tracer {
+            objects: &self.objects,
+            lights: &self.lights,
+            settings: &self.settings,
+        }
+    }
+}
+
+/// The tracer proper, over slices: one copy per number format, whatever the capacities.
+#[derive(Clone, Copy, Debug)]
+struct Tracer<'a, S> {
+    objects: &'a [Object<S>],
+    lights: &'a [Light<S>],
+    settings: &'a Settings<S>,
+}
+
+impl<S: Scalar> Tracer<'_, S> {
+    /// Traces a primary ray through the whole ray tree, on `stack` (empty, and at least
+    /// `max_depth + 1` deep).
+    fn trace(&self, primary: Ray<S>, stack: &mut VecView<Task<S>>) -> Sample<S> {
+        let mut colour = Rgb::BLACK;
+        let mut object = None;
+        push(
+            stack,
+            Task {
+                ray: primary,
+                weight: Rgb::WHITE,
+                depth: 0,
+                from: None,
+            },
+        );
+        while let Some(task) = stack.pop() {
+            let Some(hit) = self.nearest(&task.ray, task.from) else {
+                colour = colour + task.weight * self.settings.background.colour(task.ray.dir);
+                continue;
+            };
+            if task.depth == 0 {
+                object = Some(hit.index);
+            }
+            colour = colour + task.weight * self.shade(&task, &hit, stack);
+        }
+        Sample { colour, object }
+    }
+
+    /// The span a ray leaving `from` searches: beyond the surface tolerance for the epsilon
+    /// method, beyond zero when the surface left is handled by exclusion.
+    fn span(&self, from: Option<Leaving>, max: S) -> Span<S> {
+        let min = match (self.settings.methods.bias, from) {
+            (BiasMethod::Exclude, Some(_)) => S::ZERO,
+            _ => self.settings.tolerance,
         };
+        Span { min, max }
+    }
+
+    /// Where `ray` meets `object` (number `index`), given the surface it leaves.
+    #[inline(always)]
+    fn meet(
+        &self,
+        ray: &Ray<S>,
+        span: Span<S>,
+        index: usize,
+        object: &Object<S>,
+        from: Option<Leaving>,
+    ) -> Option<S> {
+        match from {
+            Some(leaving)
+                if leaving.object == index && self.settings.methods.bias == BiasMethod::Exclude =>
+            {
+                object
+                    .shape
+                    .intersect_again(ray, span, &self.settings.methods, leaving.into)
+            }
+            _ => object.shape.intersect(ray, span, &self.settings.methods),
+        }
+    }
+
+    /// The nearest object along `ray` within the world.
+    #[inline(always)]
+    fn nearest(&self, ray: &Ray<S>, from: Option<Leaving>) -> Option<Hit<'_, S>> {
+        let mut span = self.span(from, self.settings.ray_length);
         let mut nearest = None;
         for (index, object) in self.objects.iter().enumerate() {
-            if let Some(t) = object.shape.intersect(ray, span) {
+            if let Some(t) = self.meet(ray, span, index, object, from) {
                 span.max = t;
                 nearest = Some(Hit { object, index, t });
             }
@@ -90,11 +162,12 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
     }
 
     /// The local colour at a hit, pushing its reflected and transmitted rays.
-    fn shade(&self, task: &Task<S>, hit: &Hit<'_, S>, stack: &mut Vec<Task<S>, RAYS>) -> Rgb<S> {
+    fn shade(&self, task: &Task<S>, hit: &Hit<'_, S>, stack: &mut VecView<Task<S>>) -> Rgb<S> {
         let material = &hit.object.material;
         let shape = &hit.object.shape;
+        let roots = self.settings.methods.roots;
         let d = task.ray.dir;
-        let (point, normal) = shape.surface(task.ray.at(hit.t));
+        let (point, normal) = shape.surface(task.ray.at(hit.t), roots);
         // Shade the side the ray arrived on: for a sphere hit from inside, that is the inside.
         let cos_in = -d.dot(normal);
         let entering = cos_in >= S::ZERO;
@@ -106,17 +179,33 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
         let two = S::from_int(2);
         // The mirror direction serves both the reflected ray and the Phong highlight.
         let mirror = d.add_scaled(facing, two * cos_in);
-        let above = point.add_scaled(facing, self.tolerance);
+        // Rays leave on the side the ray arrived on (shadow, reflection), or the other
+        // (transmission); the epsilon method starts them a tolerance off the surface.
+        let solid = shape.is_solid();
+        let this_side = Leaving {
+            object: hit.index,
+            into: solid && !entering,
+        };
+        let other_side = Leaving {
+            object: hit.index,
+            into: solid && entering,
+        };
+        let offset = match self.settings.methods.bias {
+            BiasMethod::Epsilon => self.settings.tolerance,
+            BiasMethod::Exclude => S::ZERO,
+        };
+        let above = point.add_scaled(facing, offset);
+        let below = point.add_scaled(facing, -offset);
 
         let surface = shape.surface_colour(point, material.colour);
-        let mut local = self.ambient * surface;
-        for light in &self.lights {
-            let (l, distance) = (light.position - above).normalized_with_length();
+        let mut local = self.settings.ambient * surface;
+        for light in self.lights {
+            let (l, distance) = (light.position - above).normalized_with_length(roots);
             let lambert = facing.dot(l);
             if lambert <= S::ZERO {
                 continue;
             }
-            let shadow = self.transmittance(&Ray::new(above, l), distance);
+            let shadow = self.transmittance(&Ray::new(above, l), distance, this_side);
             if shadow == S::ZERO {
                 continue;
             }
@@ -129,11 +218,11 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
             local = local + light.colour.scale(shadow) * reflected;
         }
 
-        if task.depth < self.max_depth {
+        if task.depth < self.settings.max_depth {
             let depth = task.depth + 1;
             let mut reflection = material.reflection;
             if material.transmission > S::ZERO {
-                if shape.is_solid() {
+                if solid {
                     // Snell: η = n₁/n₂; k = 1 − η²(1 − cos²θᵢ) is cos²θₜ, negative beyond the
                     // critical angle, where all the light is reflected instead.
                     let eta = if entering {
@@ -145,30 +234,25 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
                     if k < S::ZERO {
                         reflection = reflection + material.transmission;
                     } else {
-                        let dir = (d * eta).add_scaled(facing, eta * cos_in - k.sqrt());
-                        self.spawn(
-                            stack,
-                            point.add_scaled(facing, -self.tolerance),
-                            dir,
-                            task,
-                            material.transmission,
-                            depth,
-                        );
+                        let dir = (d * eta).add_scaled(facing, eta * cos_in - roots.sqrt(k));
+                        let ray = Ray::new(below, dir);
+                        self.spawn(stack, ray, other_side, task, material.transmission, depth);
                     }
                 } else {
                     // A sheet has no inside: the light passes straight through.
-                    self.spawn(
-                        stack,
-                        point.add_scaled(facing, -self.tolerance),
-                        d,
-                        task,
-                        material.transmission,
-                        depth,
-                    );
+                    let ray = Ray::new(below, d);
+                    self.spawn(stack, ray, other_side, task, material.transmission, depth);
                 }
             }
             if reflection > S::ZERO {
-                self.spawn(stack, above, mirror, task, reflection, depth);
+                self.spawn(
+                    stack,
+                    Ray::new(above, mirror),
+                    this_side,
+                    task,
+                    reflection,
+                    depth,
+                );
             }
         }
         local
@@ -177,43 +261,34 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
     /// Pushes a secondary ray unless its weight is too small to show.
     fn spawn(
         &self,
-        stack: &mut Vec<Task<S>, RAYS>,
-        origin: Vec3<S>,
-        dir: Vec3<S>,
+        stack: &mut VecView<Task<S>>,
+        ray: Ray<S>,
+        from: Leaving,
         parent: &Task<S>,
         share: S,
         depth: u8,
     ) {
         let weight = parent.weight.scale(share);
-        if weight.max_channel() >= self.min_weight {
-            self.push(
+        if weight.max_channel() >= self.settings.min_weight {
+            push(
                 stack,
                 Task {
-                    ray: Ray::new(origin, dir),
+                    ray,
                     weight,
                     depth,
+                    from: Some(from),
                 },
             );
         }
     }
 
-    fn push(&self, stack: &mut Vec<Task<S>, RAYS>, task: Task<S>) {
-        // Cannot fail: a task of depth k leaves at most one sibling per level on the stack, so
-        // it never holds more than max_depth + 1 ≤ RAYS tasks (checked by `Scene::build`).
-        let pushed = stack.push(task);
-        debug_assert!(pushed.is_ok(), "ray stack overflow");
-    }
-
     /// How much light passes from `ray.origin` to a light `distance` away: 1 in the open, the
     /// product of the occluders' transmissions, 0 behind an opaque object.
-    fn transmittance(&self, ray: &Ray<S>, distance: S) -> S {
-        let span = Span {
-            min: self.tolerance,
-            max: distance,
-        };
+    fn transmittance(&self, ray: &Ray<S>, distance: S, from: Leaving) -> S {
+        let span = self.span(Some(from), distance);
         let mut passed = S::ONE;
-        for object in &self.objects {
-            if object.shape.intersect(ray, span).is_some() {
+        for (index, object) in self.objects.iter().enumerate() {
+            if self.meet(ray, span, index, object, Some(from)).is_some() {
                 passed = passed * object.material.transmission;
                 if passed == S::ZERO {
                     break;
@@ -224,13 +299,23 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
     }
 }
 
+/// Pushes a task. It cannot fail: a task of depth k leaves at most one sibling per level on
+/// the stack, so it never holds more than max_depth + 1 ≤ RAYS tasks (checked by
+/// `Scene::build`).
+fn push<S>(stack: &mut VecView<Task<S>>, task: Task<S>) {
+    let pushed = stack.push(task);
+    debug_assert!(pushed.is_ok(), "ray stack overflow");
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::desc::{
         BackgroundDesc, CameraDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc, ShapeDesc,
     };
-    use crate::test_util::{assert_close, for_each_format, v};
+    use crate::methods::{BiasMethod, Methods, SphereMethod};
+    use crate::test_util::{for_each_format, v};
+    use crate::vec3::Vec3;
 
     const CAMERA: CameraDesc = CameraDesc {
         eye: [0.0, 0.0, 0.0],
@@ -256,20 +341,56 @@ mod tests {
         }
     }
 
-    fn trace<S: Scalar>(desc: &SceneDesc<'_>, origin: [f64; 3], dir: [f64; 3]) -> [f64; 3] {
-        let scene = Scene::<S, 4, 2, 8>::build(desc).unwrap();
+    /// Every combination of the methods these tests can tell apart: both sphere methods with
+    /// both self-intersection methods.
+    const METHOD_SETS: [Methods; 4] = [
+        Methods::LECTURE,
+        Methods {
+            sphere: SphereMethod::Stable,
+            ..Methods::LECTURE
+        },
+        Methods {
+            bias: BiasMethod::Exclude,
+            ..Methods::LECTURE
+        },
+        Methods {
+            sphere: SphereMethod::Stable,
+            bias: BiasMethod::Exclude,
+            ..Methods::LECTURE
+        },
+    ];
+
+    /// The colour of one ray, traced by each of [`METHOD_SETS`].
+    fn trace<S: Scalar>(
+        desc: &SceneDesc<'_>,
+        origin: [f64; 3],
+        dir: [f64; 3],
+    ) -> std::vec::Vec<(Methods, [f64; 3])> {
         let length = dir.iter().map(|c| c * c).sum::<f64>().sqrt();
         let ray = Ray::new(
             v(origin[0], origin[1], origin[2]),
             v(dir[0] / length, dir[1] / length, dir[2] / length),
         );
-        scene.trace(ray).colour.to_f64()
+        METHOD_SETS
+            .iter()
+            .map(|&methods| {
+                let scene = Scene::<S, 4, 2, 8>::build_with(desc, methods).unwrap();
+                (methods, scene.trace(ray).colour.to_f64())
+            })
+            .collect()
     }
 
     #[track_caller]
-    fn assert_colour<S: Scalar>(got: [f64; 3], want: [f64; 3], tol: f64) {
-        for (g, w) in got.into_iter().zip(want) {
-            assert_close(S::from_f64(g).unwrap(), w, tol);
+    fn assert_colour<S: Scalar>(got: std::vec::Vec<(Methods, [f64; 3])>, want: [f64; 3], tol: f64) {
+        for (methods, colour) in got {
+            for (g, w) in colour.into_iter().zip(want) {
+                let g = S::from_f64(g).unwrap().to_f64();
+                assert!(
+                    (g - w).abs() <= tol,
+                    "{} with {methods}: got {colour:?}, want {want:?}",
+                    S::NAME
+                );
+            }
         }
     }
 
@@ -468,7 +589,11 @@ mod tests {
             let scene = Scene::<S, 4, 2, 8>::build(&desc(&[], &[], 0.1, 2)).unwrap();
             let sample = scene.trace(Ray::new(Vec3::ZERO, v(0.0, 0.0, 1.0)));
             assert_eq!(sample.object, None);
-            assert_colour::<S>(sample.colour.to_f64(), [0.2, 0.4, 0.6], 1e-4);
+            assert_colour::<S>(
+                vec![(Methods::LECTURE, sample.colour.to_f64())],
+                [0.2, 0.4, 0.6],
+                1e-4,
+            );
         });
     }
 }

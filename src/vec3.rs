@@ -1,5 +1,6 @@
 //! [`Vec3`]: a point or direction in three dimensions, generic over the number format.
 
+use crate::methods::RootMethod;
 use crate::scalar::Scalar;
 use core::ops::{Add, Mul, Neg, Sub};
 
@@ -77,20 +78,20 @@ impl<S: Scalar> Vec3<S> {
     /// stays zero.
     #[inline]
     #[must_use]
-    pub fn normalized(self) -> Self {
-        self.normalized_with_length().0
+    pub fn normalized(self, roots: RootMethod) -> Self {
+        self.normalized_with_length(roots).0
     }
 
     /// The unit vector in the same direction and the length, from one reciprocal square root:
     /// |v| = |v|²·(1/|v|). The zero vector gives (zero, zero).
-    #[inline]
+    #[inline(always)]
     #[must_use]
-    pub fn normalized_with_length(self) -> (Self, S) {
+    pub fn normalized_with_length(self, roots: RootMethod) -> (Self, S) {
         let squared = self.length_squared();
         if squared == S::ZERO {
             return (self, S::ZERO);
         }
-        let inverse = squared.rsqrt();
+        let inverse = roots.rsqrt(squared);
         (self * inverse, squared * inverse)
     }
 
@@ -180,14 +181,14 @@ mod tests {
         assert_eq!(a.dot(b).to_f64(), 12.0);
         assert_eq!(a.cross(b), v(27, 6, -13));
         assert_eq!(v::<S>(3, 4, 0).length().to_f64(), 5.0);
-        let (n, length) = v::<S>(0, 3, 4).normalized_with_length();
+        let (n, length) = v::<S>(0, 3, 4).normalized_with_length(RootMethod::Exact);
         let n = n.to_f64();
         assert!(
             (n[1] - 0.6).abs() < 1e-4 && (n[2] - 0.8).abs() < 1e-4,
             "{n:?}"
         );
         assert!((length.to_f64() - 5.0).abs() < 1e-3);
-        assert_eq!(Vec3::<S>::ZERO.normalized(), Vec3::ZERO);
+        assert_eq!(Vec3::<S>::ZERO.normalized(RootMethod::Exact), Vec3::ZERO);
         assert_eq!(a.add_scaled(b, S::from_int(2)), v(9, -8, 15));
         assert_eq!(a.onto_plane(v(0, 1, 0), S::from_int(-4)), v(1, -4, 3));
         assert_eq!(a - b + b, a);

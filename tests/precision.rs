@@ -1,57 +1,111 @@
-//! Fixed point against the f64 reference on both built-in scenes at 256×256. The bounds sit
-//! just under what the code achieves today (see the README's table), so a change that costs
-//! precision fails here.
+//! Each format and method against the f64 reference (same methods, exact roots) on both
+//! built-in scenes at 256×256. The bounds sit just under what the code achieves today (see the
+//! README's tables), so a change that costs precision fails here.
 
 mod common;
 
 use common::{mismatch_pct, psnr, render};
-use obscura::{I16F16, I32F32, Scalar, SceneDesc, scenes};
+use obscura::{
+    BiasMethod, F32Approx, I16F16, I20F12, I32F32, Methods, RayMethod, RootMethod, Scalar,
+    SceneDesc, SphereMethod, TriangleMethod, scenes,
+};
 
 const SIZE: u32 = 256;
 
-fn check<S: Scalar>(desc: &SceneDesc<'_>, min_psnr: f64, max_mismatch_pct: f64) {
-    let (reference, reference_objects) = render::<f64>(desc, SIZE, SIZE);
-    let (frame, objects) = render::<S>(desc, SIZE, SIZE);
+fn check<S: Scalar>(desc: &SceneDesc<'_>, methods: Methods, min_psnr: f64, max_mismatch_pct: f64) {
+    let exact = Methods {
+        roots: RootMethod::Exact,
+        ..methods
+    };
+    let (reference, reference_objects) = render::<f64>(desc, SIZE, SIZE, exact);
+    let (frame, objects) = render::<S>(desc, SIZE, SIZE, methods);
     let psnr = psnr(&frame, &reference);
     let mismatch = mismatch_pct(&objects, &reference_objects);
     assert!(
         psnr >= min_psnr,
-        "{}: PSNR {psnr:.2} dB < {min_psnr}",
+        "{} with {methods}: PSNR {psnr:.2} dB < {min_psnr}",
         S::NAME
     );
     assert!(
         mismatch <= max_mismatch_pct,
-        "{}: object mismatch {mismatch:.4} % > {max_mismatch_pct}",
+        "{} with {methods}: object mismatch {mismatch:.4} % > {max_mismatch_pct}",
         S::NAME
     );
 }
 
+const LECTURE: Methods = Methods::LECTURE;
+const STABLE: Methods = Methods {
+    sphere: SphereMethod::Stable,
+    ..LECTURE
+};
+const EXCLUDE: Methods = Methods {
+    bias: BiasMethod::Exclude,
+    ..LECTURE
+};
+const APPROX: Methods = Methods {
+    roots: RootMethod::Approx,
+    ..LECTURE
+};
+const STEPPED: Methods = Methods {
+    rays: RayMethod::Stepped,
+    ..LECTURE
+};
+const MOLLER_TRUMBORE: Methods = Methods {
+    triangle: TriangleMethod::MollerTrumbore,
+    ..LECTURE
+};
+const WATERTIGHT: Methods = Methods {
+    triangle: TriangleMethod::Watertight,
+    ..LECTURE
+};
+
 #[test]
-fn whitted_i16f16() {
-    check::<I16F16>(&scenes::WHITTED, 41.5, 0.02);
+fn whitted_i16f16_by_each_method() {
+    check::<I16F16>(&scenes::WHITTED, LECTURE, 42.0, 0.02);
+    check::<I16F16>(&scenes::WHITTED, STABLE, 42.5, 0.01);
+    check::<I16F16>(&scenes::WHITTED, EXCLUDE, 43.0, 0.02);
+    check::<I16F16>(&scenes::WHITTED, APPROX, 40.5, 0.03);
+    check::<I16F16>(&scenes::WHITTED, STEPPED, 33.0, 0.05);
 }
 
 #[test]
-fn whitted_i32f32() {
-    check::<I32F32>(&scenes::WHITTED, 90.0, 0.0);
+fn shapes_i16f16_by_each_method() {
+    check::<I16F16>(&scenes::SHAPES, LECTURE, 48.5, 0.01);
+    check::<I16F16>(&scenes::SHAPES, STABLE, 54.0, 0.005);
+    check::<I16F16>(&scenes::SHAPES, MOLLER_TRUMBORE, 48.5, 0.01);
+    check::<I16F16>(&scenes::SHAPES, WATERTIGHT, 48.5, 0.01);
+    check::<I16F16>(&scenes::SHAPES, APPROX, 48.0, 0.02);
+    check::<I16F16>(&scenes::SHAPES, STEPPED, 34.0, 0.1);
+}
+
+#[test]
+fn the_other_formats_with_the_lectures_methods() {
+    check::<I20F12>(&scenes::WHITTED, LECTURE, 30.0, 0.2);
+    check::<I20F12>(&scenes::SHAPES, LECTURE, 30.5, 0.2);
+    check::<F32Approx>(&scenes::WHITTED, LECTURE, 44.0, 0.01);
+    check::<F32Approx>(&scenes::SHAPES, LECTURE, 58.5, 0.01);
 }
 
 #[test]
 fn whitted_f32() {
-    check::<f32>(&scenes::WHITTED, 49.0, 0.01);
-}
-
-#[test]
-fn shapes_i16f16() {
-    check::<I16F16>(&scenes::SHAPES, 48.5, 0.01);
-}
-
-#[test]
-fn shapes_i32f32() {
-    check::<I32F32>(&scenes::SHAPES, 90.0, 0.0);
+    check::<f32>(&scenes::WHITTED, LECTURE, 49.0, 0.01);
 }
 
 #[test]
 fn shapes_f32() {
-    check::<f32>(&scenes::SHAPES, 75.0, 0.01);
+    check::<f32>(&scenes::SHAPES, LECTURE, 75.0, 0.01);
+}
+
+#[test]
+fn i32f32_is_all_but_exact_by_every_method() {
+    let robust = Methods {
+        sphere: SphereMethod::Stable,
+        bias: BiasMethod::Exclude,
+        triangle: TriangleMethod::Watertight,
+        ..LECTURE
+    };
+    for methods in [LECTURE, robust] {
+        check::<I32F32>(&scenes::WHITTED, methods, 90.0, 0.0);
+        check::<I32F32>(&scenes::SHAPES, methods, 90.0, 0.0);
+    }
 }

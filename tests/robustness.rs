@@ -5,9 +5,11 @@
 
 mod common;
 
+use obscura::methods::MethodName;
 use obscura::{
-    BackgroundDesc, CameraDesc, CheckerDesc, I16F16, I32F32, LightDesc, MaterialDesc, ObjectDesc,
-    Scalar, Scene, SceneDesc, ShapeDesc, render_rows,
+    BackgroundDesc, BiasMethod, CameraDesc, CheckerDesc, F32Approx, I16F16, I20F12, I32F32,
+    LightDesc, MaterialDesc, Methods, ObjectDesc, RayMethod, RootMethod, Scalar, Scene, SceneDesc,
+    ShapeDesc, SphereMethod, TriangleMethod, render_rows,
 };
 
 /// A small deterministic generator (64-bit LCG), so a failure can be replayed by its seed.
@@ -88,8 +90,20 @@ fn object(r: &mut Random, extent: f32) -> ObjectDesc {
     }
 }
 
-fn render_if_it_builds<S: Scalar>(desc: &SceneDesc<'_>) -> bool {
-    let Ok(scene) = Scene::<S, 8, 3, 6>::build(desc) else {
+/// Methods picked by the generator: every method appears.
+fn methods(r: &mut Random) -> Methods {
+    let pick = |r: &mut Random, n: usize| (r.next() * n as f32) as usize;
+    Methods {
+        sphere: SphereMethod::ALL[pick(r, 2)].0,
+        triangle: TriangleMethod::ALL[pick(r, 3)].0,
+        roots: RootMethod::ALL[pick(r, 2)].0,
+        rays: RayMethod::ALL[pick(r, 2)].0,
+        bias: BiasMethod::ALL[pick(r, 2)].0,
+    }
+}
+
+fn render_if_it_builds<S: Scalar>(desc: &SceneDesc<'_>, methods: Methods) -> bool {
+    let Ok(scene) = Scene::<S, 8, 3, 6>::build_with(desc, methods) else {
         return false;
     };
     let camera = scene.camera(24, 16).expect("a small image always fits");
@@ -106,7 +120,7 @@ const SCENES: u64 = 2000;
 
 #[test]
 fn random_scenes_build_or_are_refused_and_render_without_panicking() {
-    let mut built = [0_u32; 4];
+    let mut built = [0_u32; 6];
     for seed in 0..SCENES {
         let mut r = Random(seed);
         let extent = [2.0, 10.0, 40.0, 150.0][(r.next() * 4.0) as usize];
@@ -136,23 +150,30 @@ fn random_scenes_build_or_are_refused_and_render_without_panicking() {
             far: r.wild(extent * 4.0),
             max_depth: (r.next() * 5.0) as u8,
         };
+        let methods = methods(&mut r);
         let results = [
-            render_if_it_builds::<I16F16>(&desc),
-            render_if_it_builds::<I32F32>(&desc),
-            render_if_it_builds::<f32>(&desc),
-            render_if_it_builds::<f64>(&desc),
+            render_if_it_builds::<I16F16>(&desc, methods),
+            render_if_it_builds::<I32F32>(&desc, methods),
+            render_if_it_builds::<f32>(&desc, methods),
+            render_if_it_builds::<f64>(&desc, methods),
+            render_if_it_builds::<I20F12>(&desc, methods),
+            render_if_it_builds::<F32Approx>(&desc, methods),
         ];
         for (count, ok) in built.iter_mut().zip(results) {
             *count += u32::from(ok);
         }
     }
     // The generator must exercise both outcomes, and the narrow format must refuse some scenes
-    // that wider ones hold.
+    // that a wider one with the same methods holds (i20f12: the fast roots are the 32-bit
+    // formats' alone).
     assert!(
         built
             .iter()
             .all(|&n| n > SCENES as u32 / 5 && n < SCENES as u32),
         "{built:?}"
     );
-    assert!(built[0] < built[1], "{built:?}");
+    assert!(
+        built[0] < built[4],
+        "i16f16 holds fewer than i20f12: {built:?}"
+    );
 }

@@ -2,7 +2,10 @@
 
 use crate::firmware::Target;
 use crate::format::Format;
+use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
+use obscura::methods::MethodName;
+use obscura::{BiasMethod, Methods, RayMethod, RootMethod, SphereMethod, TriangleMethod};
 use std::path::PathBuf;
 
 /// Ray traces in fixed point the way a microcontroller would, and measures what that costs
@@ -31,7 +34,48 @@ pub enum Command {
     Firmware(FirmwareArgs),
 }
 
-/// What to render, at what size, in which format.
+/// The numerical methods, one choice each (see `obscura_host::methods` and the README).
+#[derive(Clone, Copy, Debug, Args)]
+pub struct MethodArgs {
+    /// Ray–sphere: the lecture's quadratic, or the stable form (Haines et al.).
+    #[arg(long, value_parser = method::<SphereMethod>(), default_value = "quadratic")]
+    pub sphere: SphereMethod,
+    /// Ray–triangle: Cramer's rule (the lecture's), Möller–Trumbore, or watertight.
+    #[arg(long, value_parser = method::<TriangleMethod>(), default_value = "cramer")]
+    pub triangle: TriangleMethod,
+    /// Square roots and reciprocals: exact, or the 32-bit fixed formats' fast approximations.
+    #[arg(long = "sqrt", value_parser = method::<RootMethod>(), default_value = "exact")]
+    pub roots: RootMethod,
+    /// Primary rays: computed per pixel, or stepped along the scanline.
+    #[arg(long, value_parser = method::<RayMethod>(), default_value = "per-pixel")]
+    pub rays: RayMethod,
+    /// Self-intersection: an epsilon offset, or excluding the primitive just left.
+    #[arg(long, value_parser = method::<BiasMethod>(), default_value = "epsilon")]
+    pub bias: BiasMethod,
+}
+
+impl MethodArgs {
+    /// The methods chosen.
+    pub fn methods(&self) -> Methods {
+        Methods {
+            sphere: self.sphere,
+            triangle: self.triangle,
+            roots: self.roots,
+            rays: self.rays,
+            bias: self.bias,
+        }
+    }
+}
+
+/// A parser for one method's names.
+fn method<M: MethodName + Clone + Send + Sync>() -> impl TypedValueParser<Value = M> {
+    let names: Vec<&'static str> = M::ALL.iter().map(|(_, name)| *name).collect();
+    PossibleValuesParser::new(names).map(|name: String| {
+        M::from_name(&name).expect("the parser accepts only the methods' names")
+    })
+}
+
+/// What to render, at what size, in which format, by which methods.
 #[derive(Debug, Args)]
 pub struct SceneArgs {
     /// A built-in scene (see `obscura scenes`).
@@ -42,6 +86,8 @@ pub struct SceneArgs {
     /// The image size, WIDTHxHEIGHT.
     #[arg(long, value_parser = parse_size, default_value = "512x512")]
     pub size: (u32, u32),
+    #[command(flatten)]
+    pub methods: MethodArgs,
 }
 
 /// `obscura render`.
@@ -93,6 +139,8 @@ pub struct BenchArgs {
     /// Also write the figures as JSON to this file.
     #[arg(long)]
     pub json: Option<PathBuf>,
+    #[command(flatten)]
+    pub methods: MethodArgs,
 }
 
 /// `obscura firmware`.
@@ -105,9 +153,11 @@ pub struct FirmwareArgs {
     /// Built-in scenes to render, in one firmware run.
     #[arg(long, value_delimiter = ',', default_value = "whitted")]
     pub scene: Vec<String>,
-    /// Formats to render each scene in: i16f16, i32f32, f32.
+    /// Formats to render each scene in (all but f64, which stays on the host).
     #[arg(long, value_enum, value_delimiter = ',', default_value = "i16f16")]
     pub format: Vec<Format>,
+    #[command(flatten)]
+    pub methods: MethodArgs,
     /// Also write the figures as JSON (an array, one object per frame) to this file.
     #[arg(long)]
     pub json: Option<PathBuf>,

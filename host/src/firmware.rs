@@ -6,6 +6,8 @@ use crate::format::Format;
 use anyhow::{Context, Result, bail};
 use clap::ValueEnum;
 use object::{Object, ObjectSection, SectionFlags, SectionKind};
+use obscura::Methods;
+use obscura::methods::MethodName;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -59,14 +61,43 @@ impl Target {
     }
 }
 
-/// The formats the firmware computes in (f64 stays on the host).
+/// The cargo feature that makes the firmware compute in `format` (f64 stays on the host).
 pub fn firmware_format(format: Format) -> Result<&'static str> {
     match format {
         Format::I16f16 => Ok("format-i16f16"),
+        Format::I20f12 => Ok("format-i20f12"),
         Format::I32f32 => Ok("format-i32f32"),
+        Format::F32Approx => Ok("format-f32-approx"),
         Format::F32 => Ok("format-f32"),
-        Format::F64 => bail!("the firmware computes in i16f16, i32f32 or f32, not f64"),
+        Format::F64 => {
+            bail!("the firmware computes in i16f16, i20f12, i32f32, f32-approx or f32, not f64")
+        }
     }
+}
+
+/// The cargo features that make the firmware use `methods` (none for the lecture's).
+pub fn method_features(methods: &Methods) -> Vec<String> {
+    let mut features = Vec::new();
+    let lecture = Methods::LECTURE;
+    let mut choose = |differs: bool, kind: &str, name: &str| {
+        if differs {
+            features.push(format!("{kind}-{name}"));
+        }
+    };
+    choose(
+        methods.sphere != lecture.sphere,
+        "sphere",
+        methods.sphere.name(),
+    );
+    choose(
+        methods.triangle != lecture.triangle,
+        "triangle",
+        methods.triangle.name(),
+    );
+    choose(methods.roots != lecture.roots, "sqrt", methods.roots.name());
+    choose(methods.rays != lecture.rays, "rays", methods.rays.name());
+    choose(methods.bias != lecture.bias, "bias", methods.bias.name());
+    features
 }
 
 /// The workspace the harness was built from, which holds the firmware's sources.
@@ -145,6 +176,8 @@ pub struct Frame {
     pub scene: String,
     /// The format's name.
     pub format: String,
+    /// The methods.
+    pub methods: Methods,
     /// The image width.
     pub width: u32,
     /// The image height.
@@ -153,6 +186,10 @@ pub struct Frame {
     pub ticks: u64,
     /// The stack's high-water mark, in bytes.
     pub stack_bytes: u64,
+    /// Bytes of the scene and its ray stack, sized to the scene.
+    pub storage_bytes: u64,
+    /// The same with the host's fixed capacities.
+    pub fixed_storage_bytes: u64,
     /// The frame file, in QEMU's working directory.
     pub file: String,
 }
@@ -211,7 +248,8 @@ pub fn run(target: Target, elf: &Path, dir: &Path, timeout: Duration) -> Result<
         .collect()
 }
 
-/// Parses `frame scene=… format=… width=… height=… ticks=… stack_bytes=… file=…`.
+/// Parses `frame scene=… format=… methods=…/…/…/…/… width=… height=… ticks=… stack_bytes=…
+/// storage_bytes=… fixed_storage_bytes=… file=…`.
 fn parse_frame(line: &str) -> Result<Frame> {
     let field = |key: &str| {
         line.split_whitespace()
@@ -229,11 +267,32 @@ fn parse_frame(line: &str) -> Result<Frame> {
     Ok(Frame {
         scene: field("scene")?.to_owned(),
         format: field("format")?.to_owned(),
+        methods: parse_methods(field("methods")?)?,
         width: u32::try_from(number("width")?)?,
         height: u32::try_from(number("height")?)?,
         ticks: number("ticks")?,
         stack_bytes: number("stack_bytes")?,
+        storage_bytes: number("storage_bytes")?,
+        fixed_storage_bytes: number("fixed_storage_bytes")?,
         file: field("file")?.to_owned(),
+    })
+}
+
+/// Parses `quadratic/cramer/exact/per-pixel/epsilon`.
+pub fn parse_methods(text: &str) -> Result<Methods> {
+    let mut names = text.split('/');
+    let mut next = || {
+        names
+            .next()
+            .with_context(|| format!("too few methods in `{text}`"))
+    };
+    let unknown = || format!("an unknown method in `{text}`");
+    Ok(Methods {
+        sphere: MethodName::from_name(next()?).with_context(unknown)?,
+        triangle: MethodName::from_name(next()?).with_context(unknown)?,
+        roots: MethodName::from_name(next()?).with_context(unknown)?,
+        rays: MethodName::from_name(next()?).with_context(unknown)?,
+        bias: MethodName::from_name(next()?).with_context(unknown)?,
     })
 }
 
@@ -279,14 +338,28 @@ mod tests {
 
     #[test]
     fn frame_lines_parse_and_bad_ones_say_why() {
-        let line = "frame scene=whitted format=i16f16 width=240 height=240 ticks=22633551 stack_bytes=4568 file=whitted-i16f16.rgb565";
+        let line = "frame scene=whitted format=i16f16 methods=stable/cramer/exact/per-pixel/exclude \
+                    width=240 height=240 ticks=22633551 stack_bytes=4568 storage_bytes=488 \
+                    fixed_storage_bytes=9000 file=whitted-i16f16.rgb565";
         let frame = parse_frame(line).unwrap();
         assert_eq!(frame.scene, "whitted");
         assert_eq!(
             (frame.width, frame.ticks, frame.stack_bytes),
             (240, 22_633_551, 4568)
         );
+        assert_eq!(
+            (frame.storage_bytes, frame.fixed_storage_bytes),
+            (488, 9000)
+        );
         assert_eq!(frame.file, "whitted-i16f16.rgb565");
+        let expected = Methods {
+            sphere: obscura::SphereMethod::Stable,
+            bias: obscura::BiasMethod::Exclude,
+            ..Methods::LECTURE
+        };
+        assert_eq!(frame.methods, expected);
+        assert!(parse_methods("stable/cramer").is_err());
+        assert!(parse_methods("stable/cramer/exact/per-pixel/sideways").is_err());
         let error = parse_frame("frame scene=whitted").unwrap_err().to_string();
         assert!(error.contains("no format"), "{error}");
     }

@@ -9,8 +9,13 @@ use std::fmt;
 pub enum Format {
     /// Signed 16.16 fixed point (32-bit): the firmware's default.
     I16f16,
+    /// Signed 20.12 fixed point (32-bit): four more integer bits, four fewer fraction bits.
+    I20f12,
     /// Signed 32.32 fixed point (64-bit).
     I32f32,
+    /// IEEE single precision with micromath's approximate roots and reciprocals.
+    #[value(name = "f32-approx")]
+    F32Approx,
     /// IEEE single precision.
     F32,
     /// IEEE double precision: the reference.
@@ -30,7 +35,9 @@ impl Format {
     pub fn run<J: FormatJob>(self, job: J) -> J::Output {
         match self {
             Self::I16f16 => job.run::<obscura::I16F16>(),
+            Self::I20f12 => job.run::<obscura::I20F12>(),
             Self::I32f32 => job.run::<obscura::I32F32>(),
+            Self::F32Approx => job.run::<obscura::F32Approx>(),
             Self::F32 => job.run::<f32>(),
             Self::F64 => job.run::<f64>(),
         }
@@ -46,6 +53,14 @@ impl Format {
             }
         }
         self.run(Name)
+    }
+}
+
+impl Format {
+    /// Whether the format is fixed point (whose firmware frames must match the host's bit for
+    /// bit, and which has fast approximate roots when it is 32 bits wide).
+    pub fn is_fixed_point(self) -> bool {
+        matches!(self, Self::I16f16 | Self::I20f12 | Self::I32f32)
     }
 }
 

@@ -8,7 +8,7 @@ use embedded_graphics::pixelcolor::{IntoStorage, Rgb565, Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use image::RgbImage;
-use obscura::{Camera, Scalar, Scene, SceneDesc, render_rows};
+use obscura::{Camera, Methods, Scalar, Scene, SceneDesc, render_rows};
 use std::convert::Infallible;
 use std::io::Write;
 use std::sync::Mutex;
@@ -25,7 +25,7 @@ pub const RAY_STACK: usize = 16;
 /// A scene in format `S` with the host's capacities.
 pub type HostScene<S> = Scene<S, MAX_OBJECTS, MAX_LIGHTS, RAY_STACK>;
 
-/// A render request: a scene and an image size.
+/// A render request: a scene, an image size and the methods.
 #[derive(Clone, Copy, Debug)]
 pub struct Request<'a> {
     /// The scene.
@@ -34,6 +34,8 @@ pub struct Request<'a> {
     pub width: u32,
     /// Image height in pixels.
     pub height: u32,
+    /// The numerical methods.
+    pub methods: Methods,
 }
 
 /// A scene built and a camera placed for one request.
@@ -46,7 +48,7 @@ pub struct Prepared<S: Scalar> {
 impl<S: Scalar> Prepared<S> {
     /// Builds the scene in format `S` and its camera.
     pub fn new(request: &Request<'_>) -> Result<Self> {
-        let scene = HostScene::<S>::build(request.desc)
+        let scene = HostScene::<S>::build_with(request.desc, request.methods)
             .with_context(|| format!("the scene cannot be built in {}", S::NAME))?;
         let camera = scene.camera(request.width, request.height)?;
         Ok(Self { scene, camera })
@@ -106,12 +108,12 @@ impl<S: Scalar> Prepared<S> {
         frame.pixels
     }
 
-    /// The index of the object each pixel's primary ray hits first, row by row.
+    /// The index of the object each pixel's primary ray hits first, row by row, the rays made
+    /// as the renderer makes them.
     pub fn object_map(&self) -> Vec<Option<usize>> {
-        let (width, height) = (self.camera.width(), self.camera.height());
-        (0..height)
-            .flat_map(|y| (0..width).map(move |x| (x, y)))
-            .map(|(x, y)| self.scene.first_hit(&self.camera.ray(x, y)))
+        (0..self.camera.height())
+            .flat_map(|y| self.camera.row(y).rays())
+            .map(|ray| self.scene.first_hit(&ray))
             .collect()
     }
 }

@@ -12,7 +12,7 @@
 //!   world" in every comparison the tracer makes.
 
 use super::Scalar;
-use super::isqrt::{isqrt_u64, rsqrt_fixed};
+use super::isqrt::{isqrt_fast_u64, isqrt_u64, rsqrt_fixed, rsqrt_fixed_fast};
 use core::cmp::Ordering;
 use core::fmt;
 use core::ops::{Add, Div, Mul, Neg, Sub};
@@ -20,6 +20,9 @@ use fixed::traits::{Fixed, FixedSigned};
 
 /// Signed 16.16 fixed point on `i32`: range ±32 768, resolution 1/65 536 ≈ 1.5·10⁻⁵.
 pub type I16F16 = Fx<fixed::types::I16F16>;
+
+/// Signed 20.12 fixed point on `i32`: range ±524 288, resolution 1/4 096 ≈ 2.4·10⁻⁴.
+pub type I20F12 = Fx<fixed::types::I20F12>;
 
 /// Signed 32.32 fixed point on `i64`: range ±2.1·10⁹, resolution 2.3·10⁻¹⁰.
 pub type I32F32 = Fx<fixed::types::I32F32>;
@@ -71,18 +74,29 @@ pub trait WideBits: Copy + Ord {
     fn wide_add(a: Self::Wide, b: Self::Wide) -> Self::Wide;
     /// `wide / 2^frac` rounded to nearest (ties up); it must fit (checked in debug builds).
     fn narrow(wide: Self::Wide, frac: u32) -> Self;
+    /// `wide / 2^frac` rounded to nearest (ties up), saturated to `Self`.
+    fn narrow_saturating(wide: Self::Wide, frac: u32) -> Self;
+    /// a·b − c·d exactly in the wide integer (it cannot overflow), with its sign.
+    fn wide_diff_of_products(a: Self, b: Self, c: Self, d: Self) -> (Self::Wide, Ordering);
+    /// Whether the fast roots below are approximations (true for the 32-bit formats).
+    const FAST_ROOTS: bool;
     /// ⌊√(self · 2^frac)⌋ for `self` > 0: the square root of a fixed-point number with `frac`
     /// fraction bits, in raw units (it always fits).
     fn sqrt_raw(self, frac: u32) -> Self;
     /// 1/√self in raw units of a format with `frac` fraction bits, within one unit, saturated;
     /// for `self` > 0.
     fn rsqrt_raw(self, frac: u32) -> Self;
+    /// [`Self::sqrt_raw`] to about 15 bits.
+    fn sqrt_raw_fast(self, frac: u32) -> Self;
+    /// [`Self::rsqrt_raw`] to about 15 bits.
+    fn rsqrt_raw_fast(self, frac: u32) -> Self;
 }
 
 macro_rules! wide_bits {
-    ($($bits:ident => $wide:ident, roots: $sqrt:path, $rsqrt:path);*) => {$(
+    ($($bits:ident => $wide:ident, fast: $fast:literal, roots: $sqrt:path, $rsqrt:path, $sqrt_fast:path, $rsqrt_fast:path);*) => {$(
         impl WideBits for $bits {
             type Wide = $wide;
+            const FAST_ROOTS: bool = $fast;
             #[inline]
             fn wide_mul(self, rhs: Self) -> $wide {
                 <$wide>::from(self) * <$wide>::from(rhs)
@@ -102,6 +116,18 @@ macro_rules! wide_bits {
                 rounded as $bits
             }
             #[inline]
+            fn narrow_saturating(wide: $wide, frac: u32) -> Self {
+                let rounded = wide.saturating_add(1 << (frac - 1)) >> frac;
+                <$bits>::try_from(rounded)
+                    .unwrap_or(if rounded < 0 { <$bits>::MIN } else { <$bits>::MAX })
+            }
+            #[inline]
+            fn wide_diff_of_products(a: Self, b: Self, c: Self, d: Self) -> ($wide, Ordering) {
+                // Each product is below 2^(2n−2) in magnitude, so the difference fits.
+                let difference = a.wide_mul(b) - c.wide_mul(d);
+                (difference, difference.cmp(&0))
+            }
+            #[inline]
             fn sqrt_raw(self, frac: u32) -> Self {
                 $sqrt(self, frac)
             }
@@ -109,12 +135,20 @@ macro_rules! wide_bits {
             fn rsqrt_raw(self, frac: u32) -> Self {
                 $rsqrt(self, frac)
             }
+            #[inline]
+            fn sqrt_raw_fast(self, frac: u32) -> Self {
+                $sqrt_fast(self, frac)
+            }
+            #[inline]
+            fn rsqrt_raw_fast(self, frac: u32) -> Self {
+                $rsqrt_fast(self, frac)
+            }
         }
     )*};
 }
 wide_bits!(
-    i32 => i64, roots: sqrt_raw_32, rsqrt_raw_32;
-    i64 => i128, roots: sqrt_raw_64, rsqrt_raw_64
+    i32 => i64, fast: true, roots: sqrt_raw_32, rsqrt_raw_32, sqrt_raw_32_fast, rsqrt_raw_32_fast;
+    i64 => i128, fast: false, roots: sqrt_raw_64, rsqrt_raw_64, sqrt_raw_64, rsqrt_raw_64
 );
 
 /// The 32-bit formats' roots: the division-free routines (x·2^frac < 2⁶² for frac ≤ 30).
@@ -126,6 +160,16 @@ fn sqrt_raw_32(x: i32, frac: u32) -> i32 {
 #[inline]
 fn rsqrt_raw_32(x: i32, frac: u32) -> i32 {
     i32::try_from(rsqrt_fixed(x.unsigned_abs(), frac)).unwrap_or(i32::MAX)
+}
+
+#[inline]
+fn sqrt_raw_32_fast(x: i32, frac: u32) -> i32 {
+    i32::try_from(isqrt_fast_u64(u64::from(x.unsigned_abs()) << frac)).unwrap_or(i32::MAX)
+}
+
+#[inline]
+fn rsqrt_raw_32_fast(x: i32, frac: u32) -> i32 {
+    i32::try_from(rsqrt_fixed_fast(x.unsigned_abs(), frac)).unwrap_or(i32::MAX)
 }
 
 /// The 64-bit formats' roots: core's exact integer root on u128, and for the reciprocal one
@@ -280,6 +324,53 @@ where
         }
     }
 
+    const FAST_ROOTS: bool = F::Bits::FAST_ROOTS;
+
+    #[inline]
+    fn sqrt_approx(self) -> Self {
+        if self.0 <= F::ZERO {
+            Self::ZERO
+        } else {
+            Self(F::from_bits(self.0.to_bits().sqrt_raw_fast(F::FRAC_NBITS)))
+        }
+    }
+
+    #[inline]
+    fn rsqrt_approx(self) -> Self {
+        if self.0 <= F::ZERO {
+            Self::MAX
+        } else {
+            Self(F::from_bits(self.0.to_bits().rsqrt_raw_fast(F::FRAC_NBITS)))
+        }
+    }
+
+    /// a/b = a·(1/√|b|)²·sign(b): one fast reciprocal square root and two saturating products,
+    /// no division.
+    #[inline]
+    fn div_approx(self, rhs: Self) -> Self {
+        let frac = F::FRAC_NBITS;
+        let inverse_root = rhs.abs().rsqrt_approx().0.to_bits();
+        let reciprocal = F::Bits::narrow_saturating(inverse_root.wide_mul(inverse_root), frac);
+        let quotient = Self(F::from_bits(F::Bits::narrow_saturating(
+            self.0.to_bits().wide_mul(reciprocal),
+            frac,
+        )));
+        if rhs.0 < F::ZERO { -quotient } else { quotient }
+    }
+
+    #[inline]
+    fn diff_of_products(a: Self, b: Self, c: Self, d: Self) -> (Self, Ordering) {
+        let [a, b, c, d] = [a, b, c, d].map(|x| x.0.to_bits());
+        let (wide, sign) = F::Bits::wide_diff_of_products(a, b, c, d);
+        (
+            Self(F::from_bits(F::Bits::narrow_saturating(
+                wide,
+                F::FRAC_NBITS,
+            ))),
+            sign,
+        )
+    }
+
     #[inline]
     fn sqrt(self) -> Self {
         if self.0 <= F::ZERO {
@@ -417,9 +508,54 @@ mod tests {
     }
 
     #[test]
+    fn approximations_hold_fourteen_bits_and_division_saturates() {
+        for x in [0.01, 0.5, 1.0, 2.0, 3.7, 100.0, 20_000.0] {
+            let v = fx(x);
+            let tolerance = |exact: f64| exact / 8192.0 + 2.0 / 65_536.0;
+            assert!(
+                (v.sqrt_approx().to_f64() - x.sqrt()).abs() <= tolerance(x.sqrt()),
+                "{x}"
+            );
+            let exact = 1.0 / v.to_f64().sqrt();
+            assert!(
+                (v.rsqrt_approx().to_f64() - exact).abs() <= tolerance(exact),
+                "{x}"
+            );
+            for a in [-3.0, 0.25, 7.0] {
+                let q = fx(a).div_approx(v).to_f64();
+                let exact = a / v.to_f64();
+                if exact.abs() < 30_000.0 {
+                    assert!(
+                        (q - exact).abs() <= tolerance(exact.abs()) * 4.0,
+                        "{a}/{x}: {q}"
+                    );
+                }
+            }
+        }
+        assert_eq!(fx(2.0).div_approx(I16F16::ZERO), I16F16::MAX);
+        assert_eq!(fx(-2.0).div_approx(fx(1e-5)), Fx(fixed::types::I16F16::MIN));
+        const { assert!(I16F16::FAST_ROOTS && !I32F32::FAST_ROOTS) };
+    }
+
+    #[test]
+    fn difference_of_products_has_an_exact_sign() {
+        let lsb = Fx(fixed::types::I16F16::from_bits(1));
+        // 3·LSB · LSB − LSB · 2·LSB is 2⁻³² (positive) but rounds to 0 in 16.16.
+        let three = Fx(fixed::types::I16F16::from_bits(3));
+        let two = Fx(fixed::types::I16F16::from_bits(2));
+        let (value, sign) = I16F16::diff_of_products(three, lsb, lsb, two);
+        assert_eq!((value, sign), (I16F16::ZERO, Ordering::Greater));
+        let (value, sign) = I16F16::diff_of_products(fx(3.0), fx(2.0), fx(1.5), fx(4.0));
+        assert_eq!((value, sign), (I16F16::ZERO, Ordering::Equal));
+        let (value, sign) = I16F16::diff_of_products(fx(1.0), fx(2.0), fx(1.5), fx(4.0));
+        assert_eq!((value.to_f64(), sign), (-4.0, Ordering::Less));
+    }
+
+    #[test]
     fn names_follow_the_format() {
         assert_eq!(I16F16::NAME, "i16f16");
         assert_eq!(I32F32::NAME, "i32f32");
+        assert_eq!(I20F12::NAME, "i20f12");
         assert_eq!(I16F16::RANGE, 32_768.0 - 1.0 / 65_536.0);
     }
 }

@@ -6,6 +6,7 @@
 //! Cortex-M4F the FPU's `vsqrt.f32` (a handful of instructions against several hundred).
 
 use super::Scalar;
+use core::cmp::Ordering;
 
 /// The correctly rounded square root of an `f32` by the FPU of a Cortex-M4F.
 #[cfg(all(target_arch = "arm", target_abi = "eabihf"))]
@@ -42,7 +43,7 @@ use libm::sqrtf;
 use vsqrt::sqrtf;
 
 macro_rules! float_scalar {
-    ($($t:ident: $sqrt:path),*) => {$(
+    ($($t:ident: $sqrt:path, $diff:path),*) => {$(
         impl Scalar for $t {
             const NAME: &'static str = stringify!($t);
             const ZERO: Self = 0.0;
@@ -85,8 +86,38 @@ macro_rules! float_scalar {
             fn sqrt(self) -> Self {
                 if self > 0.0 { $sqrt(self) } else { 0.0 }
             }
+
+            #[inline]
+            fn diff_of_products(a: Self, b: Self, c: Self, d: Self) -> (Self, Ordering) {
+                $diff(a, b, c, d)
+            }
         }
     )*};
 }
 
-float_scalar!(f32: sqrtf, f64: libm::sqrt);
+float_scalar!(f32: sqrtf, diff_f32, f64: libm::sqrt, diff_f64);
+
+/// a·b − c·d for f32: the products of two f32 are exact in f64, and rounding their difference
+/// keeps its sign, so the sign is exact and the value rounded twice at most.
+#[inline]
+#[allow(
+    clippy::cast_possible_truncation,
+    reason = "rounding to f32 is the point"
+)]
+pub(super) fn diff_f32(a: f32, b: f32, c: f32, d: f32) -> (f32, Ordering) {
+    let exact = f64::from(a) * f64::from(b) - f64::from(c) * f64::from(d);
+    (
+        exact as f32,
+        exact.partial_cmp(&0.0).unwrap_or(Ordering::Equal),
+    )
+}
+
+/// a·b − c·d for f64 by Kahan's algorithm: the rounding error of c·d, recovered with a fused
+/// multiply-add, is added back, so the result is within 1.5 ulp and its sign exact.
+#[inline]
+fn diff_f64(a: f64, b: f64, c: f64, d: f64) -> (f64, Ordering) {
+    let cd = c * d;
+    let error = libm::fma(-c, d, cd);
+    let value = libm::fma(a, b, -cd) + error;
+    (value, value.partial_cmp(&0.0).unwrap_or(Ordering::Equal))
+}

@@ -5,23 +5,26 @@
 //!
 //! 1. Normalise: shift y left by an even amount 2k so that its top two bits are not both zero,
 //!    and keep the top 32 bits as m, a Q0.32 number in [¼, 1). Then y ≈ m·2^(64 − 2k).
-//! 2. Seed z ≈ 1/√m from a 48-entry table on m's top six bits (about seven correct bits).
-//! 3. Two Newton steps for 1/√m, z ← z·(3 − m·z²)/2, each doubling the correct bits (about
-//!    26 after two), in Q2.30.
+//! 2. Seed z ≈ 1/√m from a 192-entry table on m's top eight bits (about eight correct bits).
+//! 3. Newton steps for 1/√m, z ← z·(3 − m·z²)/2, each doubling the correct bits (about 15
+//!    after one, the 30 of Q2.30 after two).
 //!
 //! Then √y = m·z·2^(32 − k) and 1/√y = z·2^(k − 32), and the two routines scale accordingly.
 //! [`isqrt_u64`] finishes by stepping to the exact ⌊√y⌋, so its result is the mathematical one;
 //! [`rsqrt_fixed`] rounds. Both are integer arithmetic, so every target computes the same bits.
 
-/// ⌊2³⁰ / √((i + 16.5) / 64)⌋ = ⌊√(2⁶⁷ / (2i + 33))⌋: 1/√m in Q2.30 at the middle of each of
-/// the 48 intervals of m's top six bits (16..64, as m ≥ ¼).
-#[allow(clippy::indexing_slicing, reason = "evaluated at compile time, i < 48")]
-static RSQRT_SEEDS: [u32; 48] = {
-    let mut table = [0_u32; 48];
+/// ⌊2³⁰ / √((i + 64.5) / 256)⌋ = ⌊√(2⁶⁹ / (2i + 129))⌋: 1/√m in Q2.30 at the middle of each
+/// of the 192 intervals of m's top eight bits (64..256, as m ≥ ¼).
+#[allow(
+    clippy::indexing_slicing,
+    reason = "evaluated at compile time, i < 192"
+)]
+static RSQRT_SEEDS: [u32; 192] = {
+    let mut table = [0_u32; 192];
     let mut i = 0;
-    while i < 48 {
+    while i < 192 {
         // At most 2³¹: fits u32.
-        table[i] = isqrt_bitwise((1_u128 << 67) / (2 * i as u128 + 33)) as u32;
+        table[i] = isqrt_bitwise((1_u128 << 69) / (2 * i as u128 + 129)) as u32;
         i += 1;
     }
     table
@@ -47,18 +50,23 @@ const fn isqrt_bitwise(y: u128) -> u128 {
     root
 }
 
+/// Newton steps for the exact routines: all the bits of Q2.30.
+const FULL: u32 = 2;
+/// Newton steps for the fast ones: about 15 correct bits.
+const FAST: u32 = 1;
+
 /// Normalises y > 0 to (m, 2k) with y ≈ m·2^(64 − 2k), m in [2³⁰, 2³²), and returns
-/// (m, z ≈ 2³⁰/√(m/2³²), 2k).
+/// (m, z ≈ 2³⁰/√(m/2³²), 2k) after `steps` Newton steps.
 #[inline]
-fn rsqrt_q30(y: u64) -> (u64, u64, u32) {
+fn rsqrt_q30(y: u64, steps: u32) -> (u64, u64, u32) {
     let shift = y.leading_zeros() & !1;
     let m = (y << shift) >> 32;
-    // m ≥ 2³⁰, so m >> 26 is in 16..64.
-    let index = usize::try_from(m >> 26)
+    // m ≥ 2³⁰, so m >> 24 is in 64..256.
+    let index = usize::try_from(m >> 24)
         .unwrap_or(usize::MAX)
-        .wrapping_sub(16);
+        .wrapping_sub(64);
     let mut z = u64::from(RSQRT_SEEDS.get(index).copied().unwrap_or(1 << 30));
-    for _ in 0..2 {
+    for _ in 0..steps {
         // z < 2³¹ and m·z² < 3·2⁶², so every product fits u64.
         let z_squared = (z * z) >> 30;
         let m_z_squared = (m * z_squared) >> 32;
@@ -74,7 +82,7 @@ pub fn isqrt_u64(y: u64) -> u64 {
     if y == 0 {
         return 0;
     }
-    let (m, z, shift) = rsqrt_q30(y);
+    let (m, z, shift) = rsqrt_q30(y, FULL);
     let mut root = ((m * z) >> 30) >> (shift / 2);
     while root * root > y {
         root -= 1;
@@ -85,18 +93,41 @@ pub fn isqrt_u64(y: u64) -> u64 {
     root
 }
 
+/// ⌊√y⌋ to about 15 bits for y < 2⁶²: one Newton step and no final correction.
+#[inline]
+#[must_use]
+pub fn isqrt_fast_u64(y: u64) -> u64 {
+    if y == 0 {
+        return 0;
+    }
+    let (m, z, shift) = rsqrt_q30(y, FAST);
+    ((m * z) >> 30) >> (shift / 2)
+}
+
 /// 2^(3f/2)/√x, for x > 0 and an even f ≤ 16: the reciprocal square root of a fixed-point
 /// number with f fraction bits, in raw units. Within one unit of the exact value, or 2⁻²² of
 /// it where that is more (the large roots of the smallest inputs); at most 2^(3f/2), for x = 1.
 #[inline]
 #[must_use]
 pub fn rsqrt_fixed(x: u32, frac: u32) -> u32 {
+    rsqrt_fixed_steps(x, frac, FULL)
+}
+
+/// [`rsqrt_fixed`] to about 15 bits.
+#[inline]
+#[must_use]
+pub fn rsqrt_fixed_fast(x: u32, frac: u32) -> u32 {
+    rsqrt_fixed_steps(x, frac, FAST)
+}
+
+#[inline]
+fn rsqrt_fixed_steps(x: u32, frac: u32, steps: u32) -> u32 {
     if x == 0 {
         return u32::MAX;
     }
     // x = (m/2³²)·2^(64 − 2k), so 2^(3f/2)/√x = z·2^(3f/2 + k − 62) with z in Q2.30; the
     // exponent is at most 24 + 31 − 62 = −7 for f ≤ 16: always a right shift.
-    let (_, z, shift) = rsqrt_q30(u64::from(x));
+    let (_, z, shift) = rsqrt_q30(u64::from(x), steps);
     let right = 62 - 3 * frac / 2 - shift / 2;
     u32::try_from((z + (1 << (right - 1))) >> right).unwrap_or(u32::MAX)
 }
@@ -156,9 +187,35 @@ mod tests {
     }
 
     #[test]
+    fn fast_routines_hold_fourteen_bits() {
+        let mut y = 1_u64;
+        while y < 1 << 61 {
+            let exact = (y as f64).sqrt();
+            let got = isqrt_fast_u64(y) as f64;
+            assert!(
+                (got - exact).abs() <= exact / 16384.0 + 1.0,
+                "{y}: {got} vs {exact}"
+            );
+            y = y * 3 / 2 + 1;
+        }
+        for frac in [12, 16] {
+            let mut x = 1_u32;
+            while x < u32::MAX / 2 {
+                let exact = (1_u64 << (3 * frac / 2)) as f64 / f64::from(x).sqrt();
+                let got = f64::from(rsqrt_fixed_fast(x, frac));
+                assert!(
+                    (got - exact).abs() <= exact / 16384.0 + 1.0,
+                    "frac {frac}, x {x}"
+                );
+                x = x + x / 97 + 1;
+            }
+        }
+    }
+
+    #[test]
     fn seeds_are_the_reciprocal_square_roots() {
         for (i, &seed) in RSQRT_SEEDS.iter().enumerate() {
-            let m = (i as f64 + 16.5) / 64.0;
+            let m = (i as f64 + 64.5) / 256.0;
             let exact = f64::from(1_u32 << 30) / m.sqrt();
             assert!((f64::from(seed) - exact).abs() <= 1.0, "{i}");
         }

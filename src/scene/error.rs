@@ -125,6 +125,14 @@ pub enum SceneError {
         /// The smallest size the format resolves here.
         minimum: f64,
     },
+    /// The format has no such method (the fast roots are the 32-bit fixed formats'). Choose
+    /// another method, or another format (for floats with approximate roots, `f32-approx`).
+    MethodUnavailable {
+        /// The method.
+        method: &'static str,
+        /// The format.
+        format: &'static str,
+    },
     /// An image size outside 1..=[`crate::MAX_IMAGE_SIDE`] on a side.
     ImageSize {
         /// The requested width.
@@ -220,6 +228,12 @@ impl fmt::Display for SceneError {
                 f,
                 "{item}: {quantity} is {value:.3e}, below the {minimum:.3e} that {format} \
                  resolves in a world of this size; use a finer format, enlarge it, or shrink far"
+            ),
+            Self::MethodUnavailable { method, format } => write!(
+                f,
+                "{method} is not a method of {format}: the fast roots belong to the 32-bit fixed \
+                 formats (i16f16, i20f12); use sqrt=exact, or the f32-approx format for floats \
+                 with approximate roots"
             ),
             Self::ImageSize { width, height } => write!(
                 f,

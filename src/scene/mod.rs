@@ -12,6 +12,7 @@ use crate::color::Rgb;
 use crate::desc::{BackgroundDesc, CheckerDesc, MaterialDesc, SceneDesc, ShapeDesc};
 use crate::light::{Background, Light};
 use crate::material::Material;
+use crate::methods::{Methods, RootMethod};
 use crate::scalar::Scalar;
 use crate::shape::{Checker, Plane, Shape, Sphere, Triangle};
 use crate::vec3::Vec3;
@@ -38,11 +39,20 @@ pub struct Object<S> {
 /// A scene ready to trace in format `S`, holding up to `OBJECTS` objects and `LIGHTS` lights
 /// and tracing ray trees with a stack of `RAYS` rays (at least `max_depth + 1`).
 ///
-/// Positions are stored relative to the eye, which keeps the numbers small.
+/// Positions are stored relative to the eye, which keeps the numbers small. Only the storage
+/// depends on the capacities: the tracer itself ([`crate::shade`]) sees slices, so a firmware
+/// with several scenes carries one copy of it per number format.
 #[derive(Clone, Debug)]
 pub struct Scene<S, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize> {
     pub(crate) objects: Vec<Object<S>, OBJECTS>,
     pub(crate) lights: Vec<Light<S>, LIGHTS>,
+    pub(crate) settings: Settings<S>,
+    frame: Frame,
+}
+
+/// What the tracer needs of a scene besides its objects and lights.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Settings<S> {
     pub(crate) ambient: Rgb<S>,
     pub(crate) background: Background<S>,
     /// The longest a ray can be: the world's diameter.
@@ -52,17 +62,33 @@ pub struct Scene<S, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize
     /// See [`WEIGHT_CUTOFF`].
     pub(crate) min_weight: S,
     pub(crate) max_depth: u8,
-    frame: Frame,
+    pub(crate) methods: Methods,
 }
 
 impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
     Scene<S, OBJECTS, LIGHTS, RAYS>
 {
-    /// Validates `desc`, proves that format `S` holds it (see [`range`]) and converts it.
+    /// Validates `desc`, proves that format `S` holds it (see [`range`]) and converts it, to be
+    /// traced by the lecture's methods ([`Methods::LECTURE`]).
     ///
     /// # Errors
     /// A [`SceneError`] that names the offending value and says how to fix it.
     pub fn build(desc: &SceneDesc<'_>) -> Result<Self, SceneError> {
+        Self::build_with(desc, Methods::LECTURE)
+    }
+
+    /// [`Self::build`] for other methods.
+    ///
+    /// # Errors
+    /// As [`Self::build`], and [`SceneError::MethodUnavailable`] for a method the format does
+    /// not have.
+    pub fn build_with(desc: &SceneDesc<'_>, methods: Methods) -> Result<Self, SceneError> {
+        if methods.roots == RootMethod::Approx && !S::FAST_ROOTS {
+            return Err(SceneError::MethodUnavailable {
+                method: "sqrt=approx",
+                format: S::NAME,
+            });
+        }
         let frame = validate::validate(desc)?;
         capacity("objects", desc.objects.len(), OBJECTS)?;
         capacity("lights", desc.lights.len(), LIGHTS)?;
@@ -72,14 +98,14 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
                 capacity: RAYS,
             });
         }
-        range::check::<S>(desc)?;
+        range::check::<S>(desc, &methods)?;
         let eye = Vec3::from_f32(desc.camera.eye);
         Converter::<S> {
             eye,
             world: f64::from(desc.far),
             _format: PhantomData,
         }
-        .scene(desc, frame)
+        .scene(desc, frame, methods)
     }
 
     /// The camera for an image of `width × height` pixels.
@@ -105,7 +131,7 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
         if corner_squared * range::RANGE_HEADROOM > S::RANGE {
             return Err(out_of_range);
         }
-        Camera::new(&self.frame, width, height).ok_or(out_of_range)
+        Camera::new(&self.frame, width, height, &self.settings.methods).ok_or(out_of_range)
     }
 
     /// The objects, in the order of the description.
@@ -145,6 +171,7 @@ impl<S: Scalar> Converter<S> {
         &self,
         desc: &SceneDesc<'_>,
         frame: Frame,
+        methods: Methods,
     ) -> Result<Scene<S, O, L, R>, SceneError> {
         // `build` checked both lengths against the capacities.
         let too_many = |what, count, capacity| SceneError::TooMany {
@@ -184,15 +211,19 @@ impl<S: Scalar> Converter<S> {
             },
         };
         let tolerance = SURFACE_TOLERANCE_STEPS * S::resolution(self.world);
-        Ok(Scene {
-            objects,
-            lights,
+        let settings = Settings {
             ambient: self.colour(Item::Scene, "ambient", desc.ambient)?,
             background,
             ray_length: self.scalar(Item::Scene, "a ray's length", 2.0 * self.world)?,
             tolerance: self.scalar(Item::Scene, "the surface tolerance", tolerance)?,
             min_weight: S::ratio(1, WEIGHT_CUTOFF),
             max_depth: desc.max_depth,
+            methods,
+        };
+        Ok(Scene {
+            objects,
+            lights,
+            settings,
             frame,
         })
     }
@@ -247,9 +278,14 @@ impl<S: Scalar> Converter<S> {
                     self.point(item, "triangle vertex", b)?,
                     self.point(item, "triangle vertex", c)?,
                 ];
+                // Möller–Trumbore's smallest determinant: below it a numerator over it would
+                // leave the format.
+                let numerators = range::triangle_numerators(self.world, self.eye, [a64, b64, c64]);
+                let min_det = numerators * range::RANGE_HEADROOM / S::RANGE;
                 Shape::Triangle(Triangle::new(
                     corners,
                     self.vector(item, "triangle normal", n)?,
+                    self.scalar(item, "the smallest determinant", min_det)?,
                 ))
             }
         };

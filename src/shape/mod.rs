@@ -1,4 +1,5 @@
-//! The geometric primitives, one file each, and [`Shape`], which dispatches between them.
+//! The geometric primitives, one file each, and [`Shape`], which dispatches between them by
+//! the chosen [`Methods`].
 
 mod plane;
 mod sphere;
@@ -9,6 +10,7 @@ pub use sphere::Sphere;
 pub use triangle::{Triangle, TriangleHit};
 
 use crate::color::Rgb;
+use crate::methods::{Methods, RootMethod};
 use crate::ray::{Ray, Span};
 use crate::scalar::Scalar;
 use crate::vec3::Vec3;
@@ -26,13 +28,33 @@ pub enum Shape<S> {
 
 impl<S: Scalar> Shape<S> {
     /// The nearest distance in `span` at which `ray` meets the shape.
-    #[inline]
+    #[inline(always)]
     #[must_use]
-    pub fn intersect(&self, ray: &Ray<S>, span: Span<S>) -> Option<S> {
+    pub fn intersect(&self, ray: &Ray<S>, span: Span<S>, methods: &Methods) -> Option<S> {
         match self {
-            Self::Sphere(sphere) => sphere.intersect(ray, span),
-            Self::Plane(plane) => plane.intersect(ray, span),
-            Self::Triangle(triangle) => triangle.intersect(ray, span).map(|hit| hit.t),
+            Self::Sphere(sphere) => sphere.intersect(ray, span, methods.sphere, methods.roots),
+            Self::Plane(plane) => plane.intersect(ray, span, methods.roots),
+            Self::Triangle(triangle) => triangle
+                .intersect(ray, span, methods.triangle, methods.roots)
+                .map(|hit| hit.t),
+        }
+    }
+
+    /// Where a ray that starts on this shape's surface meets it again: only where it leaves a
+    /// solid it is entering (`into`); never for a ray leaving a sheet or the outside of a
+    /// sphere, which cannot return to it.
+    #[inline(always)]
+    #[must_use]
+    pub fn intersect_again(
+        &self,
+        ray: &Ray<S>,
+        span: Span<S>,
+        methods: &Methods,
+        into: bool,
+    ) -> Option<S> {
+        match self {
+            Self::Sphere(sphere) if into => sphere.exit(ray, span, methods.sphere, methods.roots),
+            Self::Sphere(_) | Self::Plane(_) | Self::Triangle(_) => None,
         }
     }
 
@@ -41,9 +63,9 @@ impl<S: Scalar> Shape<S> {
     /// of o + t·d put the hit.
     #[inline]
     #[must_use]
-    pub fn surface(&self, point: Vec3<S>) -> (Vec3<S>, Vec3<S>) {
+    pub fn surface(&self, point: Vec3<S>, roots: RootMethod) -> (Vec3<S>, Vec3<S>) {
         match self {
-            Self::Sphere(sphere) => sphere.surface(point),
+            Self::Sphere(sphere) => sphere.surface(point, roots),
             Self::Plane(plane) => (plane.project(point), plane.normal()),
             Self::Triangle(triangle) => (triangle.project(point), triangle.normal()),
         }

@@ -1,6 +1,7 @@
 //! Ray–plane intersection, and the checkerboard a plane can carry.
 
 use crate::color::Rgb;
+use crate::methods::RootMethod;
 use crate::ray::{Ray, Span};
 use crate::scalar::Scalar;
 use crate::vec3::Vec3;
@@ -50,8 +51,9 @@ impl<S: Scalar> Plane<S> {
 
     /// The nearest t in `span` where `ray` meets the plane within the world: t = (offset − n·o)
     /// / (n·d). A ray parallel to the plane (n·d = 0) misses it.
+    #[inline(always)]
     #[must_use]
-    pub fn intersect(&self, ray: &Ray<S>, span: Span<S>) -> Option<S> {
+    pub fn intersect(&self, ray: &Ray<S>, span: Span<S>, roots: RootMethod) -> Option<S> {
         let denominator = self.normal.dot(ray.dir);
         if denominator == S::ZERO {
             return None;
@@ -68,7 +70,7 @@ impl<S: Scalar> Plane<S> {
         if numerator < low || numerator > high {
             return None;
         }
-        let t = numerator / denominator;
+        let t = roots.div(numerator, denominator);
         if !span.contains(t) {
             return None;
         }
@@ -130,7 +132,9 @@ mod tests {
             let plane = floor::<S>(None);
             let d = v::<S>(0.0, -0.6, 0.8);
             let ray = Ray::new(v(0.0, 2.0, 0.0), d);
-            let t = plane.intersect(&ray, span(100.0)).unwrap();
+            let t = plane
+                .intersect(&ray, span(100.0), RootMethod::Exact)
+                .unwrap();
             assert_close(t, 5.0, 1e-3);
             let p = ray.at(t);
             assert_close(p.y, -1.0, 1e-3);
@@ -147,7 +151,13 @@ mod tests {
         for_each_format!(S, {
             let plane = floor::<S>(None);
             let ray = Ray::new(v(0.0, -3.0, 0.0), v(0.0, 1.0, 0.0));
-            assert_close(plane.intersect(&ray, span(100.0)).unwrap(), 2.0, 1e-4);
+            assert_close(
+                plane
+                    .intersect(&ray, span(100.0), RootMethod::Exact)
+                    .unwrap(),
+                2.0,
+                1e-4,
+            );
         });
     }
 
@@ -156,19 +166,28 @@ mod tests {
         for_each_format!(S, {
             let plane = floor::<S>(None);
             let parallel = Ray::new(v(0.0, 0.0, 0.0), v(0.0, 0.0, 1.0));
-            assert_eq!(plane.intersect(&parallel, span(100.0)), None);
+            assert_eq!(
+                plane.intersect(&parallel, span(100.0), RootMethod::Exact),
+                None
+            );
             let parallel_in_plane = Ray::new(v(0.0, -1.0, 0.0), v(1.0, 0.0, 0.0));
-            assert_eq!(plane.intersect(&parallel_in_plane, span(100.0)), None);
+            assert_eq!(
+                plane.intersect(&parallel_in_plane, span(100.0), RootMethod::Exact),
+                None
+            );
             let up = Ray::new(v(0.0, 0.0, 0.0), v(0.0, 1.0, 0.0));
             assert_eq!(
-                plane.intersect(&up, span(100.0)),
+                plane.intersect(&up, span(100.0), RootMethod::Exact),
                 None,
                 "plane behind the origin"
             );
             // Grazing: it meets the plane 100 units away, outside the world of radius 50.
             let d = v::<S>(0.0, -0.01, 0.99995);
             let grazing = Ray::new(v(0.0, 0.0, 0.0), d);
-            assert_eq!(plane.intersect(&grazing, span(1000.0)), None);
+            assert_eq!(
+                plane.intersect(&grazing, span(1000.0), RootMethod::Exact),
+                None
+            );
         });
     }
 

@@ -5,7 +5,7 @@
 use core::convert::Infallible;
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
-use obscura::{Scalar, Scene, SceneDesc, render_rows};
+use obscura::{Methods, Scalar, Scene, SceneDesc, render_rows};
 
 /// A frame in memory: what a display would show.
 pub struct Frame {
@@ -34,13 +34,14 @@ impl DrawTarget for Frame {
     }
 }
 
-/// The scene rendered in format `S`, and the object each primary ray hit.
+/// The scene rendered in format `S` by `methods`, and the object each primary ray hit.
 pub fn render<S: Scalar>(
     desc: &SceneDesc<'_>,
     width: u32,
     height: u32,
+    methods: Methods,
 ) -> (Frame, Vec<Option<usize>>) {
-    let scene = Scene::<S, 16, 4, 8>::build(desc).expect("the scene builds");
+    let scene = Scene::<S, 16, 4, 8>::build_with(desc, methods).expect("the scene builds");
     let camera = scene.camera(width, height).expect("the size is valid");
     let mut frame = Frame {
         width,
@@ -50,8 +51,8 @@ pub fn render<S: Scalar>(
     let mut line = vec![Rgb888::BLACK; width as usize];
     render_rows(&scene, &camera, 0..height, &mut line, &mut frame).expect("renders");
     let objects = (0..height)
-        .flat_map(|y| (0..width).map(move |x| (x, y)))
-        .map(|(x, y)| scene.first_hit(&camera.ray(x, y)))
+        .flat_map(|y| camera.row(y).rays())
+        .map(|ray| scene.first_hit(&ray))
         .collect();
     (frame, objects)
 }

@@ -39,11 +39,13 @@ const VAX_MINUTES: f64 = 74.0;
 pub fn run(args: &BenchArgs) -> Result<()> {
     let scene = super::scene(&args.scene)?;
     let (width, height) = args.size;
+    let methods = args.methods.methods();
     let first = *args.formats.first().context("give at least one format")?;
     let request = Request {
         desc: &scene.desc,
         width,
         height,
+        methods,
     };
     let mut formats = args.formats.clone();
     if !formats.contains(&Format::F32) {

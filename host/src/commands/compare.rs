@@ -7,6 +7,7 @@ use crate::metrics::{Accuracy, accuracy};
 use crate::render::{Request, prepare};
 use crate::timing::interleaved_median_ms;
 use anyhow::{Context, Result};
+use obscura::{Methods, RootMethod};
 use serde::Serialize;
 
 /// The figures `compare` prints and writes as JSON.
@@ -33,13 +34,27 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     let (width, height) = args.scene.size;
     let format = args.scene.format;
     let reference = Format::F64;
+    let methods = args.scene.methods.methods();
     let request = Request {
         desc: &scene.desc,
         width,
         height,
+        methods,
+    };
+    // The reference runs the same methods in f64, with exact roots (f64 has no others), so that
+    // the difference is the format's numeric error alone.
+    let exact = Methods {
+        roots: RootMethod::Exact,
+        ..methods
     };
     let contender = prepare(format, &request)?;
-    let baseline = prepare(reference, &request)?;
+    let baseline = prepare(
+        reference,
+        &Request {
+            methods: exact,
+            ..request
+        },
+    )?;
     let threads = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
     let (image, truth) = (
         contender.render(threads, None),

@@ -7,6 +7,7 @@ use crate::heatmap::heatmap;
 use crate::render::{Request, prepare};
 use anyhow::{Context, Result, bail};
 use image::RgbImage;
+use obscura::RootMethod;
 use serde::Serialize;
 use std::path::Path;
 use std::time::Duration;
@@ -17,6 +18,7 @@ struct Report {
     target: &'static str,
     scene: String,
     format: String,
+    methods: String,
     width: u32,
     height: u32,
     identical: bool,
@@ -26,6 +28,8 @@ struct Report {
     stack_bytes: u64,
     flash_bytes: u64,
     ram_bytes: u64,
+    storage_bytes: u64,
+    fixed_storage_bytes: u64,
 }
 
 /// How many differing pixels are listed when a frame does not match.
@@ -33,6 +37,7 @@ const LISTED: usize = 10;
 
 pub fn run(args: &FirmwareArgs) -> Result<()> {
     let target = args.target;
+    let methods = args.methods.methods();
     let scenes = args
         .scene
         .iter()
@@ -41,6 +46,18 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
     let mut features: Vec<String> = scenes.iter().map(|s| format!("scene-{}", s.name)).collect();
     for &format in &args.format {
         features.push(firmware::firmware_format(format)?.to_owned());
+    }
+    features.extend(firmware::method_features(&methods));
+    if methods.roots == RootMethod::Approx {
+        if let Some(format) = args
+            .format
+            .iter()
+            .find(|f| !matches!(f, Format::I16f16 | Format::I20f12))
+        {
+            bail!(
+                "--sqrt approx is a method of the 32-bit fixed formats (i16f16, i20f12), not of {format}; for floats with approximate roots choose --format f32-approx"
+            );
+        }
     }
     firmware::check_prerequisites(target)?;
     let elf = firmware::build(target, &features)?;
@@ -56,7 +73,9 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
         for &format in &args.format {
             let frame = frames
                 .iter()
-                .find(|f| f.scene == scene.name && f.format == format.name())
+                .find(|f| {
+                    f.scene == scene.name && f.format == format.name() && f.methods == methods
+                })
                 .with_context(|| {
                     format!(
                         "the firmware reported no frame of {} in {format}",
@@ -67,18 +86,19 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
                 desc: &scene.desc,
                 width: frame.width,
                 height: frame.height,
+                methods,
             };
             let host = prepare(format, &request)?.rgb565_frame();
             let device = read_frame(&dir.join(&frame.file), host.len())?;
             let differing: Vec<usize> = (0..host.len()).filter(|&i| host[i] != device[i]).collect();
-            let stem = dir.join(format!("{}-{format}", scene.name));
+            let stem = dir.join(&frame.file);
             crate::commands::save(&to_image(&device, frame.width), &stem.with_extension("png"))?;
             if !differing.is_empty() {
                 let diff = heatmap(
                     &to_image(&device, frame.width),
                     &to_image(&host, frame.width),
                 );
-                let path = dir.join(format!("{}-{format}-diff.png", scene.name));
+                let path = stem.with_extension("diff.png");
                 crate::commands::save(&diff, &path)?;
                 list_differences(
                     scene.name,
@@ -89,7 +109,7 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
                     &host,
                     &path,
                 );
-                if is_fixed_point(format) {
+                if format.is_fixed_point() {
                     mismatched.push(format!("{} in {format}", scene.name));
                 }
             }
@@ -99,6 +119,7 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
                 target: target.name(),
                 scene: frame.scene.clone(),
                 format: frame.format.clone(),
+                methods: methods.to_string(),
                 width: frame.width,
                 height: frame.height,
                 identical: differing.is_empty(),
@@ -108,6 +129,8 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
                 stack_bytes: frame.stack_bytes,
                 flash_bytes: size.flash,
                 ram_bytes: size.ram,
+                storage_bytes: frame.storage_bytes,
+                fixed_storage_bytes: frame.fixed_storage_bytes,
             });
         }
     }
@@ -125,10 +148,6 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
         );
     }
     Ok(())
-}
-
-fn is_fixed_point(format: Format) -> bool {
-    matches!(format, Format::I16f16 | Format::I32f32)
 }
 
 /// Reads a frame file of `pixels` big-endian RGB565 values.
@@ -191,12 +210,12 @@ fn list_differences(
 
 fn print_table(target: Target, reports: &[Report]) {
     println!(
-        "| target | scene | format | identical to host | differing pixels | instructions/frame | instructions/pixel | stack (bytes) | flash (bytes) | static RAM (bytes) | RAM + stack (bytes) |"
+        "| target | scene | format | identical to host | differing pixels | instructions/frame | instructions/pixel | stack (bytes) | flash (bytes) | static RAM (bytes) | RAM + stack (bytes) | scene + ray stack (bytes): sized / fixed |"
     );
-    println!("|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     for r in reports {
         println!(
-            "| {} ({}) | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} ({}) | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} / {} |",
             r.target,
             target.triple(),
             r.scene,
@@ -208,11 +227,17 @@ fn print_table(target: Target, reports: &[Report]) {
             r.stack_bytes,
             r.flash_bytes,
             r.ram_bytes,
-            r.ram_bytes + r.stack_bytes
+            r.ram_bytes + r.stack_bytes,
+            r.storage_bytes,
+            r.fixed_storage_bytes
         );
     }
+    if let Some(first) = reports.first() {
+        println!("methods: {}", first.methods);
+    }
     println!(
-        "(instructions, not cycles: QEMU counts one per instruction and models no wait states or multi-cycle instructions)"
+        "(instructions, not cycles: QEMU counts one per instruction and models no wait states or \
+         multi-cycle instructions; \"fixed\": the host's capacities of 64 objects, 16 lights, 16 rays)"
     );
     let mhz = target.core_hz() / 1_000_000;
     for r in reports {

@@ -8,10 +8,12 @@ use std::time::Instant;
 pub fn run(args: &RenderArgs) -> Result<()> {
     let scene = super::scene(&args.scene.scene)?;
     let (width, height) = args.scene.size;
+    let methods = args.scene.methods.methods();
     let request = Request {
         desc: &scene.desc,
         width,
         height,
+        methods,
     };
     let prepared = prepare(args.scene.format, &request)?;
     let label = format!("rendering {} in {}", scene.name, args.scene.format);

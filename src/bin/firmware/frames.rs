@@ -1,5 +1,6 @@
-//! What the firmware renders: each enabled scene in each enabled format, with the scene's
-//! storage (objects, lights, ray stack) sized by const generics to exactly what it needs.
+//! What the firmware renders: each enabled scene in each enabled format, by the methods the
+//! features choose (or, with `chart`, by each variant of them), with the scene's storage
+//! (objects, lights, ray stack) sized by const generics to exactly what it needs.
 
 use crate::SIDE;
 use crate::clock::Clock;
@@ -7,37 +8,113 @@ use crate::stack;
 use core::fmt;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use obscura::{Scalar, Scene, SceneDesc, render_rows, scenes};
+use obscura::{
+    BiasMethod, Methods, RayMethod, RootMethod, Scalar, Scene, SceneDesc, SphereMethod,
+    TriangleMethod, render_rows, scenes,
+};
 
 /// What a display back-end provides: a display to draw each frame on, and a place to say how
 /// it went.
 pub trait Backend {
     /// The display.
     type Display: DrawTarget<Color = Rgb565, Error: fmt::Debug>;
-    /// Lets `draw` draw the frame of `scene` in `format`.
-    fn frame<R>(
-        &mut self,
-        scene: &str,
-        format: &str,
-        draw: impl FnOnce(&mut Self::Display) -> R,
-    ) -> R;
+    /// Lets `draw` draw the frame of `job`.
+    fn frame<R>(&mut self, job: &Job<'_>, draw: impl FnOnce(&mut Self::Display) -> R) -> R;
     /// Reports a finished frame.
     fn report(&mut self, report: &Report<'_>);
     /// Reports a frame that could not be drawn, and why.
-    fn failed(&mut self, scene: &str, format: &str, why: &dyn fmt::Display);
+    fn failed(&mut self, job: &Job<'_>, why: &dyn fmt::Display);
 }
 
-/// The measurements of one frame.
-pub struct Report<'a> {
+/// One frame to draw.
+pub struct Job<'a> {
     /// The scene's name.
     pub scene: &'a str,
     /// The format's name.
     pub format: &'a str,
+    /// The methods.
+    pub methods: Methods,
+}
+
+/// The measurements of one frame.
+pub struct Report<'a> {
+    /// What was drawn.
+    pub job: &'a Job<'a>,
     /// SysTick ticks the frame took, from the first row to the last.
     pub ticks: u64,
     /// The stack's high-water mark during the frame, in bytes.
     pub stack_bytes: u32,
+    /// Bytes of the scene and its ray stack with capacities sized to the scene.
+    pub storage_bytes: usize,
+    /// The same with the host's fixed capacities (64 objects, 16 lights, 16 rays).
+    pub fixed_storage_bytes: usize,
 }
+
+/// The methods the features choose; the lecture's where they choose none.
+const METHODS: Methods = Methods {
+    sphere: if cfg!(feature = "sphere-stable") {
+        SphereMethod::Stable
+    } else {
+        SphereMethod::Quadratic
+    },
+    triangle: if cfg!(feature = "triangle-watertight") {
+        TriangleMethod::Watertight
+    } else if cfg!(feature = "triangle-moller-trumbore") {
+        TriangleMethod::MollerTrumbore
+    } else {
+        TriangleMethod::Cramer
+    },
+    roots: if cfg!(feature = "sqrt-approx") {
+        RootMethod::Approx
+    } else {
+        RootMethod::Exact
+    },
+    rays: if cfg!(feature = "rays-stepped") {
+        RayMethod::Stepped
+    } else {
+        RayMethod::PerPixel
+    },
+    bias: if cfg!(feature = "bias-exclude") {
+        BiasMethod::Exclude
+    } else {
+        BiasMethod::Epsilon
+    },
+};
+
+/// With `chart`, every frame is drawn by [`METHODS`] and by each variant that changes one
+/// method: what the speed–accuracy chart compares.
+const VARIANTS: [Methods; 7] = [
+    METHODS,
+    Methods {
+        sphere: SphereMethod::Stable,
+        ..METHODS
+    },
+    Methods {
+        triangle: TriangleMethod::MollerTrumbore,
+        ..METHODS
+    },
+    Methods {
+        triangle: TriangleMethod::Watertight,
+        ..METHODS
+    },
+    Methods {
+        roots: RootMethod::Approx,
+        ..METHODS
+    },
+    Methods {
+        rays: RayMethod::Stepped,
+        ..METHODS
+    },
+    Methods {
+        bias: BiasMethod::Exclude,
+        ..METHODS
+    },
+];
+
+/// The host's capacities, against which the sized storage is reported.
+const FIXED_OBJECTS: usize = 64;
+const FIXED_LIGHTS: usize = 16;
+const FIXED_RAYS: usize = 16;
 
 /// Renders one scene in each enabled format, its capacities computed from the description.
 macro_rules! formats {
@@ -46,12 +123,44 @@ macro_rules! formats {
         const OBJECTS: usize = DESC.objects.len();
         const LIGHTS: usize = DESC.lights.len();
         const RAYS: usize = DESC.max_depth as usize + 1;
+        let has_triangles = DESC
+            .objects
+            .iter()
+            .any(|o| matches!(o.shape, obscura::ShapeDesc::Triangle { .. }));
         #[cfg(feature = "format-i16f16")]
-        render::<obscura::I16F16, OBJECTS, LIGHTS, RAYS>($backend, $clock, $name, &DESC);
+        variants::<obscura::I16F16, OBJECTS, LIGHTS, RAYS>(
+            $backend,
+            $clock,
+            $name,
+            &DESC,
+            has_triangles,
+        );
+        #[cfg(feature = "format-i20f12")]
+        variants::<obscura::I20F12, OBJECTS, LIGHTS, RAYS>(
+            $backend,
+            $clock,
+            $name,
+            &DESC,
+            has_triangles,
+        );
         #[cfg(feature = "format-i32f32")]
-        render::<obscura::I32F32, OBJECTS, LIGHTS, RAYS>($backend, $clock, $name, &DESC);
+        variants::<obscura::I32F32, OBJECTS, LIGHTS, RAYS>(
+            $backend,
+            $clock,
+            $name,
+            &DESC,
+            has_triangles,
+        );
+        #[cfg(feature = "format-f32-approx")]
+        variants::<obscura::F32Approx, OBJECTS, LIGHTS, RAYS>(
+            $backend,
+            $clock,
+            $name,
+            &DESC,
+            has_triangles,
+        );
         #[cfg(feature = "format-f32")]
-        render::<f32, OBJECTS, LIGHTS, RAYS>($backend, $clock, $name, &DESC);
+        variants::<f32, OBJECTS, LIGHTS, RAYS>($backend, $clock, $name, &DESC, has_triangles);
     }};
 }
 
@@ -63,22 +172,58 @@ pub fn render_all(backend: &mut impl Backend, clock: &Clock) {
     formats!(backend, clock, "shapes", scenes::SHAPES);
 }
 
-/// Builds the scene in format `S`, renders it top to bottom and reports the frame.
-fn render<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
+/// Renders a scene in format `S` by [`METHODS`], and with `chart` by each variant that makes
+/// sense: a triangle method only where there are triangles, fast roots only where the format
+/// has them, no variant that equals another.
+fn variants<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
     backend: &mut impl Backend,
     clock: &Clock,
     name: &str,
     desc: &SceneDesc<'_>,
+    has_triangles: bool,
 ) {
-    let built = Scene::<S, OBJECTS, LIGHTS, RAYS>::build(desc).and_then(|scene| {
-        let camera = scene.camera(SIDE, SIDE)?;
-        Ok((scene, camera))
-    });
+    let chosen: &[Methods] = if cfg!(feature = "chart") {
+        &VARIANTS
+    } else {
+        &VARIANTS[..1]
+    };
+    for (i, &methods) in chosen.iter().enumerate() {
+        let repeated = chosen
+            .get(..i)
+            .is_some_and(|earlier| earlier.contains(&methods));
+        let pointless = (methods.triangle != METHODS.triangle && !has_triangles)
+            || (methods.roots == RootMethod::Approx && !S::FAST_ROOTS);
+        if !repeated && !pointless {
+            let job = Job {
+                scene: name,
+                format: S::NAME,
+                methods,
+            };
+            render::<S, OBJECTS, LIGHTS, RAYS>(backend, clock, &job, desc);
+        }
+    }
+}
+
+/// Builds the scene in format `S`, renders it top to bottom and reports the frame.
+fn render<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
+    backend: &mut impl Backend,
+    clock: &Clock,
+    job: &Job<'_>,
+    desc: &SceneDesc<'_>,
+) {
+    // Hidden from the optimiser, so that no build folds a constant scene into the tracer: every
+    // frame measures the same general code, whichever scenes and formats share the firmware.
+    let desc = core::hint::black_box(desc);
+    let built =
+        Scene::<S, OBJECTS, LIGHTS, RAYS>::build_with(desc, job.methods).and_then(|scene| {
+            let camera = scene.camera(SIDE, SIDE)?;
+            Ok((scene, camera))
+        });
     let (scene, camera) = match built {
         Ok(built) => built,
-        Err(error) => return backend.failed(name, S::NAME, &error),
+        Err(error) => return backend.failed(job, &error),
     };
-    let ((drawn, ticks), stack_bytes) = backend.frame(name, S::NAME, |display| {
+    let ((drawn, ticks), stack_bytes) = backend.frame(job, |display| {
         let mut line = [Rgb565::BLACK; SIDE as usize];
         stack::paint();
         let measured = clock.measure(|| render_rows(&scene, &camera, 0..SIDE, &mut line, display));
@@ -86,11 +231,13 @@ fn render<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usiz
     });
     match drawn {
         Ok(()) => backend.report(&Report {
-            scene: name,
-            format: S::NAME,
+            job,
             ticks,
             stack_bytes,
+            storage_bytes: Scene::<S, OBJECTS, LIGHTS, RAYS>::storage_bytes(),
+            fixed_storage_bytes: Scene::<S, FIXED_OBJECTS, FIXED_LIGHTS, FIXED_RAYS>::storage_bytes(
+            ),
         }),
-        Err(error) => backend.failed(name, S::NAME, &error),
+        Err(error) => backend.failed(job, &error),
     }
 }

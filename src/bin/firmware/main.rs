@@ -5,8 +5,11 @@
 //!
 //! Features choose everything: one back-end, `qemu` (frames streamed to host files over
 //! semihosting) or `st7789` (an SPI display on an STM32F411 "Black Pill"); one or more scenes,
-//! `scene-whitted`, `scene-shapes`; one or more formats, `format-i16f16`, `format-i32f32`,
-//! `format-f32`. For example, on QEMU's Cortex-M4F:
+//! `scene-whitted`, `scene-shapes`; one or more formats, `format-i16f16`, `format-i20f12`,
+//! `format-i32f32`, `format-f32-approx`, `format-f32`; the methods (`sphere-stable`,
+//! `triangle-moller-trumbore` or `triangle-watertight`, `sqrt-approx`, `rays-stepped`,
+//! `bias-exclude`; the lecture's by default); and `chart` to draw every variant that changes
+//! one method as well. For example, on QEMU's Cortex-M4F:
 //!
 //! ```sh
 //! cargo run --release --bin firmware --target thumbv7em-none-eabihf \

@@ -1,9 +1,11 @@
 //! The QEMU back-end: each frame streams, row by row, into a file on the host through ARM
-//! semihosting (`SCENE-FORMAT.rgb565`: 240×240 big-endian RGB565, row after row, in QEMU's
-//! working directory), and each report is a line on the host's standard output:
+//! semihosting (240×240 big-endian RGB565, row after row, in QEMU's working directory, named
+//! after the scene, the format and the methods), and each report is a line on the host's
+//! standard output:
 //!
 //! ```text
-//! frame scene=whitted format=i16f16 width=240 height=240 ticks=… stack_bytes=… file=whitted-i16f16.rgb565
+//! frame scene=whitted format=i16f16 methods=quadratic/cramer/exact/per-pixel/epsilon
+//!   width=240 height=240 ticks=… stack_bytes=… storage_bytes=… fixed_storage_bytes=… file=…
 //! ```
 //!
 //! The firmware then exits through semihosting: 0 when every frame was drawn, 1 otherwise, and
@@ -15,7 +17,7 @@
 
 use crate::SIDE;
 use crate::clock::Clock;
-use crate::frames::{self, Backend, Report};
+use crate::frames::{self, Backend, Job, Report};
 use core::fmt::{self, Write as _};
 use cortex_m_rt::{ExceptionFrame, exception};
 use cortex_m_semihosting::debug::{self, EXIT_FAILURE, EXIT_SUCCESS};
@@ -23,6 +25,8 @@ use cortex_m_semihosting::{hprintln, nr, syscall};
 use embedded_graphics_core::pixelcolor::{IntoStorage, Rgb565};
 use embedded_graphics_core::prelude::*;
 use embedded_graphics_core::primitives::Rectangle;
+use obscura::Methods;
+use obscura::methods::MethodName;
 use panic_semihosting as _;
 
 /// Renders every enabled frame, then exits QEMU with the outcome.
@@ -58,28 +62,73 @@ struct Host {
 impl Backend for Host {
     type Display = FrameFile;
 
-    fn frame<R>(&mut self, scene: &str, format: &str, draw: impl FnOnce(&mut FrameFile) -> R) -> R {
-        let mut file = FrameFile::create(scene, format);
+    fn frame<R>(&mut self, job: &Job<'_>, draw: impl FnOnce(&mut FrameFile) -> R) -> R {
+        let mut file = FrameFile::create(job);
         let result = draw(&mut file);
         file.close();
         result
     }
 
     fn report(&mut self, r: &Report<'_>) {
+        let job = r.job;
         hprintln!(
-            "frame scene={} format={} width={SIDE} height={SIDE} ticks={} stack_bytes={} file={}-{}.rgb565",
-            r.scene,
-            r.format,
+            "frame scene={} format={} methods={} width={SIDE} height={SIDE} ticks={} stack_bytes={} storage_bytes={} fixed_storage_bytes={} file={}",
+            job.scene,
+            job.format,
+            Path(job),
             r.ticks,
             r.stack_bytes,
-            r.scene,
-            r.format
+            r.storage_bytes,
+            r.fixed_storage_bytes,
+            FileName(job)
         );
     }
 
-    fn failed(&mut self, scene: &str, format: &str, why: &dyn fmt::Display) {
+    fn failed(&mut self, job: &Job<'_>, why: &dyn fmt::Display) {
         self.all_drawn = false;
-        hprintln!("error scene={scene} format={format} message={why}");
+        hprintln!(
+            "error scene={} format={} methods={} message={why}",
+            job.scene,
+            job.format,
+            Path(job)
+        );
+    }
+}
+
+/// The methods' names, in the order sphere, triangle, roots, rays, bias.
+fn names(m: Methods) -> [&'static str; 5] {
+    [
+        m.sphere.name(),
+        m.triangle.name(),
+        m.roots.name(),
+        m.rays.name(),
+        m.bias.name(),
+    ]
+}
+
+/// The methods of a job as `quadratic/cramer/exact/per-pixel/epsilon`.
+struct Path<'a>(&'a Job<'a>);
+
+impl fmt::Display for Path<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, name) in names(self.0.methods).iter().enumerate() {
+            let separator = if i == 0 { "" } else { "/" };
+            write!(f, "{separator}{name}")?;
+        }
+        Ok(())
+    }
+}
+
+/// The frame file's name: `SCENE-FORMAT-METHOD-…-METHOD.rgb565`.
+struct FileName<'a>(&'a Job<'a>);
+
+impl fmt::Display for FileName<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}-{}", self.0.scene, self.0.format)?;
+        for name in names(self.0.methods) {
+            write!(f, "-{name}")?;
+        }
+        f.write_str(".rgb565")
     }
 }
 
@@ -94,10 +143,10 @@ struct FrameFile {
 struct HostFileError;
 
 impl FrameFile {
-    /// Creates (or truncates) `SCENE-FORMAT.rgb565` on the host.
-    fn create(scene: &str, format: &str) -> Self {
-        let mut name = heapless::String::<64>::new();
-        let named = write!(name, "{scene}-{format}.rgb565\0").is_ok();
+    /// Creates (or truncates) the job's frame file on the host.
+    fn create(job: &Job<'_>) -> Self {
+        let mut name = heapless::String::<128>::new();
+        let named = write!(name, "{}\0", FileName(job)).is_ok();
         let handle = named.then(|| {
             let length = name.len() - 1;
             // SAFETY: OPEN reads `length` bytes of the NUL-terminated name, which outlives it.

@@ -18,7 +18,7 @@
 //! CS has it tied to GND.
 
 use crate::clock::Clock;
-use crate::frames::{self, Backend, Report};
+use crate::frames::{self, Backend, Job, Report};
 use core::fmt;
 use embedded_graphics::mono_font::{MonoTextStyleBuilder, ascii::FONT_6X10};
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
@@ -107,27 +107,36 @@ struct Board {
 impl Backend for Board {
     type Display = Panel;
 
-    fn frame<R>(&mut self, _scene: &str, _format: &str, draw: impl FnOnce(&mut Panel) -> R) -> R {
+    fn frame<R>(&mut self, _job: &Job<'_>, draw: impl FnOnce(&mut Panel) -> R) -> R {
         draw(&mut self.panel)
     }
 
     fn report(&mut self, r: &Report<'_>) {
         let ms = r.ticks / (u64::from(SYSCLK_MHZ) * 1000);
-        let stack = r.stack_bytes;
+        let (scene, format) = (r.job.scene, r.job.format);
+        let (stack, storage, fixed) = (r.stack_bytes, r.storage_bytes, r.fixed_storage_bytes);
+        let white = Rgb565::WHITE;
+        self.caption(1, format_args!("{scene} {format}: {ms} ms"), white);
         self.caption(
-            format_args!("{} {}: {ms} ms, {stack} B stack", r.scene, r.format),
-            Rgb565::WHITE,
+            0,
+            format_args!("stack {stack} B, scene {storage} B ({fixed})"),
+            white,
         );
     }
 
-    fn failed(&mut self, scene: &str, format: &str, why: &dyn fmt::Display) {
-        self.caption(format_args!("{scene} {format}: {why}"), Rgb565::RED);
+    fn failed(&mut self, job: &Job<'_>, why: &dyn fmt::Display) {
+        self.caption(
+            1,
+            format_args!("{} {}:", job.scene, job.format),
+            Rgb565::RED,
+        );
+        self.caption(0, format_args!("{why}"), Rgb565::RED);
     }
 }
 
 impl Board {
-    /// Writes one line of text across the bottom of the display.
-    fn caption(&mut self, text: fmt::Arguments<'_>, colour: Rgb565) {
+    /// Writes one line of text across the display, `line` lines up from the bottom.
+    fn caption(&mut self, line_from_bottom: i32, text: fmt::Arguments<'_>, colour: Rgb565) {
         let mut line = heapless::String::<64>::new();
         // A longer line is cut: the display shows 40 characters anyway.
         let _ = fmt::write(&mut line, text);
@@ -136,7 +145,7 @@ impl Board {
             .text_color(colour)
             .background_color(Rgb565::BLACK)
             .build();
-        let bottom_left = Point::new(2, 239);
+        let bottom_left = Point::new(2, 239 - 10 * line_from_bottom);
         let _ =
             Text::with_baseline(&line, bottom_left, style, Baseline::Bottom).draw(&mut self.panel);
     }

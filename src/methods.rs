@@ -1,0 +1,221 @@
+//! The numerical methods the tracer can use where the literature says precision breaks, each
+//! chosen per render: [`Methods`] holds one choice per question.
+
+use crate::scalar::Scalar;
+use core::fmt;
+
+/// How a ray meets a sphere.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum SphereMethod {
+    /// The lecture's quadratic: t = −b ± √(b² − c) with b = d·(o − c), c = |o − c|² − r².
+    /// b² − c cancels catastrophically for a small or distant sphere.
+    #[default]
+    Quadratic,
+    /// Haines et al. (Ray Tracing Gems, ch. 7): the discriminant as r² − |f − (f·d)d|², the
+    /// squared distance of the ray from the centre, and the near root through
+    /// q = −b − sign(b)·√Δ and c/q, neither of which cancels.
+    Stable,
+}
+
+/// How a ray meets a triangle.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum TriangleMethod {
+    /// The lecture's: Cramer's rule on (−d, e1, e2), three determinants over a fourth.
+    #[default]
+    Cramer,
+    /// Möller and Trumbore (1997): the same system with shared cross products and one
+    /// reciprocal of the determinant.
+    MollerTrumbore,
+    /// Woop, Benthin and Wald (2013): edge functions in a ray-aligned frame whose signs are
+    /// exact (in double-width integers for fixed point), so no ray slips between two triangles
+    /// that share an edge.
+    Watertight,
+}
+
+/// How square roots, reciprocal square roots and quotients are taken.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum RootMethod {
+    /// Exactly (fixed point: the exact root and the truncated quotient).
+    #[default]
+    Exact,
+    /// The 32-bit fixed formats' fast approximations: one Newton step instead of two, and
+    /// quotients as products with a reciprocal, about 14 bits each. (For floats with
+    /// approximations choose the `f32-approx` format.)
+    Approx,
+}
+
+/// How primary rays are generated along a scanline.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum RayMethod {
+    /// Each pixel's point on the image plane from one exact ratio.
+    #[default]
+    PerPixel,
+    /// The point stepped by a constant increment along the row: one addition per pixel, and
+    /// the increment's rounding accumulates across the row.
+    Stepped,
+}
+
+/// How a secondary ray avoids hitting the surface it leaves.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum BiasMethod {
+    /// It starts a small offset (derived from the format) off the surface, and hits nearer
+    /// than that offset are ignored.
+    #[default]
+    Epsilon,
+    /// It starts on the surface and ignores the primitive it leaves, which is exact here: a
+    /// ray leaving a plane, a triangle or the outside of a sphere cannot meet it again, and one
+    /// entering a sphere meets it only where it leaves.
+    Exclude,
+}
+
+/// One choice of every method.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Methods {
+    /// Ray–sphere.
+    pub sphere: SphereMethod,
+    /// Ray–triangle.
+    pub triangle: TriangleMethod,
+    /// Roots and quotients.
+    pub roots: RootMethod,
+    /// Primary rays.
+    pub rays: RayMethod,
+    /// Self-intersection.
+    pub bias: BiasMethod,
+}
+
+impl Methods {
+    /// The lecture's methods: the quadratic, Cramer's rule, exact roots, a ray per pixel, an
+    /// epsilon offset. What [`crate::Scene::build`] uses.
+    pub const LECTURE: Self = Self {
+        sphere: SphereMethod::Quadratic,
+        triangle: TriangleMethod::Cramer,
+        roots: RootMethod::Exact,
+        rays: RayMethod::PerPixel,
+        bias: BiasMethod::Epsilon,
+    };
+}
+
+impl RootMethod {
+    /// √x.
+    #[inline(always)]
+    pub fn sqrt<S: Scalar>(self, x: S) -> S {
+        match self {
+            Self::Exact => x.sqrt(),
+            Self::Approx => x.sqrt_approx(),
+        }
+    }
+
+    /// 1/√x.
+    #[inline(always)]
+    pub fn rsqrt<S: Scalar>(self, x: S) -> S {
+        match self {
+            Self::Exact => x.rsqrt(),
+            Self::Approx => x.rsqrt_approx(),
+        }
+    }
+
+    /// a/b.
+    #[inline(always)]
+    pub fn div<S: Scalar>(self, a: S, b: S) -> S {
+        match self {
+            Self::Exact => a / b,
+            Self::Approx => a.div_approx(b),
+        }
+    }
+}
+
+/// Names for the command line and for reports, one per variant.
+pub trait MethodName: Sized + Copy + 'static {
+    /// Every variant with its name.
+    const ALL: &'static [(Self, &'static str)];
+
+    /// The variant's name.
+    fn name(self) -> &'static str
+    where
+        Self: PartialEq,
+    {
+        Self::ALL
+            .iter()
+            .find(|(m, _)| *m == self)
+            .map_or("?", |(_, name)| name)
+    }
+
+    /// The variant called `name`.
+    fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.iter().find(|(_, n)| *n == name).map(|(m, _)| *m)
+    }
+}
+
+impl MethodName for SphereMethod {
+    const ALL: &'static [(Self, &'static str)] =
+        &[(Self::Quadratic, "quadratic"), (Self::Stable, "stable")];
+}
+
+impl MethodName for TriangleMethod {
+    const ALL: &'static [(Self, &'static str)] = &[
+        (Self::Cramer, "cramer"),
+        (Self::MollerTrumbore, "moller-trumbore"),
+        (Self::Watertight, "watertight"),
+    ];
+}
+
+impl MethodName for RootMethod {
+    const ALL: &'static [(Self, &'static str)] =
+        &[(Self::Exact, "exact"), (Self::Approx, "approx")];
+}
+
+impl MethodName for RayMethod {
+    const ALL: &'static [(Self, &'static str)] =
+        &[(Self::PerPixel, "per-pixel"), (Self::Stepped, "stepped")];
+}
+
+impl MethodName for BiasMethod {
+    const ALL: &'static [(Self, &'static str)] =
+        &[(Self::Epsilon, "epsilon"), (Self::Exclude, "exclude")];
+}
+
+/// `sphere=quadratic triangle=cramer sqrt=exact rays=per-pixel bias=epsilon`.
+impl fmt::Display for Methods {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "sphere={} triangle={} sqrt={} rays={} bias={}",
+            self.sphere.name(),
+            self.triangle.name(),
+            self.roots.name(),
+            self.rays.name(),
+            self.bias.name()
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn round_trip<M: MethodName + PartialEq + fmt::Debug>() {
+        for &(method, name) in M::ALL {
+            assert_eq!(method.name(), name);
+            assert_eq!(M::from_name(name), Some(method));
+        }
+        assert_eq!(M::from_name("no such method"), None);
+    }
+
+    #[test]
+    fn every_method_has_a_name_that_names_it_back() {
+        round_trip::<SphereMethod>();
+        round_trip::<TriangleMethod>();
+        round_trip::<RootMethod>();
+        round_trip::<RayMethod>();
+        round_trip::<BiasMethod>();
+    }
+
+    #[test]
+    fn the_lecture_is_the_default() {
+        assert_eq!(Methods::default(), Methods::LECTURE);
+        assert_eq!(
+            Methods::LECTURE.to_string(),
+            "sphere=quadratic triangle=cramer sqrt=exact rays=per-pixel bias=epsilon"
+        );
+    }
+}
