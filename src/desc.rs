@@ -24,6 +24,21 @@ pub struct SceneDesc<'a> {
     pub max_depth: u8,
 }
 
+impl SceneDesc<'_> {
+    /// Whether any object is a triangle (the triangle methods matter only then).
+    #[must_use]
+    pub const fn has_triangles(&self) -> bool {
+        let mut rest = self.objects;
+        while let [first, others @ ..] = rest {
+            if let ShapeDesc::Triangle { .. } = first.shape {
+                return true;
+            }
+            rest = others;
+        }
+        false
+    }
+}
+
 /// A pinhole camera. Coordinates are right-handed: with +y up and the camera looking along +z,
 /// +x points to the left of the image.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -95,6 +95,50 @@ impl Methods {
     };
 }
 
+impl Methods {
+    /// `self` and each variant of it that changes one method: what the speed–accuracy chart
+    /// compares. Some variants can equal `self` (when `self` already uses that method).
+    #[must_use]
+    pub const fn variants(self) -> [Self; 7] {
+        [
+            self,
+            Self {
+                sphere: SphereMethod::Stable,
+                ..self
+            },
+            Self {
+                triangle: TriangleMethod::MollerTrumbore,
+                ..self
+            },
+            Self {
+                triangle: TriangleMethod::Watertight,
+                ..self
+            },
+            Self {
+                roots: RootMethod::Approx,
+                ..self
+            },
+            Self {
+                rays: RayMethod::Stepped,
+                ..self
+            },
+            Self {
+                bias: BiasMethod::Exclude,
+                ..self
+            },
+        ]
+    }
+
+    /// Whether these methods tell a scene apart from `base`'s in format `S`: a triangle method
+    /// matters only with triangles, and fast roots exist only in the 32-bit fixed formats.
+    #[must_use]
+    pub fn matter<S: Scalar>(&self, base: &Self, has_triangles: bool) -> bool {
+        let triangle_moot = self.triangle != base.triangle && !has_triangles;
+        let roots_moot = self.roots == RootMethod::Approx && !S::FAST_ROOTS;
+        !triangle_moot && !roots_moot
+    }
+}
+
 impl RootMethod {
     /// √x.
     #[inline(always)]
@@ -208,6 +252,34 @@ mod tests {
         round_trip::<RootMethod>();
         round_trip::<RayMethod>();
         round_trip::<BiasMethod>();
+    }
+
+    #[test]
+    fn variants_change_one_method_each() {
+        let variants = Methods::LECTURE.variants();
+        assert_eq!(variants[0], Methods::LECTURE);
+        for variant in &variants[1..] {
+            let changed = [
+                variant.sphere != Methods::LECTURE.sphere,
+                variant.triangle != Methods::LECTURE.triangle,
+                variant.roots != Methods::LECTURE.roots,
+                variant.rays != Methods::LECTURE.rays,
+                variant.bias != Methods::LECTURE.bias,
+            ];
+            assert_eq!(changed.iter().filter(|&&c| c).count(), 1, "{variant}");
+        }
+        let watertight = Methods {
+            triangle: TriangleMethod::Watertight,
+            ..Methods::LECTURE
+        };
+        assert!(!watertight.matter::<f32>(&Methods::LECTURE, false));
+        assert!(watertight.matter::<f32>(&Methods::LECTURE, true));
+        let approx = Methods {
+            roots: RootMethod::Approx,
+            ..Methods::LECTURE
+        };
+        assert!(approx.matter::<crate::I16F16>(&Methods::LECTURE, false));
+        assert!(!approx.matter::<f32>(&Methods::LECTURE, false));
     }
 
     #[test]

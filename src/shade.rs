@@ -9,6 +9,7 @@ use crate::methods::BiasMethod;
 use crate::ray::{Ray, Span};
 use crate::scalar::Scalar;
 use crate::scene::{Object, Scene, Settings};
+use crate::vec3::Vec3;
 use heapless::{Vec, VecView};
 
 /// What a primary ray brings back.
@@ -27,16 +28,17 @@ struct Task<S> {
     ray: Ray<S>,
     weight: Rgb<S>,
     depth: u8,
-    /// The surface the ray leaves, for the exclude bias method.
-    from: Option<Leaving>,
+    /// The surface the ray leaves (none for a primary ray).
+    from: Option<Leaving<S>>,
 }
 
-/// The surface a secondary ray leaves: the object, and whether the ray goes into it (a solid
-/// entered, or crossed from inside).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct Leaving {
+/// The surface a secondary ray leaves: the object, whether the ray goes into it (a solid
+/// entered, or crossed from inside), and how far off the surface the epsilon method starts it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Leaving<S> {
     object: usize,
     into: bool,
+    tolerance: S,
 }
 
 /// The nearest hit of a ray.
@@ -115,14 +117,24 @@ impl<S: Scalar> Tracer<'_, S> {
         Sample { colour, object }
     }
 
-    /// The span a ray leaving `from` searches: beyond the surface tolerance for the epsilon
+    /// The span a ray leaving `from` searches: beyond the surface's tolerance for the epsilon
     /// method, beyond zero when the surface left is handled by exclusion.
-    fn span(&self, from: Option<Leaving>, max: S) -> Span<S> {
+    fn span(&self, from: Option<Leaving<S>>, max: S) -> Span<S> {
         let min = match (self.settings.methods.bias, from) {
             (BiasMethod::Exclude, Some(_)) => S::ZERO,
-            _ => self.settings.tolerance,
+            (BiasMethod::Epsilon, Some(leaving)) => leaving.tolerance,
+            (_, None) => self.settings.tolerance_base,
         };
         Span { min, max }
+    }
+
+    /// How far off the surface of `object` at `point` a secondary ray starts by the epsilon
+    /// method: a multiple of the rounding error of a surface point, which grows with its
+    /// coordinates, plus the object's own part ([`crate::scene::SURFACE_TOLERANCE_STEPS`]).
+    #[inline(always)]
+    fn tolerance(&self, point: Vec3<S>, object: &Object<S>) -> S {
+        let reach = point.x.abs().max(point.y.abs()).max(point.z.abs());
+        self.settings.tolerance_base + self.settings.tolerance_per_unit * reach + object.tolerance
     }
 
     /// Where `ray` meets `object` (number `index`), given the surface it leaves.
@@ -133,7 +145,7 @@ impl<S: Scalar> Tracer<'_, S> {
         span: Span<S>,
         index: usize,
         object: &Object<S>,
-        from: Option<Leaving>,
+        from: Option<Leaving<S>>,
     ) -> Option<S> {
         match from {
             Some(leaving)
@@ -149,7 +161,7 @@ impl<S: Scalar> Tracer<'_, S> {
 
     /// The nearest object along `ray` within the world.
     #[inline(always)]
-    fn nearest(&self, ray: &Ray<S>, from: Option<Leaving>) -> Option<Hit<'_, S>> {
+    fn nearest(&self, ray: &Ray<S>, from: Option<Leaving<S>>) -> Option<Hit<'_, S>> {
         let mut span = self.span(from, self.settings.ray_length);
         let mut nearest = None;
         for (index, object) in self.objects.iter().enumerate() {
@@ -182,16 +194,15 @@ impl<S: Scalar> Tracer<'_, S> {
         // Rays leave on the side the ray arrived on (shadow, reflection), or the other
         // (transmission); the epsilon method starts them a tolerance off the surface.
         let solid = shape.is_solid();
-        let this_side = Leaving {
+        let tolerance = self.tolerance(point, hit.object);
+        let leaving = |into| Leaving {
             object: hit.index,
-            into: solid && !entering,
+            into,
+            tolerance,
         };
-        let other_side = Leaving {
-            object: hit.index,
-            into: solid && entering,
-        };
+        let (this_side, other_side) = (leaving(solid && !entering), leaving(solid && entering));
         let offset = match self.settings.methods.bias {
-            BiasMethod::Epsilon => self.settings.tolerance,
+            BiasMethod::Epsilon => tolerance,
             BiasMethod::Exclude => S::ZERO,
         };
         let above = point.add_scaled(facing, offset);
@@ -263,7 +274,7 @@ impl<S: Scalar> Tracer<'_, S> {
         &self,
         stack: &mut VecView<Task<S>>,
         ray: Ray<S>,
-        from: Leaving,
+        from: Leaving<S>,
         parent: &Task<S>,
         share: S,
         depth: u8,
@@ -284,7 +295,7 @@ impl<S: Scalar> Tracer<'_, S> {
 
     /// How much light passes from `ray.origin` to a light `distance` away: 1 in the open, the
     /// product of the occluders' transmissions, 0 behind an opaque object.
-    fn transmittance(&self, ray: &Ray<S>, distance: S, from: Leaving) -> S {
+    fn transmittance(&self, ray: &Ray<S>, distance: S, from: Leaving<S>) -> S {
         let span = self.span(Some(from), distance);
         let mut passed = S::ONE;
         for (index, object) in self.objects.iter().enumerate() {
@@ -336,7 +347,7 @@ mod tests {
             lights,
             ambient: [ambient; 3],
             background: BackgroundDesc::Solid([0.2, 0.4, 0.6]),
-            far: 20.0,
+            far: 10.0,
             max_depth,
         }
     }

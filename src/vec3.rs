@@ -82,17 +82,14 @@ impl<S: Scalar> Vec3<S> {
         self.normalized_with_length(roots).0
     }
 
-    /// The unit vector in the same direction and the length, from one reciprocal square root:
-    /// |v| = |v|²·(1/|v|). The zero vector gives (zero, zero).
+    /// The unit vector in the same direction and the length, from one reciprocal square root
+    /// ([`Scalar::normalize3`]). The zero vector gives (zero, zero).
     #[inline(always)]
     #[must_use]
     pub fn normalized_with_length(self, roots: RootMethod) -> (Self, S) {
-        let squared = self.length_squared();
-        if squared == S::ZERO {
-            return (self, S::ZERO);
-        }
-        let inverse = roots.rsqrt(squared);
-        (self * inverse, squared * inverse)
+        let ([x, y, z], length) =
+            S::normalize3([self.x, self.y, self.z], roots == RootMethod::Approx);
+        (Self::new(x, y, z), length)
     }
 
     /// The point of the plane n·p = `offset` nearest `self`, for a unit normal n:

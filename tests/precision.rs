@@ -6,7 +6,7 @@ mod common;
 
 use common::{mismatch_pct, psnr, render};
 use obscura::{
-    BiasMethod, F32Approx, I16F16, I20F12, I32F32, Methods, RayMethod, RootMethod, Scalar,
+    BiasMethod, F32Approx, I16F16, I20F12, I32F32, Methods, RayMethod, RootMethod, Scalar, Scene,
     SceneDesc, SphereMethod, TriangleMethod, scenes,
 };
 
@@ -61,39 +61,54 @@ const WATERTIGHT: Methods = Methods {
 
 #[test]
 fn whitted_i16f16_by_each_method() {
-    check::<I16F16>(&scenes::WHITTED, LECTURE, 42.0, 0.02);
-    check::<I16F16>(&scenes::WHITTED, STABLE, 42.5, 0.01);
-    check::<I16F16>(&scenes::WHITTED, EXCLUDE, 43.0, 0.02);
-    check::<I16F16>(&scenes::WHITTED, APPROX, 40.5, 0.03);
-    check::<I16F16>(&scenes::WHITTED, STEPPED, 33.0, 0.05);
+    check::<I16F16>(&scenes::WHITTED, LECTURE, 41.5, 0.01);
+    check::<I16F16>(&scenes::WHITTED, STABLE, 42.0, 0.005);
+    check::<I16F16>(&scenes::WHITTED, EXCLUDE, 43.0, 0.01);
+    check::<I16F16>(&scenes::WHITTED, APPROX, 40.5, 0.02);
+    check::<I16F16>(&scenes::WHITTED, STEPPED, 33.5, 0.025);
 }
 
 #[test]
 fn shapes_i16f16_by_each_method() {
-    check::<I16F16>(&scenes::SHAPES, LECTURE, 48.5, 0.01);
-    check::<I16F16>(&scenes::SHAPES, STABLE, 54.0, 0.005);
-    check::<I16F16>(&scenes::SHAPES, MOLLER_TRUMBORE, 48.5, 0.01);
-    check::<I16F16>(&scenes::SHAPES, WATERTIGHT, 48.5, 0.01);
-    check::<I16F16>(&scenes::SHAPES, APPROX, 48.0, 0.02);
-    check::<I16F16>(&scenes::SHAPES, STEPPED, 34.0, 0.1);
+    check::<I16F16>(&scenes::SHAPES, LECTURE, 50.5, 0.005);
+    check::<I16F16>(&scenes::SHAPES, STABLE, 53.5, 0.001);
+    check::<I16F16>(&scenes::SHAPES, MOLLER_TRUMBORE, 50.5, 0.005);
+    check::<I16F16>(&scenes::SHAPES, WATERTIGHT, 50.5, 0.005);
+    check::<I16F16>(&scenes::SHAPES, APPROX, 49.0, 0.015);
+    check::<I16F16>(&scenes::SHAPES, STEPPED, 34.5, 0.1);
 }
 
 #[test]
 fn the_other_formats_with_the_lectures_methods() {
-    check::<I20F12>(&scenes::WHITTED, LECTURE, 30.0, 0.2);
-    check::<I20F12>(&scenes::SHAPES, LECTURE, 30.5, 0.2);
-    check::<F32Approx>(&scenes::WHITTED, LECTURE, 44.0, 0.01);
-    check::<F32Approx>(&scenes::SHAPES, LECTURE, 58.5, 0.01);
+    check::<I20F12>(&scenes::WHITTED, LECTURE, 30.0, 0.15);
+    check::<F32Approx>(&scenes::WHITTED, LECTURE, 57.5, 0.001);
+    check::<F32Approx>(&scenes::SHAPES, LECTURE, 85.5, 0.001);
+}
+
+/// The small sphere of `shapes` is too small for the quadratic's discriminant in i20f12 (the
+/// build refuses it), not for the stable form's.
+#[test]
+fn i20f12_holds_the_shapes_scene_only_by_the_stable_form() {
+    let refusal = Scene::<I20F12, 16, 4, 8>::build_with(&scenes::SHAPES, LECTURE)
+        .err()
+        .map(|error| error.to_string());
+    assert!(
+        refusal
+            .as_deref()
+            .is_some_and(|reason| reason.contains("radius² seen from the eye")),
+        "{refusal:?}"
+    );
+    check::<I20F12>(&scenes::SHAPES, STABLE, 31.5, 0.05);
 }
 
 #[test]
 fn whitted_f32() {
-    check::<f32>(&scenes::WHITTED, LECTURE, 49.0, 0.01);
+    check::<f32>(&scenes::WHITTED, LECTURE, 81.5, 0.001);
 }
 
 #[test]
 fn shapes_f32() {
-    check::<f32>(&scenes::SHAPES, LECTURE, 75.0, 0.01);
+    check::<f32>(&scenes::SHAPES, LECTURE, 90.5, 0.001);
 }
 
 #[test]

@@ -12,7 +12,7 @@
 //!   world" in every comparison the tracer makes.
 
 use super::Scalar;
-use super::isqrt::{isqrt_fast_u64, isqrt_u64, rsqrt_fixed, rsqrt_fixed_fast};
+use super::isqrt::{isqrt_fast_u64, isqrt_u64, rsqrt_fixed, rsqrt_fixed_fast, rsqrt_mantissa};
 use core::cmp::Ordering;
 use core::fmt;
 use core::ops::{Add, Div, Mul, Neg, Sub};
@@ -90,6 +90,9 @@ pub trait WideBits: Copy + Ord {
     fn sqrt_raw_fast(self, frac: u32) -> Self;
     /// [`Self::rsqrt_raw`] to about 15 bits.
     fn rsqrt_raw_fast(self, frac: u32) -> Self;
+    /// The unit vector along `v` and its length, in raw units of a format with `frac` fraction
+    /// bits, given `squared` = |v|² > 0 in raw units.
+    fn normalize_raw(v: [Self; 3], squared: Self, frac: u32, fast: bool) -> ([Self; 3], Self);
 }
 
 macro_rules! wide_bits {
@@ -126,6 +129,19 @@ macro_rules! wide_bits {
                 // Each product is below 2^(2n−2) in magnitude, so the difference fits.
                 let difference = a.wide_mul(b) - c.wide_mul(d);
                 (difference, difference.cmp(&0))
+            }
+            /// With X = `squared` and 1/√X = z·2^(s − 62) (`rsqrt_mantissa`): the unit vector's
+            /// raw coordinates are vᵢ·2^(f/2)/√X = vᵢ·z >> (62 − f/2 − s), and the length's
+            /// √X·2^(f/2) = X·z >> the same, both from one exact wide product each. The shift is
+            /// at least 62 − 16 − 31 = 15, so it is always to the right.
+            #[inline]
+            fn normalize_raw(v: [Self; 3], squared: Self, frac: u32, fast: bool) -> ([Self; 3], Self) {
+                let (z, s) = rsqrt_mantissa(squared.unsigned_abs().into(), fast);
+                // z < 2³¹ fits every signed raw type here.
+                let z = <$bits>::try_from(z).unwrap_or(<$bits>::MAX);
+                let right = 62 - frac / 2 - s;
+                let scale = |c: Self| Self::narrow_saturating(c.wide_mul(z), right);
+                (v.map(scale), scale(squared))
             }
             #[inline]
             fn sqrt_raw(self, frac: u32) -> Self {
@@ -344,6 +360,21 @@ where
         }
     }
 
+    #[inline]
+    fn normalize3(v: [Self; 3], approx: bool) -> ([Self; 3], Self) {
+        let squared = Self::dot3(v, v);
+        if squared.0 <= F::ZERO {
+            return (v, Self::ZERO);
+        }
+        let bits = v.map(|c| c.0.to_bits());
+        let (unit, length) =
+            F::Bits::normalize_raw(bits, squared.0.to_bits(), F::FRAC_NBITS, approx);
+        (
+            unit.map(|c| Self(F::from_bits(c))),
+            Self(F::from_bits(length)),
+        )
+    }
+
     /// a/b = a·(1/√|b|)²·sign(b): one fast reciprocal square root and two saturating products,
     /// no division.
     #[inline]
@@ -407,6 +438,27 @@ mod tests {
 
     fn fx(x: f64) -> I16F16 {
         I16F16::from_f64(x).unwrap()
+    }
+
+    #[test]
+    fn long_vectors_normalise_to_the_last_bit() {
+        // A normalised vector of length 100 through a 16.16 reciprocal root (0.01, 655 raw)
+        // would err by 1/655 relative; the mantissa keeps it within a few LSB.
+        for (x, y, z) in [(60.0, 0.0, 80.0), (0.3, -0.4, 0.0), (100.0, 120.0, -50.0)] {
+            let v = [fx(x), fx(y), fx(z)];
+            let (unit, length) = I16F16::normalize3(v, false);
+            let exact = (x * x + y * y + z * z).sqrt();
+            for (c, e) in unit.iter().zip([x, y, z]) {
+                assert!(
+                    (c.to_f64() - e / exact).abs() <= 2.0 / 65_536.0,
+                    "{x} {y} {z}: {c:?}"
+                );
+            }
+            assert!(
+                (length.to_f64() - exact).abs() <= exact * 1e-8 + 2.0 / 65_536.0,
+                "{length:?}"
+            );
+        }
     }
 
     #[test]

@@ -120,6 +120,17 @@ pub fn rsqrt_fixed_fast(x: u32, frac: u32) -> u32 {
     rsqrt_fixed_steps(x, frac, FAST)
 }
 
+/// The reciprocal square root of y > 0 as a mantissa and an exponent: (z, s) with
+/// 1/√y ≈ z·2^(s − 62), z < 2³¹ carrying about 30 correct bits (15 when `fast`) whatever the size
+/// of y — which a fixed-point result alone cannot do for large y.
+#[inline]
+#[must_use]
+pub fn rsqrt_mantissa(y: u64, fast: bool) -> (u64, u32) {
+    let (_, z, shift) = rsqrt_q30(y, if fast { FAST } else { FULL });
+    // 1/√y = (z/2³⁰)·2^(k − 32) with 2k = shift; z reaches 2³¹ only for m = ¼ exactly.
+    (z.min((1 << 31) - 1), shift / 2)
+}
+
 #[inline]
 fn rsqrt_fixed_steps(x: u32, frac: u32, steps: u32) -> u32 {
     if x == 0 {

@@ -91,6 +91,23 @@ pub trait Scalar:
         }
     }
 
+    /// The unit vector along `v` and |v|, the roots approximate when `approx`; a zero vector
+    /// gives itself and zero. Fixed formats override it to keep every bit of the unit vector
+    /// however long `v` is.
+    #[must_use]
+    fn normalize3(v: [Self; 3], approx: bool) -> ([Self; 3], Self) {
+        let squared = Self::dot3(v, v);
+        if squared == Self::ZERO {
+            return (v, Self::ZERO);
+        }
+        let inverse = if approx {
+            squared.rsqrt_approx()
+        } else {
+            squared.rsqrt()
+        };
+        (v.map(|c| c * inverse), squared * inverse)
+    }
+
     /// Whether the `_approx` operations below are faster approximations (the 32-bit fixed
     /// formats), rather than the exact operations under another name.
     const FAST_ROOTS: bool = false;

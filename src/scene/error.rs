@@ -227,7 +227,8 @@ impl fmt::Display for SceneError {
             } => write!(
                 f,
                 "{item}: {quantity} is {value:.3e}, below the {minimum:.3e} that {format} \
-                 resolves in a world of this size; use a finer format, enlarge it, or shrink far"
+                 resolves in a world of this size; use a finer format or a steadier method \
+                 (`obscura analyze` compares them), enlarge it, or shrink far"
             ),
             Self::MethodUnavailable { method, format } => write!(
                 f,

@@ -19,9 +19,11 @@ use crate::vec3::Vec3;
 use core::marker::PhantomData;
 use heapless::Vec;
 
-/// How far a secondary ray starts off its surface, and how near a hit may be, in steps of the
-/// format's resolution at the world's size: enough to clear the rounding of a hit point.
-pub const SURFACE_TOLERANCE_STEPS: f64 = 64.0;
+/// How far a secondary ray starts off its surface by the epsilon method, and how near a hit may
+/// be, in rounding errors: the format's resolution near zero (an LSB for fixed point, nothing
+/// for a float), plus its resolution at 1 times the surface point's largest coordinate, plus the
+/// object's own part ([`Object::tolerance`]).
+pub const SURFACE_TOLERANCE_STEPS: f64 = 8.0;
 
 /// A ray whose weight falls below 1/`CUTOFF` on every channel is not traced: it could not move
 /// a pixel by half a level of an 8-bit channel.
@@ -34,6 +36,12 @@ pub struct Object<S> {
     pub shape: Shape<S>,
     /// The surface.
     pub material: Material<S>,
+    /// The object's own part of the surface tolerance (see [`SURFACE_TOLERANCE_STEPS`] and
+    /// [`range::own_tolerance_terms`]). For a sphere of radius r, a ray from its surface
+    /// computes c = |o − c|² − r² ≈ 0 with the rounding error of r² and finds a root near c/2r:
+    /// the error grows as the sphere shrinks (for a fixed format, an LSB over r), besides the
+    /// rounding of a point r from the centre. A sheet adds nothing.
+    pub tolerance: S,
 }
 
 /// A scene ready to trace in format `S`, holding up to `OBJECTS` objects and `LIGHTS` lights
@@ -57,8 +65,10 @@ pub(crate) struct Settings<S> {
     pub(crate) background: Background<S>,
     /// The longest a ray can be: the world's diameter.
     pub(crate) ray_length: S,
-    /// See [`SURFACE_TOLERANCE_STEPS`].
-    pub(crate) tolerance: S,
+    /// The surface tolerance at the origin; see [`SURFACE_TOLERANCE_STEPS`].
+    pub(crate) tolerance_base: S,
+    /// How much it grows per unit of a surface point's largest coordinate (or radius).
+    pub(crate) tolerance_per_unit: S,
     /// See [`WEIGHT_CUTOFF`].
     pub(crate) min_weight: S,
     pub(crate) max_depth: u8,
@@ -210,12 +220,20 @@ impl<S: Scalar> Converter<S> {
                 )?,
             },
         };
-        let tolerance = SURFACE_TOLERANCE_STEPS * S::resolution(self.world);
+        // The tolerance at the eye, and its growth per unit of a coordinate.
+        let [base, per_unit, ..] = range::tolerance_terms(1.0, None);
+        let (tolerance_base, tolerance_per_unit) =
+            (range::error::<S>(&[base]), range::error::<S>(&[per_unit]));
         let settings = Settings {
             ambient: self.colour(Item::Scene, "ambient", desc.ambient)?,
             background,
             ray_length: self.scalar(Item::Scene, "a ray's length", 2.0 * self.world)?,
-            tolerance: self.scalar(Item::Scene, "the surface tolerance", tolerance)?,
+            tolerance_base: self.scalar(Item::Scene, "the surface tolerance", tolerance_base)?,
+            tolerance_per_unit: self.scalar(
+                Item::Scene,
+                "the surface tolerance",
+                tolerance_per_unit,
+            )?,
             min_weight: S::ratio(1, WEIGHT_CUTOFF),
             max_depth: desc.max_depth,
             methods,
@@ -234,11 +252,16 @@ impl<S: Scalar> Converter<S> {
         shape: &ShapeDesc,
         m: &MaterialDesc,
     ) -> Result<Object<S>, SceneError> {
+        let mut tolerance = 0.0;
         let shape = match *shape {
-            ShapeDesc::Sphere { center, radius } => Shape::Sphere(Sphere::new(
-                self.point(item, "sphere centre", center)?,
-                self.scalar(item, "sphere radius", f64::from(radius))?,
-            )),
+            ShapeDesc::Sphere { center, radius } => {
+                let r = f64::from(radius);
+                tolerance = range::error::<S>(&range::own_tolerance_terms(r));
+                Shape::Sphere(Sphere::new(
+                    self.point(item, "sphere centre", center)?,
+                    self.scalar(item, "sphere radius", r)?,
+                ))
+            }
             ShapeDesc::Plane {
                 point,
                 normal,
@@ -300,7 +323,11 @@ impl<S: Scalar> Converter<S> {
             ior: self.scalar(item, "ior", ior)?,
             inv_ior: self.scalar(item, "1 / ior", 1.0 / ior)?,
         };
-        Ok(Object { shape, material })
+        Ok(Object {
+            shape,
+            material,
+            tolerance: self.scalar(item, "the surface tolerance", tolerance)?,
+        })
     }
 
     /// The checkerboard's axes: the world axis least aligned with the normal, made

@@ -5,6 +5,7 @@
 //! All positions are relative to the eye and lie within the world radius R = `far`, so a ray
 //! origin o satisfies |o| ≤ R and a ray is never longer than the world's diameter 2R.
 
+use super::SURFACE_TOLERANCE_STEPS;
 use super::error::{Item, SceneError};
 use super::validate::distance;
 use crate::desc::{BackgroundDesc, SceneDesc, ShapeDesc};
@@ -32,9 +33,9 @@ pub struct Magnitude {
 
 /// A small quantity a computation must resolve against the rounding error it makes.
 ///
-/// The error is `scale` times the format's resolution at `against` ([`Scalar::resolution`]):
-/// for a fixed format a multiple of its LSB, for a float a multiple of its relative precision
-/// at that magnitude.
+/// The error is a sum of terms, each a coefficient times the format's resolution at some
+/// magnitude ([`Scalar::resolution`]): for a fixed format a multiple of its LSB, for a float a
+/// multiple of its relative precision at that magnitude. The feature must span `steps` errors.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Feature {
     /// Whose feature.
@@ -43,25 +44,68 @@ pub struct Feature {
     pub quantity: &'static str,
     /// Its size.
     pub value: f64,
-    /// How many resolution steps one rounding error of the computation spans.
-    pub scale: f64,
-    /// The magnitude at which the computation rounds.
-    pub against: f64,
+    /// The error's terms.
+    pub terms: Terms,
+    /// How many errors the feature must span.
+    pub steps: f64,
 }
 
 impl Feature {
     /// The error format `S` makes computing this feature.
     #[must_use]
     pub fn error<S: Scalar>(&self) -> f64 {
-        self.scale * S::resolution(self.against)
+        error::<S>(&self.terms)
     }
 
-    /// The smallest value format `S` resolves here: [`MIN_FEATURE_STEPS`] of its errors.
+    /// The smallest value format `S` resolves here: `steps` of its errors.
     #[must_use]
     pub fn minimum<S: Scalar>(&self) -> f64 {
-        MIN_FEATURE_STEPS * self.error::<S>()
+        self.steps * self.error::<S>()
     }
 }
+
+/// An error as a sum of terms, each (coefficient, magnitude): the coefficient times the
+/// format's resolution at the magnitude. Unused terms are (0, 0).
+pub type Terms = [(f64, f64); 4];
+
+/// The size of the error `terms` describe in format `S`.
+#[must_use]
+pub fn error<S: Scalar>(terms: &[(f64, f64)]) -> f64 {
+    terms
+        .iter()
+        .map(|&(coefficient, magnitude)| coefficient * S::resolution(magnitude))
+        .sum()
+}
+
+/// The surface tolerance ([`SURFACE_TOLERANCE_STEPS`]) at a surface point whose largest
+/// coordinate is at most `reach` (relative to the eye), on a sphere of `radius` or a sheet.
+#[must_use]
+pub fn tolerance_terms(reach: f64, radius: Option<f64>) -> Terms {
+    let [own, own_small] = radius.map_or([(0.0, 0.0); 2], own_tolerance_terms);
+    [
+        (SURFACE_TOLERANCE_STEPS, 0.0),
+        (SURFACE_TOLERANCE_STEPS * reach, 1.0),
+        own,
+        own_small,
+    ]
+}
+
+/// A sphere's own part of the surface tolerance ([`super::Object::tolerance`]): the rounding
+/// of a point `radius` from its centre, and the error of the root its test finds for a ray
+/// that starts on it, c/2r with c rounded at r².
+#[must_use]
+pub fn own_tolerance_terms(radius: f64) -> [(f64, f64); 2] {
+    [
+        (SURFACE_TOLERANCE_STEPS * radius, 1.0),
+        (SURFACE_TOLERANCE_STEPS / radius, radius * radius),
+    ]
+}
+
+/// The error in |d|² of a unit direction, in resolutions at 1: each coordinate is rounded.
+const DIRECTION_LENGTH: f64 = 2.0;
+
+/// One 8-bit level of a display channel: the least change of colour that can show.
+const LEVEL: f64 = 1.0 / 255.0;
 
 /// Every magnitude of the scene's computations by `methods` (the description must have passed
 /// validation).
@@ -215,60 +259,154 @@ fn colour_sum(desc: &SceneDesc<'_>) -> f64 {
     (f64::from(desc.max_depth) + 1.0) * local.max(background)
 }
 
-/// Every feature the scene's computations by `methods` must resolve.
+/// Every feature the scene's computations by `methods` must resolve, object by object and then
+/// light by light. A sphere's or a triangle's first feature is its intersection test's (for a
+/// sphere, as seen from the eye), whose error is the band around its edge where a ray may be
+/// misjudged.
 pub fn features<'a>(
     desc: &'a SceneDesc<'a>,
     methods: &'a Methods,
 ) -> impl Iterator<Item = Feature> + 'a {
     let world = f64::from(desc.far);
     let eye = desc.camera.eye;
-    desc.objects
+    let objects = desc
+        .objects
         .iter()
         .enumerate()
-        .filter_map(move |(i, object)| {
+        .flat_map(move |(i, object)| {
             let item = Item::Object(i);
+            let feature = |quantity, value, terms| Feature {
+                item,
+                quantity,
+                value,
+                terms,
+                steps: MIN_FEATURE_STEPS,
+            };
+            // The surface tolerance is a dead zone in front of every surface: the eye must stand
+            // well clear of it, or the tolerance bends every ray it sends there.
+            let clearance = |value, reach, radius| {
+                feature(
+                    "the eye's distance from its surface, against the surface tolerance",
+                    value,
+                    tolerance_terms(reach, radius),
+                )
+            };
             match object.shape {
                 ShapeDesc::Sphere { center, radius } => {
-                    let f = world + distance(center, eye);
                     let r = f64::from(radius);
-                    // The discriminant is r² less a rounded difference. The quadratic's, b² − c,
-                    // errs by about |f| times the resolution at |f| (half a step in b, doubled by
-                    // the square); the stable form's, r² − |f + b·d|², by about 2r times it.
-                    let (quantity, scale) = match methods.sphere {
-                        SphereMethod::Quadratic => ("radius² against the quadratic's b² − c", f),
-                        SphereMethod::Stable => {
-                            ("radius² against the stable discriminant", 2.0 * r)
-                        }
+                    let from_eye = distance(center, eye);
+                    // Seen from the eye the sphere must keep its shape; seen from anywhere in the
+                    // world (a secondary ray's origin) it must at least not vanish.
+                    let across_world = Feature {
+                        steps: 1.0,
+                        ..feature(
+                            "radius² seen from across the world",
+                            r * r,
+                            discriminant_error(methods.sphere, r, world + from_eye),
+                        )
                     };
-                    Some(Feature {
-                        item,
-                        quantity,
-                        value: r * r,
-                        scale,
-                        against: f,
-                    })
+                    [
+                        Some(feature(
+                            "radius² seen from the eye",
+                            r * r,
+                            discriminant_error(methods.sphere, r, from_eye),
+                        )),
+                        Some(across_world),
+                        Some(feature(
+                            "radius, against the surface tolerance",
+                            r,
+                            tolerance_terms(from_eye + r, Some(r)),
+                        )),
+                        Some(clearance((from_eye - r).abs(), from_eye + r, Some(r))),
+                    ]
                 }
-                ShapeDesc::Plane { checker, .. } => checker.map(|checker| Feature {
-                    item,
-                    quantity: "checker square size",
-                    value: f64::from(checker.size),
-                    scale: 1.0,
-                    against: world,
-                }),
+                ShapeDesc::Plane {
+                    point,
+                    normal,
+                    checker,
+                } => {
+                    let n = Vec3::from_f32(normal).direction().unwrap_or(Vec3::ZERO);
+                    let height = n.dot(Vec3::from_f32(eye) - Vec3::from_f32(point)).abs();
+                    [
+                        checker.map(|checker| {
+                            let size = f64::from(checker.size);
+                            feature(
+                                "checker square size",
+                                size,
+                                [(1.0, world), (1.0, size), (0.0, 0.0), (0.0, 0.0)],
+                            )
+                        }),
+                        Some(clearance(height, height, None)),
+                        None,
+                        None,
+                    ]
+                }
                 ShapeDesc::Triangle { vertices } => {
-                    let (e1, e2) = edges(vertices);
+                    // The tests' determinants are twice the area seen along the ray; their
+                    // numerators err by the rounding of the unit direction times |s|·|e|, with s the
+                    // way from the ray's origin to a corner and e the longest edge.
+                    let corners = vertices.map(Vec3::from_f32);
+                    let (e1, e2) = (corners[1] - corners[0], corners[2] - corners[0]);
                     let s = world + distance(vertices[0], eye);
                     let longest = e1.length().max(e2.length());
-                    Some(Feature {
-                        item,
-                        quantity: "twice the triangle's area",
-                        value: e1.cross(e2).length(),
-                        scale: 1.0,
-                        against: s * longest,
-                    })
+                    let area = e1.cross(e2).length();
+                    let gap = distance_to_triangle(Vec3::from_f32(eye), corners);
+                    [
+                        Some(feature(
+                            "twice the triangle's area",
+                            area,
+                            [(s * longest, 1.0), (1.0, area), (0.0, 0.0), (0.0, 0.0)],
+                        )),
+                        Some(clearance(gap, gap, None)),
+                        None,
+                        None,
+                    ]
                 }
             }
-        })
+            .into_iter()
+            .flatten()
+        });
+    // A light multiplies the rounding of a cosine (Lambert's, a highlight's) by its intensity:
+    // that must stay below one level of a display channel.
+    let lights = desc.lights.iter().enumerate().map(move |(i, light)| {
+        let intensity = light.colour.iter().copied().fold(0.0_f32, f32::max);
+        Feature {
+            item: Item::Light(i),
+            quantity: "one display level against the light's intensity times a rounded cosine",
+            value: LEVEL,
+            terms: [
+                (f64::from(intensity), 1.0),
+                (0.0, 0.0),
+                (0.0, 0.0),
+                (0.0, 0.0),
+            ],
+            steps: 1.0,
+        }
+    });
+    objects.chain(lights)
+}
+
+/// The error of a sphere's discriminant, for a ray whose origin is `f` from the centre.
+///
+/// The discriminant is r² less a rounded difference. The quadratic's, b² − c, errs by f² times
+/// the error in |d|² (it takes a = |d|² as 1, and c = |f|² − r²), by f times half a step at f
+/// (b rounded, then squared) and by r²'s own rounding; the stable form's, r² − |f + b·d|², by
+/// 2r·f times the error in |d|², 2r times half a step at f, and r²'s rounding.
+fn discriminant_error(method: SphereMethod, r: f64, f: f64) -> Terms {
+    match method {
+        SphereMethod::Quadratic => [
+            (f * f * DIRECTION_LENGTH, 1.0),
+            (f, f),
+            (1.0, r * r),
+            (0.0, 0.0),
+        ],
+        SphereMethod::Stable => [
+            (2.0 * r * f * DIRECTION_LENGTH, 1.0),
+            (2.0 * r, f),
+            (1.0, r * r),
+            (0.0, 0.0),
+        ],
+    }
 }
 
 /// Proves that format `S` holds the scene for `methods`, or says which value does not fit.
@@ -294,8 +432,29 @@ pub(super) fn check<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods) -> Resul
     Ok(())
 }
 
-/// A triangle's two edges from its first corner, in `f64`.
-fn edges(vertices: [[f32; 3]; 3]) -> (Vec3<f64>, Vec3<f64>) {
-    let [a, b, c] = vertices.map(Vec3::from_f32);
-    (b - a, c - a)
+/// The distance from `p` to the nearest point of the triangle `[a, b, c]` (Ericson, Real-Time
+/// Collision Detection, 5.1.5: which corner, edge or the face that point lies on).
+fn distance_to_triangle(p: Vec3<f64>, [a, b, c]: [Vec3<f64>; 3]) -> f64 {
+    let (ab, ac) = (b - a, c - a);
+    let (d1, d2) = (ab.dot(p - a), ac.dot(p - a));
+    let (d3, d4) = (ab.dot(p - b), ac.dot(p - b));
+    let (d5, d6) = (ab.dot(p - c), ac.dot(p - c));
+    let (va, vb, vc) = (d3 * d6 - d5 * d4, d5 * d2 - d1 * d6, d1 * d4 - d3 * d2);
+    let nearest = if d1 <= 0.0 && d2 <= 0.0 {
+        a
+    } else if d3 >= 0.0 && d4 <= d3 {
+        b
+    } else if d6 >= 0.0 && d5 <= d6 {
+        c
+    } else if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        a.add_scaled(ab, d1 / (d1 - d3))
+    } else if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        a.add_scaled(ac, d2 / (d2 - d6))
+    } else if va <= 0.0 && d4 >= d3 && d5 >= d6 {
+        b.add_scaled(c - b, (d4 - d3) / ((d4 - d3) + (d5 - d6)))
+    } else {
+        let sum = va + vb + vc;
+        a.add_scaled(ab, vb / sum).add_scaled(ac, vc / sum)
+    };
+    (p - nearest).length()
 }

@@ -81,36 +81,6 @@ const METHODS: Methods = Methods {
     },
 };
 
-/// With `chart`, every frame is drawn by [`METHODS`] and by each variant that changes one
-/// method: what the speed–accuracy chart compares.
-const VARIANTS: [Methods; 7] = [
-    METHODS,
-    Methods {
-        sphere: SphereMethod::Stable,
-        ..METHODS
-    },
-    Methods {
-        triangle: TriangleMethod::MollerTrumbore,
-        ..METHODS
-    },
-    Methods {
-        triangle: TriangleMethod::Watertight,
-        ..METHODS
-    },
-    Methods {
-        roots: RootMethod::Approx,
-        ..METHODS
-    },
-    Methods {
-        rays: RayMethod::Stepped,
-        ..METHODS
-    },
-    Methods {
-        bias: BiasMethod::Exclude,
-        ..METHODS
-    },
-];
-
 /// The host's capacities, against which the sized storage is reported.
 const FIXED_OBJECTS: usize = 64;
 const FIXED_LIGHTS: usize = 16;
@@ -123,44 +93,16 @@ macro_rules! formats {
         const OBJECTS: usize = DESC.objects.len();
         const LIGHTS: usize = DESC.lights.len();
         const RAYS: usize = DESC.max_depth as usize + 1;
-        let has_triangles = DESC
-            .objects
-            .iter()
-            .any(|o| matches!(o.shape, obscura::ShapeDesc::Triangle { .. }));
         #[cfg(feature = "format-i16f16")]
-        variants::<obscura::I16F16, OBJECTS, LIGHTS, RAYS>(
-            $backend,
-            $clock,
-            $name,
-            &DESC,
-            has_triangles,
-        );
+        variants::<obscura::I16F16, OBJECTS, LIGHTS, RAYS>($backend, $clock, $name, &DESC);
         #[cfg(feature = "format-i20f12")]
-        variants::<obscura::I20F12, OBJECTS, LIGHTS, RAYS>(
-            $backend,
-            $clock,
-            $name,
-            &DESC,
-            has_triangles,
-        );
+        variants::<obscura::I20F12, OBJECTS, LIGHTS, RAYS>($backend, $clock, $name, &DESC);
         #[cfg(feature = "format-i32f32")]
-        variants::<obscura::I32F32, OBJECTS, LIGHTS, RAYS>(
-            $backend,
-            $clock,
-            $name,
-            &DESC,
-            has_triangles,
-        );
+        variants::<obscura::I32F32, OBJECTS, LIGHTS, RAYS>($backend, $clock, $name, &DESC);
         #[cfg(feature = "format-f32-approx")]
-        variants::<obscura::F32Approx, OBJECTS, LIGHTS, RAYS>(
-            $backend,
-            $clock,
-            $name,
-            &DESC,
-            has_triangles,
-        );
+        variants::<obscura::F32Approx, OBJECTS, LIGHTS, RAYS>($backend, $clock, $name, &DESC);
         #[cfg(feature = "format-f32")]
-        variants::<f32, OBJECTS, LIGHTS, RAYS>($backend, $clock, $name, &DESC, has_triangles);
+        variants::<f32, OBJECTS, LIGHTS, RAYS>($backend, $clock, $name, &DESC);
     }};
 }
 
@@ -172,28 +114,25 @@ pub fn render_all(backend: &mut impl Backend, clock: &Clock) {
     formats!(backend, clock, "shapes", scenes::SHAPES);
 }
 
-/// Renders a scene in format `S` by [`METHODS`], and with `chart` by each variant that makes
-/// sense: a triangle method only where there are triangles, fast roots only where the format
-/// has them, no variant that equals another.
+/// Renders a scene in format `S` by [`METHODS`], and with `chart` by each of its variants that
+/// makes sense ([`Methods::variants`], [`Methods::matter`]), none twice.
 fn variants<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
     backend: &mut impl Backend,
     clock: &Clock,
     name: &str,
     desc: &SceneDesc<'_>,
-    has_triangles: bool,
 ) {
-    let chosen: &[Methods] = if cfg!(feature = "chart") {
-        &VARIANTS
+    let variants = METHODS.variants();
+    let chosen = if cfg!(feature = "chart") {
+        &variants[..]
     } else {
-        &VARIANTS[..1]
+        &variants[..1]
     };
     for (i, &methods) in chosen.iter().enumerate() {
         let repeated = chosen
             .get(..i)
             .is_some_and(|earlier| earlier.contains(&methods));
-        let pointless = (methods.triangle != METHODS.triangle && !has_triangles)
-            || (methods.roots == RootMethod::Approx && !S::FAST_ROOTS);
-        if !repeated && !pointless {
+        if !repeated && methods.matter::<S>(&METHODS, desc.has_triangles()) {
             let job = Job {
                 scene: name,
                 format: S::NAME,
