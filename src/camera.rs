@@ -183,7 +183,7 @@ impl<S: Scalar> Iterator for Rays<S> {
 }
 
 /// (i + ½) / n = (2i + 1) / 2n, one quotient of integers that every format holds exactly up
-/// to [`MAX_IMAGE_SIDE`].
+/// to [`MAX_IMAGE_SIDE`] (with approximate roots, to their 14 bits).
 #[inline]
 fn pixel_centre<S: Scalar>(i: u32, n: u32, roots: RootMethod) -> S {
     let num = i32::try_from(2 * i + 1).unwrap_or(i32::MAX);
