@@ -42,6 +42,8 @@ impl SceneDesc<'_> {
 /// A pinhole camera. Coordinates are right-handed: with +y up and the camera looking along +z,
 /// +x points to the left of the image.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct CameraDesc {
     /// The eye: where every primary ray starts.
     pub eye: [f32; 3],
@@ -55,15 +57,23 @@ pub struct CameraDesc {
 
 /// One object: a shape and what it is made of.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct ObjectDesc {
     /// The geometry.
     pub shape: ShapeDesc,
     /// The surface.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub material: MaterialDesc,
 }
 
 /// The geometric primitives.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    serde(rename_all = "snake_case", deny_unknown_fields)
+)]
 pub enum ShapeDesc {
     /// A sphere.
     Sphere {
@@ -91,6 +101,8 @@ pub enum ShapeDesc {
 
 /// A checkerboard on a plane: squares alternate between the material's colour and `colour`.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct CheckerDesc {
     /// The second colour.
     pub colour: [f32; 3],
@@ -100,6 +112,8 @@ pub struct CheckerDesc {
 
 /// How a surface reflects, after Whitted (1980).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct MaterialDesc {
     /// The surface colour, linear RGB in [0, 1].
     pub colour: [f32; 3],
@@ -115,6 +129,13 @@ pub struct MaterialDesc {
     pub transmission: f32,
     /// Index of refraction (≥ 1) for transmitted rays.
     pub ior: f32,
+}
+
+/// A matte light grey: what a scene file's material is where it says nothing else.
+impl Default for MaterialDesc {
+    fn default() -> Self {
+        Self::matte([0.8; 3])
+    }
 }
 
 impl MaterialDesc {
@@ -135,6 +156,8 @@ impl MaterialDesc {
 
 /// A point light.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct LightDesc {
     /// Where it is.
     pub position: [f32; 3],
@@ -144,6 +167,11 @@ pub struct LightDesc {
 
 /// What rays that hit nothing see.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    serde(rename_all = "snake_case", deny_unknown_fields)
+)]
 pub enum BackgroundDesc {
     /// One colour everywhere.
     Solid([f32; 3]),

@@ -8,7 +8,7 @@
 use super::SURFACE_TOLERANCE_STEPS;
 use super::error::{Item, SceneError};
 use super::validate::distance;
-use crate::desc::{BackgroundDesc, SceneDesc, ShapeDesc};
+use crate::desc::{BackgroundDesc, ObjectDesc, SceneDesc, ShapeDesc};
 use crate::methods::{Methods, SphereMethod, TriangleMethod};
 use crate::scalar::Scalar;
 use crate::vec3::Vec3;
@@ -156,11 +156,8 @@ pub fn magnitudes<'a>(
                         let size = f64::from(checker.size);
                         ("a checker coordinate", (2.0 * world + 2.0 * size) / size)
                     });
-                    // The world test squares a point only once each coordinate is within R.
-                    [
-                        Some(("|p|² in the world test", 3.0 * world * world)),
-                        checker,
-                    ]
+                    // The world test squares a point only scaled to within 1 on every axis.
+                    [checker, None]
                 }
                 ShapeDesc::Triangle { vertices } => {
                     let corners = vertices.map(Vec3::from_f32);
@@ -284,6 +281,7 @@ pub fn features<'a>(
             };
             // The surface tolerance is a dead zone in front of every surface: the eye must stand
             // well clear of it, or the tolerance bends every ray it sends there.
+            let gap = clearance(desc, object);
             let clearance = |value, reach, radius| {
                 feature(
                     "the eye's distance from its surface, against the surface tolerance",
@@ -317,30 +315,22 @@ pub fn features<'a>(
                             r,
                             tolerance_terms(from_eye + r, Some(r)),
                         )),
-                        Some(clearance((from_eye - r).abs(), from_eye + r, Some(r))),
+                        Some(clearance(gap, from_eye + r, Some(r))),
                     ]
                 }
-                ShapeDesc::Plane {
-                    point,
-                    normal,
-                    checker,
-                } => {
-                    let n = Vec3::from_f32(normal).direction().unwrap_or(Vec3::ZERO);
-                    let height = n.dot(Vec3::from_f32(eye) - Vec3::from_f32(point)).abs();
-                    [
-                        checker.map(|checker| {
-                            let size = f64::from(checker.size);
-                            feature(
-                                "checker square size",
-                                size,
-                                [(1.0, world), (1.0, size), (0.0, 0.0), (0.0, 0.0)],
-                            )
-                        }),
-                        Some(clearance(height, height, None)),
-                        None,
-                        None,
-                    ]
-                }
+                ShapeDesc::Plane { checker, .. } => [
+                    checker.map(|checker| {
+                        let size = f64::from(checker.size);
+                        feature(
+                            "checker square size",
+                            size,
+                            [(1.0, world), (1.0, size), (0.0, 0.0), (0.0, 0.0)],
+                        )
+                    }),
+                    Some(clearance(gap, gap, None)),
+                    None,
+                    None,
+                ],
                 ShapeDesc::Triangle { vertices } => {
                     // The tests' determinants are twice the area seen along the ray; their
                     // numerators err by the rounding of the unit direction times |s|·|e|, with s the
@@ -350,7 +340,6 @@ pub fn features<'a>(
                     let s = world + distance(vertices[0], eye);
                     let longest = e1.length().max(e2.length());
                     let area = e1.cross(e2).length();
-                    let gap = distance_to_triangle(Vec3::from_f32(eye), corners);
                     [
                         Some(feature(
                             "twice the triangle's area",
@@ -432,6 +421,21 @@ pub(super) fn check<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods) -> Resul
     Ok(())
 }
 
+/// How far the eye is from the nearest point of `object`'s surface.
+#[must_use]
+pub fn clearance(desc: &SceneDesc<'_>, object: &ObjectDesc) -> f64 {
+    let eye = Vec3::from_f32(desc.camera.eye);
+    match object.shape {
+        ShapeDesc::Sphere { center, radius } => {
+            ((Vec3::from_f32(center) - eye).length() - f64::from(radius)).abs()
+        }
+        ShapeDesc::Plane { point, normal, .. } => Vec3::from_f32(normal)
+            .direction()
+            .map_or(0.0, |n| n.dot(eye - Vec3::from_f32(point)).abs()),
+        ShapeDesc::Triangle { vertices } => distance_to_triangle(eye, vertices.map(Vec3::from_f32)),
+    }
+}
+
 /// The distance from `p` to the nearest point of the triangle `[a, b, c]` (Ericson, Real-Time
 /// Collision Detection, 5.1.5: which corner, edge or the face that point lies on).
 fn distance_to_triangle(p: Vec3<f64>, [a, b, c]: [Vec3<f64>; 3]) -> f64 {
@@ -457,4 +461,30 @@ fn distance_to_triangle(p: Vec3<f64>, [a, b, c]: [Vec3<f64>; 3]) -> f64 {
         a.add_scaled(ab, vb / sum).add_scaled(ac, vc / sum)
     };
     (p - nearest).length()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_distance_to_a_triangle_is_to_its_face_edge_or_corner() {
+        let corners = [
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(4.0, 0.0, 0.0),
+            Vec3::new(0.0, 4.0, 0.0),
+        ];
+        let cases = [
+            // Above the face, beside an edge, beyond a corner, in the plane inside.
+            (Vec3::new(1.0, 1.0, 3.0), 3.0),
+            (Vec3::new(2.0, -2.0, 0.0), 2.0),
+            (Vec3::new(7.0, -4.0, 0.0), 5.0),
+            (Vec3::new(1.0, 1.0, 0.0), 0.0),
+            (Vec3::new(3.0, 3.0, 0.0), 2.0_f64.sqrt()),
+        ];
+        for (p, want) in cases {
+            let got = distance_to_triangle(p, corners);
+            assert!((got - want).abs() < 1e-12, "{p:?}: {got} ≠ {want}");
+        }
+    }
 }

@@ -12,7 +12,11 @@ pub struct Plane<S> {
     normal: Vec3<S>,
     offset: S,
     world_radius: S,
-    world_radius_squared: S,
+    /// A power of two no smaller than 1/(2R): scaled by it, a point within R on every axis has
+    /// coordinates within 1, whose squares sum to at most 3 in any format.
+    world_scale: S,
+    /// (R·`world_scale`)², at most 1.
+    scaled_radius_squared: S,
     checker: Option<Checker<S>>,
 }
 
@@ -40,11 +44,21 @@ impl<S: Scalar> Plane<S> {
         world_radius: S,
         checker: Option<Checker<S>>,
     ) -> Self {
+        // Halve the scale until R·scale ≤ 1 (by doubling a reach up to at most 2R, a ray's
+        // length, which the scene build proved to fit).
+        let (mut reach, mut world_scale) = (S::ONE, S::ONE);
+        let half = S::ratio(1, 2);
+        while reach < world_radius {
+            reach = reach + reach;
+            world_scale = world_scale * half;
+        }
+        let scaled_radius = world_radius * world_scale;
         Self {
             normal,
             offset: normal.dot(point),
             world_radius,
-            world_radius_squared: world_radius * world_radius,
+            world_scale,
+            scaled_radius_squared: scaled_radius * scaled_radius,
             checker,
         }
     }
@@ -77,12 +91,16 @@ impl<S: Scalar> Plane<S> {
         self.inside_world(ray.at(t)).then_some(t)
     }
 
-    /// |p| ≤ R. Each coordinate is tested first: a point that passes has |p|² ≤ 3R², inside the
-    /// range the scene build proved, while |p|² of a point up to 3R away might not be.
+    /// |p| ≤ R, tested as |p·s|² ≤ (R·s)² with the power of two s ≈ 1/R: each coordinate is
+    /// tested first, so that the squares are of numbers within 1 (R² itself may not fit the
+    /// format).
     fn inside_world(&self, p: Vec3<S>) -> bool {
         let r = self.world_radius;
         let within = |c: S| c <= r && c >= -r;
-        within(p.x) && within(p.y) && within(p.z) && p.length_squared() <= self.world_radius_squared
+        within(p.x)
+            && within(p.y)
+            && within(p.z)
+            && (p * self.world_scale).length_squared() <= self.scaled_radius_squared
     }
 
     /// The unit normal (the same everywhere).
@@ -115,6 +133,7 @@ impl<S: Scalar> Plane<S> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scalar::I16F16;
     use crate::test_util::{assert_close, for_each_format, span, v};
 
     fn floor<S: Scalar>(checker: Option<Checker<S>>) -> Plane<S> {
@@ -189,6 +208,28 @@ mod tests {
                 None
             );
         });
+    }
+
+    #[test]
+    fn the_world_test_holds_a_world_whose_radius_squared_does_not_fit() {
+        // R = 12 000 in 16.16: R² is far beyond its range of 32 768, a ray's length 2R is not.
+        let world = 12_000.0;
+        let plane = Plane::<I16F16>::new(
+            v(0.0, -1.0, 0.0),
+            v(0.0, 1.0, 0.0),
+            I16F16::from_f64(world).unwrap(),
+            None,
+        );
+        // Points on the floor along the diagonal of the xz plane, at distance √2·c.
+        let at = |c: f64| plane.inside_world(v(c, -1.0, c));
+        assert!(at(8000.0), "11 314 away: inside");
+        assert!(at(8480.0), "11 992 away: just inside");
+        assert!(!at(8520.0), "12 049 away: just outside");
+        assert!(!at(12_500.0), "beyond R on an axis");
+        // And a ray that meets the floor inside the world is seen there.
+        let ray = Ray::new(v(0.0, 0.0, 0.0), v(0.0, -0.6, 0.8));
+        let t = plane.intersect(&ray, span(2.0 * world), RootMethod::Exact);
+        assert_close(t.unwrap(), 1.0 / 0.6, 1e-3);
     }
 
     #[test]

@@ -24,6 +24,9 @@ pub trait Backend {
     fn report(&mut self, report: &Report<'_>);
     /// Reports a frame that could not be drawn, and why.
     fn failed(&mut self, job: &Job<'_>, why: &dyn fmt::Display);
+    /// Reports a chart variant whose scene the format cannot hold by its methods, and why:
+    /// an outcome of the comparison, not a failure.
+    fn refused(&mut self, job: &Job<'_>, why: &dyn fmt::Display);
 }
 
 /// One frame to draw.
@@ -160,6 +163,7 @@ fn render<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usiz
         });
     let (scene, camera) = match built {
         Ok(built) => built,
+        Err(error) if cfg!(feature = "chart") => return backend.refused(job, &error),
         Err(error) => return backend.failed(job, &error),
     };
     let ((drawn, ticks), stack_bytes) = backend.frame(job, |display| {

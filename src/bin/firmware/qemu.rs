@@ -8,6 +8,9 @@
 //!   width=240 height=240 ticks=… stack_bytes=… storage_bytes=… fixed_storage_bytes=… file=…
 //! ```
 //!
+//! A chart variant the scene build refuses is a line `refused scene=… format=… methods=…
+//! message=…`, and one that fails `error …` likewise.
+//!
 //! The firmware then exits through semihosting: 0 when every frame was drawn, 1 otherwise, and
 //! 1 on a panic (panic-semihosting) or a hard fault.
 #![allow(
@@ -88,6 +91,15 @@ impl Backend for Host {
         self.all_drawn = false;
         hprintln!(
             "error scene={} format={} methods={} message={why}",
+            job.scene,
+            job.format,
+            Path(job)
+        );
+    }
+
+    fn refused(&mut self, job: &Job<'_>, why: &dyn fmt::Display) {
+        hprintln!(
+            "refused scene={} format={} methods={} message={why}",
             job.scene,
             job.format,
             Path(job)

@@ -132,6 +132,10 @@ impl Backend for Board {
         );
         self.caption(0, format_args!("{why}"), Rgb565::RED);
     }
+
+    fn refused(&mut self, job: &Job<'_>, why: &dyn fmt::Display) {
+        self.failed(job, why);
+    }
 }
 
 impl Board {
