@@ -1,9 +1,10 @@
 //! The command line: what each subcommand takes.
 
+use crate::cost::Machine;
 use crate::firmware::Target;
 use crate::format::Format;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
-use clap::{Args, Parser, Subcommand};
+use clap::{Args, Parser, Subcommand, ValueEnum};
 use obscura::methods::MethodName;
 use obscura::{BiasMethod, Methods, RayMethod, RootMethod, SphereMethod, TriangleMethod};
 use std::path::PathBuf;
@@ -23,6 +24,10 @@ pub struct Cli {
 pub enum Command {
     /// List the built-in scenes.
     Scenes,
+    /// Range analysis of a scene: its extents and finest features, the bits each method needs,
+    /// which formats hold it, the PSNR each is predicted to reach, and the cheapest that meets
+    /// the target.
+    Analyze(AnalyzeArgs),
     /// Render a scene to a PNG file.
     Render(RenderArgs),
     /// Render a scene in a format and in f64, and report how far apart they are.
@@ -32,6 +37,10 @@ pub enum Command {
     /// Build the firmware, run it under QEMU, and check its frames against the host's, bit for
     /// bit; report instructions, stack, flash and RAM.
     Firmware(FirmwareArgs),
+    /// Chart speed against accuracy for every format and method variant, on both scenes.
+    Chart(ChartArgs),
+    /// Run the stress cases where methods fail, each ending in a verdict.
+    Stress(StressArgs),
 }
 
 /// The numerical methods, one choice each (see `obscura_host::methods` and the README).
@@ -75,19 +84,81 @@ fn method<M: MethodName + Clone + Send + Sync>() -> impl TypedValueParser<Value 
     })
 }
 
+/// A number format, or `auto`: the cheapest predicted to meet a target.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FormatChoice {
+    /// The cheapest format that holds the scene and is predicted to reach `--target-psnr`
+    /// (see `obscura analyze`).
+    Auto,
+    /// This format.
+    Given(Format),
+}
+
+impl ValueEnum for FormatChoice {
+    fn value_variants<'a>() -> &'a [Self] {
+        &[
+            Self::Given(Format::I16f16),
+            Self::Given(Format::I20f12),
+            Self::Given(Format::I32f32),
+            Self::Given(Format::F32Approx),
+            Self::Given(Format::F32),
+            Self::Given(Format::F64),
+            Self::Auto,
+        ]
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        match self {
+            Self::Given(format) => format.to_possible_value(),
+            Self::Auto => Some(clap::builder::PossibleValue::new("auto").help(
+                "The cheapest format that holds the scene and is predicted to reach \
+                 --target-psnr on --cost-on (see `obscura analyze`)",
+            )),
+        }
+    }
+}
+
+/// How `--format auto` chooses.
+#[derive(Clone, Copy, Debug, Args)]
+pub struct AutoArgs {
+    /// The PSNR against f64, in dB, that `--format auto` and `analyze` aim for.
+    #[arg(long, default_value_t = 40.0, value_parser = parse_psnr)]
+    pub target_psnr: f64,
+    /// The machine whose cost `--format auto` and `analyze` minimise, as the committed chart
+    /// measured it.
+    #[arg(long, value_enum, default_value_t = Machine::M4f)]
+    pub cost_on: Machine,
+}
+
 /// What to render, at what size, in which format, by which methods.
 #[derive(Debug, Args)]
 pub struct SceneArgs {
-    /// A built-in scene (see `obscura scenes`).
+    /// A built-in scene (see `obscura scenes`) or a scene file (see host/scenes/).
     pub scene: String,
     /// The number format.
-    #[arg(long, value_enum, default_value_t = Format::I16f16)]
-    pub format: Format,
+    #[arg(long, value_enum, default_value = "i16f16")]
+    pub format: FormatChoice,
     /// The image size, WIDTHxHEIGHT.
     #[arg(long, value_parser = parse_size, default_value = "512x512")]
     pub size: (u32, u32),
     #[command(flatten)]
     pub methods: MethodArgs,
+    #[command(flatten)]
+    pub auto: AutoArgs,
+}
+
+/// `obscura analyze`.
+#[derive(Debug, Args)]
+pub struct AnalyzeArgs {
+    /// A built-in scene (see `obscura scenes`) or a scene file (see host/scenes/).
+    pub scene: String,
+    /// The image size the PSNR is predicted for, WIDTHxHEIGHT.
+    #[arg(long, value_parser = parse_size, default_value = "512x512")]
+    pub size: (u32, u32),
+    #[command(flatten)]
+    pub methods: MethodArgs,
+    #[command(flatten)]
+    pub auto: AutoArgs,
 }
 
 /// `obscura render`.
@@ -122,7 +193,7 @@ pub struct CompareArgs {
 /// `obscura bench`.
 #[derive(Debug, Args)]
 pub struct BenchArgs {
-    /// A built-in scene.
+    /// A built-in scene (see `obscura scenes`) or a scene file (see host/scenes/).
     pub scene: String,
     /// The image size, WIDTHxHEIGHT.
     #[arg(long, value_parser = parse_size, default_value = "512x512")]
@@ -153,9 +224,13 @@ pub struct FirmwareArgs {
     /// Built-in scenes to render, in one firmware run.
     #[arg(long, value_delimiter = ',', default_value = "whitted")]
     pub scene: Vec<String>,
-    /// Formats to render each scene in (all but f64, which stays on the host).
+    /// Formats to render each scene in (all but f64, which stays on the host); `auto` is the
+    /// cheapest on the target that holds every scene and is predicted to reach --target-psnr.
     #[arg(long, value_enum, value_delimiter = ',', default_value = "i16f16")]
-    pub format: Vec<Format>,
+    pub format: Vec<FormatChoice>,
+    /// The PSNR against f64, in dB, that `--format auto` aims for.
+    #[arg(long, default_value_t = 40.0, value_parser = parse_psnr)]
+    pub target_psnr: f64,
     #[command(flatten)]
     pub methods: MethodArgs,
     /// Also write the figures as JSON (an array, one object per frame) to this file.
@@ -169,8 +244,52 @@ pub struct FirmwareArgs {
     pub timeout: u64,
 }
 
+/// `obscura chart`.
+#[derive(Debug, Args)]
+pub struct ChartArgs {
+    /// Where to write speed-accuracy.csv, .svg and .png (and the firmware's frames).
+    #[arg(long, default_value = "out/chart")]
+    pub out_dir: PathBuf,
+    /// The host's image size for accuracy and timing (the firmware draws 240x240).
+    #[arg(long, value_parser = parse_size, default_value = "240x240")]
+    pub size: (u32, u32),
+    /// Single-thread renders to time per variant on the host; the median is reported.
+    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u16).range(1..=1000))]
+    pub runs: u16,
+    /// Seconds each QEMU run may take before it is stopped.
+    #[arg(long, default_value_t = 3600)]
+    pub timeout: u64,
+    /// Leave out the microcontrollers (no QEMU): host cost and accuracy only.
+    #[arg(long)]
+    pub no_firmware: bool,
+}
+
+/// `obscura stress`.
+#[derive(Debug, Args)]
+pub struct StressArgs {
+    /// Cases to run (all when none is named).
+    #[arg(long, value_delimiter = ',')]
+    pub case: Vec<String>,
+    /// Where to write stability.svg and stability.png.
+    #[arg(long, default_value = "out/stress")]
+    pub out_dir: PathBuf,
+    /// Also write every measurement and verdict as JSON to this file.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+}
+
 fn default_threads() -> u16 {
     std::thread::available_parallelism().map_or(1, |n| u16::try_from(n.get()).unwrap_or(u16::MAX))
+}
+
+/// Parses a PSNR target in dB: a finite positive number.
+fn parse_psnr(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(db) if db.is_finite() && db > 0.0 => Ok(db),
+        _ => Err(format!(
+            "`{text}` is not a PSNR in dB (a positive number, e.g. 40)"
+        )),
+    }
 }
 
 /// Parses "WIDTHxHEIGHT".

@@ -12,8 +12,11 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
+/// The side of the firmware's square frame in pixels: the ST7789's 240.
+pub const SIDE: u32 = 240;
+
 /// A microcontroller the firmware is built for, with the QEMU machine that emulates it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, ValueEnum)]
 pub enum Target {
     /// Cortex-M4F with a single-precision FPU (STM32F405, QEMU's netduinoplus2).
     M4f,
@@ -55,6 +58,18 @@ impl Target {
         }
     }
 
+    /// The formats of each firmware image the chart runs: as many as fit the flash (the M0's
+    /// 256 KiB hold the fixed formats or the float formats, not both).
+    pub fn chart_images(self) -> &'static [&'static [Format]] {
+        match self {
+            Self::M4f => &[&Format::FIRMWARE],
+            Self::M0 => &[
+                &[Format::I16f16, Format::I20f12, Format::I32f32],
+                &[Format::F32Approx, Format::F32],
+            ],
+        }
+    }
+
     /// Instructions executed in `ticks` SysTick ticks.
     pub fn instructions(self, ticks: u64) -> u64 {
         ticks * 1_000_000_000 / self.core_hz()
@@ -77,27 +92,10 @@ pub fn firmware_format(format: Format) -> Result<&'static str> {
 
 /// The cargo features that make the firmware use `methods` (none for the lecture's).
 pub fn method_features(methods: &Methods) -> Vec<String> {
-    let mut features = Vec::new();
-    let lecture = Methods::LECTURE;
-    let mut choose = |differs: bool, kind: &str, name: &str| {
-        if differs {
-            features.push(format!("{kind}-{name}"));
-        }
-    };
-    choose(
-        methods.sphere != lecture.sphere,
-        "sphere",
-        methods.sphere.name(),
-    );
-    choose(
-        methods.triangle != lecture.triangle,
-        "triangle",
-        methods.triangle.name(),
-    );
-    choose(methods.roots != lecture.roots, "sqrt", methods.roots.name());
-    choose(methods.rays != lecture.rays, "rays", methods.rays.name());
-    choose(methods.bias != lecture.bias, "bias", methods.bias.name());
-    features
+    crate::variant::changes(methods)
+        .into_iter()
+        .map(|(kind, name)| format!("{kind}-{name}"))
+        .collect()
 }
 
 /// The workspace the harness was built from, which holds the firmware's sources.
@@ -137,8 +135,8 @@ pub fn check_prerequisites(target: Target) -> Result<()> {
     Ok(())
 }
 
-/// Builds the firmware for `target`, rendering each of `scenes` in each of `formats` (cargo
-/// feature names), and returns the path of its ELF image.
+/// Builds the firmware for `target` with these cargo features (besides `qemu`), and returns the
+/// path of its ELF image.
 pub fn build(target: Target, features: &[String]) -> Result<PathBuf> {
     let workspace = workspace();
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
@@ -304,6 +302,44 @@ pub struct ImageSize {
     pub flash: u64,
     /// Bytes of statically allocated RAM.
     pub ram: u64,
+}
+
+/// The host's RGB565 rendering of a frame the firmware reported, and the indices of the pixels
+/// where the firmware's frame (read from `dir`) differs from it.
+pub fn compare_frame(
+    desc: &obscura::SceneDesc<'_>,
+    format: Format,
+    frame: &Frame,
+    dir: &Path,
+) -> Result<(Vec<u16>, Vec<u16>, Vec<usize>)> {
+    let request = crate::render::Request {
+        desc,
+        width: frame.width,
+        height: frame.height,
+        methods: frame.methods,
+    };
+    let host = crate::render::prepare(format, &request)?.rgb565_frame();
+    let device = read_frame(&dir.join(&frame.file), host.len())?;
+    let differing = (0..host.len()).filter(|&i| host[i] != device[i]).collect();
+    Ok((device, host, differing))
+}
+
+/// Reads a frame file of `pixels` big-endian RGB565 values.
+fn read_frame(path: &Path, pixels: usize) -> Result<Vec<u16>> {
+    let bytes = std::fs::read(path)
+        .with_context(|| format!("cannot read the firmware's frame {}", path.display()))?;
+    if bytes.len() != 2 * pixels {
+        bail!(
+            "{} holds {} bytes, not the {} of a whole frame",
+            path.display(),
+            bytes.len(),
+            2 * pixels
+        );
+    }
+    Ok(bytes
+        .chunks_exact(2)
+        .map(|pair| u16::from_be_bytes([pair[0], pair[1]]))
+        .collect())
 }
 
 /// Sizes an ELF image from its allocated sections, as `size` does.

@@ -1,7 +1,7 @@
 //! The number formats the harness can run the core in, chosen at run time.
 
 use clap::ValueEnum;
-use obscura::Scalar;
+use obscura::{Methods, Scalar};
 use std::fmt;
 
 /// A number format of the core, by its command-line name.
@@ -57,6 +57,50 @@ impl Format {
 }
 
 impl Format {
+    /// Every format, smallest first.
+    pub const ALL: [Self; 6] = [
+        Self::I16f16,
+        Self::I20f12,
+        Self::I32f32,
+        Self::F32Approx,
+        Self::F32,
+        Self::F64,
+    ];
+
+    /// Every format a firmware can compute in, smallest first (f64 stays on the host).
+    pub const FIRMWARE: [Self; 5] = [
+        Self::I16f16,
+        Self::I20f12,
+        Self::I32f32,
+        Self::F32Approx,
+        Self::F32,
+    ];
+
+    /// Whether the format has fast approximate roots ([`obscura::Scalar::FAST_ROOTS`]).
+    pub fn has_fast_roots(self) -> bool {
+        struct Fast;
+        impl FormatJob for Fast {
+            type Output = bool;
+            fn run<S: Scalar>(self) -> bool {
+                S::FAST_ROOTS
+            }
+        }
+        self.run(Fast)
+    }
+
+    /// Whether `methods` differ meaningfully from `base` in this format for a scene with or
+    /// without triangles ([`obscura::Methods::matter`]).
+    pub fn methods_matter(self, methods: &Methods, base: &Methods, has_triangles: bool) -> bool {
+        struct Matter<'a>(&'a Methods, &'a Methods, bool);
+        impl FormatJob for Matter<'_> {
+            type Output = bool;
+            fn run<S: Scalar>(self) -> bool {
+                self.0.matter::<S>(self.1, self.2)
+            }
+        }
+        self.run(Matter(methods, base, has_triangles))
+    }
+
     /// Whether the format is fixed point (whose firmware frames must match the host's bit for
     /// bit, and which has fast approximate roots when it is 32 bits wide).
     pub fn is_fixed_point(self) -> bool {

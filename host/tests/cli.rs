@@ -164,10 +164,18 @@ fn bench_reports_ratios_and_thread_speedup() {
 
 #[test]
 fn bad_arguments_fail_with_a_clear_message() {
-    let cases: [(&[&str], &str); 5] = [
+    let cases: [(&[&str], &str); 7] = [
         (
             &["render", "teapot"],
-            "the built-in scenes are: whitted, shapes",
+            "give a built-in scene (whitted, shapes) or a scene file",
+        ),
+        (
+            &["analyze", "whitted", "--target-psnr", "lots"],
+            "PSNR in dB",
+        ),
+        (
+            &["firmware", "--target", "m0", "--scene", "marbles.toml"],
+            "a firmware holds only those",
         ),
         (&["render", "whitted", "--size", "512"], "WIDTHxHEIGHT"),
         (&["render", "whitted", "--size", "0x10"], "1 to 8192"),
@@ -230,6 +238,64 @@ fn firmware_without_qemu_says_how_to_install_it() {
     assert!(
         message.contains("apt-get install qemu-system-arm")
             || message.contains("rustup target add thumbv6m-none-eabi"),
+        "{message}"
+    );
+}
+
+#[test]
+fn analyze_tables_the_bits_the_formats_and_the_cheapest() {
+    let output = obscura(&["analyze", "shapes", "--size", "64x64", "--cost-on", "m0"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    for expected in [
+        "smallest sphere radius",
+        "| triangles, by watertight |",
+        "| i20f12 | no: object 2: radius² seen from the eye",
+        "the cheapest on M0 predicted to reach 40 dB:",
+    ] {
+        assert!(text.contains(expected), "{expected}: {text}");
+    }
+}
+
+#[test]
+fn format_auto_rescales_a_scene_file_when_only_that_fits() {
+    let dir = scratch("auto");
+    let marbles = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/marbles.toml");
+    let output = obscura(&[
+        "compare",
+        marbles,
+        "--format",
+        "auto",
+        "--cost-on",
+        "m0",
+        "--target-psnr",
+        "35",
+        "--size",
+        "64x64",
+        "--runs",
+        "1",
+        "--out-dir",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let message = stderr(&output);
+    assert!(
+        message.contains("--format auto: i16f16") && message.contains("rescaled by 0.0625"),
+        "{message}"
+    );
+    assert!(stdout(&output).contains("| marbles | 64x64 | i16f16 |"));
+}
+
+#[test]
+fn a_malformed_scene_file_says_where() {
+    let dir = scratch("malformed");
+    let file = dir.join("broken.toml");
+    std::fs::write(&file, "far = 10.0\ncamera = { eye = [0.0, 0.0] }\n").unwrap();
+    let output = obscura(&["render", file.to_str().unwrap(), "--size", "8x8"]);
+    assert!(!output.status.success());
+    let message = stderr(&output);
+    assert!(
+        message.contains("broken.toml is not a scene file") && message.contains("line 2"),
         "{message}"
     );
 }

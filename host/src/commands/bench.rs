@@ -4,6 +4,7 @@
 use crate::cli::BenchArgs;
 use crate::format::Format;
 use crate::render::{Request, prepare};
+use crate::scene_file;
 use crate::timing::interleaved_median_ms;
 use anyhow::{Context, Result};
 use serde::Serialize;
@@ -25,7 +26,7 @@ struct ThreadTime {
 
 #[derive(Debug, Serialize)]
 struct Bench {
-    scene: &'static str,
+    scene: String,
     width: u32,
     height: u32,
     runs: u16,
@@ -37,12 +38,13 @@ struct Bench {
 const VAX_MINUTES: f64 = 74.0;
 
 pub fn run(args: &BenchArgs) -> Result<()> {
-    let scene = super::scene(&args.scene)?;
+    let named = scene_file::load(&args.scene)?;
+    let desc = named.scene.desc();
     let (width, height) = args.size;
     let methods = args.methods.methods();
     let first = *args.formats.first().context("give at least one format")?;
     let request = Request {
-        desc: &scene.desc,
+        desc: &desc,
         width,
         height,
         methods,
@@ -69,7 +71,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     eprintln!(
         "timing {} configurations of {}, {} runs each, interleaved",
         tasks.len(),
-        scene.name,
+        named.name,
         args.runs
     );
     let task_refs: Vec<&dyn Fn()> = tasks.iter().map(|task| &**task).collect();
@@ -114,7 +116,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         })
         .collect();
     let bench = Bench {
-        scene: scene.name,
+        scene: named.name.clone(),
         width,
         height,
         runs: args.runs,

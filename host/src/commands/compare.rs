@@ -5,6 +5,7 @@ use crate::format::Format;
 use crate::heatmap::heatmap;
 use crate::metrics::{Accuracy, accuracy};
 use crate::render::{Request, prepare};
+use crate::scene_file;
 use crate::timing::interleaved_median_ms;
 use anyhow::{Context, Result};
 use obscura::{Methods, RootMethod};
@@ -15,7 +16,7 @@ use serde::Serialize;
 pub struct Report {
     pub format: &'static str,
     pub reference: &'static str,
-    pub scene: &'static str,
+    pub scene: String,
     pub width: u32,
     pub height: u32,
     /// `null` in JSON when the images are identical (infinite PSNR).
@@ -30,13 +31,20 @@ pub struct Report {
 }
 
 pub fn run(args: &CompareArgs) -> Result<()> {
-    let scene = super::scene(&args.scene.scene)?;
+    let named = scene_file::load(&args.scene.scene)?;
     let (width, height) = args.scene.size;
-    let format = args.scene.format;
     let reference = Format::F64;
     let methods = args.scene.methods.methods();
+    let (format, scene) = super::resolve(
+        args.scene.format,
+        &named,
+        methods,
+        args.scene.size,
+        &args.scene.auto,
+    )?;
+    let desc = scene.desc();
     let request = Request {
-        desc: &scene.desc,
+        desc: &desc,
         width,
         height,
         methods,
@@ -98,7 +106,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     let report = Report {
         format: format.name(),
         reference: reference.name(),
-        scene: scene.name,
+        scene: named.name,
         width,
         height,
         psnr_db,

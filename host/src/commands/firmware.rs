@@ -1,13 +1,16 @@
 //! `obscura firmware`: the firmware under QEMU against the host, bit for bit, and what it costs.
 
-use crate::cli::FirmwareArgs;
+use crate::analysis::{Analysis, Fit};
+use crate::cli::{FirmwareArgs, FormatChoice};
+use crate::cost::{Machine, cost};
 use crate::firmware::{self, Target};
 use crate::format::Format;
 use crate::heatmap::heatmap;
-use crate::render::{Request, prepare};
+use crate::owned::OwnedScene;
 use anyhow::{Context, Result, bail};
 use image::RgbImage;
-use obscura::RootMethod;
+use obscura::scenes::BuiltIn;
+use obscura::{Methods, RootMethod};
 use serde::Serialize;
 use std::path::Path;
 use std::time::Duration;
@@ -32,6 +35,62 @@ struct Report {
     fixed_storage_bytes: u64,
 }
 
+/// The formats `args` ask for, `auto` resolved to the cheapest on the target that holds every
+/// scene as it is (a firmware's scenes are built in: it cannot rescale them) and is predicted to
+/// reach the target PSNR on each at the display's size.
+fn formats(args: &FirmwareArgs, scenes: &[&BuiltIn], methods: &Methods) -> Result<Vec<Format>> {
+    let mut formats = Vec::new();
+    for &choice in &args.format {
+        let format = match choice {
+            FormatChoice::Given(format) => format,
+            FormatChoice::Auto => auto_format(args, scenes, methods)?,
+        };
+        if !formats.contains(&format) {
+            formats.push(format);
+        }
+    }
+    Ok(formats)
+}
+
+fn auto_format(args: &FirmwareArgs, scenes: &[&BuiltIn], methods: &Methods) -> Result<Format> {
+    let machine = Machine::from(args.target);
+    let analyses = scenes
+        .iter()
+        .map(|s| {
+            let scene = OwnedScene::from_desc(&s.desc);
+            Analysis::of(&scene, *methods, firmware::SIDE, firmware::SIDE)
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let meets = |format: Format| {
+        analyses.iter().all(|analysis| {
+            analysis.verdicts.iter().any(|v| {
+                v.format == format
+                    && v.fit == Fit::Holds
+                    && v.predicted_psnr.is_some_and(|p| p >= args.target_psnr)
+            })
+        })
+    };
+    let chosen = Format::FIRMWARE
+        .into_iter()
+        .filter(|&format| meets(format))
+        .filter_map(|format| cost(machine, format, methods).map(|c| (c, format)))
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, format)| format)
+        .with_context(|| {
+            format!(
+                "no firmware format holds every scene and is predicted to reach {} dB; \
+                 `obscura analyze` says why",
+                args.target_psnr
+            )
+        })?;
+    eprintln!(
+        "--format auto: {chosen} is the cheapest on {} predicted to reach {} dB on every scene",
+        args.target.name(),
+        args.target_psnr
+    );
+    Ok(chosen)
+}
+
 /// How many differing pixels are listed when a frame does not match.
 const LISTED: usize = 10;
 
@@ -41,19 +100,16 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
     let scenes = args
         .scene
         .iter()
-        .map(|name| super::scene(name))
+        .map(|name| super::built_in(name))
         .collect::<Result<Vec<_>>>()?;
+    let formats = formats(args, &scenes, &methods)?;
     let mut features: Vec<String> = scenes.iter().map(|s| format!("scene-{}", s.name)).collect();
-    for &format in &args.format {
+    for &format in &formats {
         features.push(firmware::firmware_format(format)?.to_owned());
     }
     features.extend(firmware::method_features(&methods));
     if methods.roots == RootMethod::Approx {
-        if let Some(format) = args
-            .format
-            .iter()
-            .find(|f| !matches!(f, Format::I16f16 | Format::I20f12))
-        {
+        if let Some(format) = formats.iter().find(|f| !f.has_fast_roots()) {
             bail!(
                 "--sqrt approx is a method of the 32-bit fixed formats (i16f16, i20f12), not of {format}; for floats with approximate roots choose --format f32-approx"
             );
@@ -70,7 +126,7 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
     let mut reports = Vec::new();
     let mut mismatched = Vec::new();
     for scene in &scenes {
-        for &format in &args.format {
+        for &format in &formats {
             let frame = frames
                 .iter()
                 .find(|f| {
@@ -82,15 +138,8 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
                         scene.name
                     )
                 })?;
-            let request = Request {
-                desc: &scene.desc,
-                width: frame.width,
-                height: frame.height,
-                methods,
-            };
-            let host = prepare(format, &request)?.rgb565_frame();
-            let device = read_frame(&dir.join(&frame.file), host.len())?;
-            let differing: Vec<usize> = (0..host.len()).filter(|&i| host[i] != device[i]).collect();
+            let (device, host, differing) =
+                firmware::compare_frame(&scene.desc, format, frame, &dir)?;
             let stem = dir.join(&frame.file);
             crate::commands::save(&to_image(&device, frame.width), &stem.with_extension("png"))?;
             if !differing.is_empty() {
@@ -148,24 +197,6 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
         );
     }
     Ok(())
-}
-
-/// Reads a frame file of `pixels` big-endian RGB565 values.
-fn read_frame(path: &Path, pixels: usize) -> Result<Vec<u16>> {
-    let bytes = std::fs::read(path)
-        .with_context(|| format!("cannot read the firmware's frame {}", path.display()))?;
-    if bytes.len() != 2 * pixels {
-        bail!(
-            "{} holds {} bytes, not the {} of a whole frame",
-            path.display(),
-            bytes.len(),
-            2 * pixels
-        );
-    }
-    Ok(bytes
-        .chunks_exact(2)
-        .map(|pair| u16::from_be_bytes([pair[0], pair[1]]))
-        .collect())
 }
 
 /// An RGB565 frame as an RGB888 image, each channel scaled to 8 bits with rounding.

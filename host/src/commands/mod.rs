@@ -1,12 +1,20 @@
 //! One module per subcommand; this one dispatches and holds what they share.
 
+mod analyze;
 mod bench;
+mod chart;
 mod compare;
 mod firmware;
 mod render;
+mod stress;
 
-use crate::cli::Command;
+use crate::analysis::{Analysis, Fit};
+use crate::cli::{AutoArgs, Command, FormatChoice};
+use crate::format::Format;
+use crate::owned::OwnedScene;
+use crate::scene_file::NamedScene;
 use anyhow::{Result, bail};
+use obscura::Methods;
 use obscura::scenes::{self, BuiltIn};
 
 /// Runs a subcommand.
@@ -18,25 +26,72 @@ pub fn run(command: Command) -> Result<()> {
             }
             Ok(())
         }
+        Command::Analyze(args) => analyze::run(&args),
         Command::Render(args) => render::run(&args),
         Command::Compare(args) => compare::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::Firmware(args) => firmware::run(&args),
+        Command::Chart(args) => chart::run(&args),
+        Command::Stress(args) => stress::run(&args),
     }
 }
 
-/// The built-in scene called `name`, or an error that lists the names there are.
-pub fn scene(name: &str) -> Result<&'static BuiltIn> {
+/// The built-in scene called `name`, or an error that lists the names there are (the
+/// firmware holds only those).
+pub fn built_in(name: &str) -> Result<&'static BuiltIn> {
     match scenes::find(name) {
         Some(scene) => Ok(scene),
         None => {
             let names: Vec<_> = scenes::BUILT_IN.iter().map(|s| s.name).collect();
             bail!(
-                "there is no scene `{name}`; the built-in scenes are: {}",
+                "there is no built-in scene `{name}` (a firmware holds only those): {}",
                 names.join(", ")
             )
         }
     }
+}
+
+/// The format to render `named` in at `size` by `methods`, and the scene to render: the format
+/// given, or with `auto` the cheapest that holds the scene and is predicted to reach the target
+/// (rescaled about the eye when only that fits), said aloud on standard error.
+pub fn resolve(
+    choice: FormatChoice,
+    named: &NamedScene,
+    methods: Methods,
+    (width, height): (u32, u32),
+    auto: &AutoArgs,
+) -> Result<(Format, OwnedScene)> {
+    let FormatChoice::Given(format) = choice else {
+        let analysis = Analysis::of(&named.scene, methods, width, height)?;
+        let Some(verdict) = analysis.cheapest(auto.cost_on, auto.target_psnr, &methods) else {
+            bail!(
+                "no format holds {} and is predicted to reach {} dB at {width}x{height}; \
+                 `obscura analyze {}` says why",
+                named.name,
+                auto.target_psnr,
+                named.name
+            );
+        };
+        let predicted = verdict.predicted_psnr.unwrap_or(f64::INFINITY);
+        eprintln!(
+            "--format auto: {} is the cheapest on {:?} predicted to reach {} dB ({predicted:.1} \
+             dB predicted)",
+            verdict.format, auto.cost_on, auto.target_psnr
+        );
+        let scene = match verdict.fit {
+            Fit::Rescaled(factor) => {
+                eprintln!(
+                    "--format auto: {} holds {} only rescaled by {factor} about the eye (the \
+                     image is the same); rendering it so",
+                    verdict.format, named.name
+                );
+                named.scene.scaled(factor as f32)
+            }
+            Fit::Holds | Fit::Refused(_) => named.scene.clone(),
+        };
+        return Ok((verdict.format, scene));
+    };
+    Ok((format, named.scene.clone()))
 }
 
 /// Writes a PNG, saying which file could not be written.

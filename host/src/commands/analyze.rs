@@ -1,0 +1,116 @@
+//! `obscura analyze`: a scene's range analysis, in tables (see [`crate::analysis`]).
+
+use crate::analysis::{Analysis, Bits, Extents, Fit};
+use crate::cli::AnalyzeArgs;
+use crate::cost::cost;
+use crate::scene_file;
+use anyhow::Result;
+
+pub fn run(args: &AnalyzeArgs) -> Result<()> {
+    let named = scene_file::load(&args.scene)?;
+    let (width, height) = args.size;
+    let methods = args.methods.methods();
+    let analysis = Analysis::of(&named.scene, methods, width, height)?;
+    println!("# {} by {methods}\n", named.name);
+    print_extents(&analysis.extents);
+    print_bits(&analysis.bits);
+    println!(
+        "\n## Formats, at {width}x{height}\n\nPredicted PSNR against f64 from the image's \
+         edges (G = {:.1} levels² per pixel) and each format's rounding; cost from the committed \
+         chart, per pixel.\n",
+        analysis.edge_energy
+    );
+    println!(
+        "| format | holds the scene | predicted PSNR (dB) | M4F instr/px | M0 instr/px | host \
+         ns/px |"
+    );
+    println!("|---|---|---:|---:|---:|---:|");
+    let number = |x: Option<f64>| x.map_or("–".to_owned(), |x| format!("{x:.0}"));
+    for verdict in &analysis.verdicts {
+        let fit = match &verdict.fit {
+            Fit::Holds => "yes".to_owned(),
+            Fit::Rescaled(factor) => format!("rescaled ×{factor} about the eye"),
+            Fit::Refused(reason) => format!("no: {reason}"),
+        };
+        let psnr = verdict.predicted_psnr.map_or("–".to_owned(), |p| {
+            if p.is_finite() {
+                format!("{p:.1}")
+            } else {
+                "∞".to_owned()
+            }
+        });
+        let costs = crate::cost::Machine::ALL.map(|m| number(cost(m, verdict.format, &methods)));
+        println!(
+            "| {} | {fit} | {psnr} | {} | {} | {} |",
+            verdict.format, costs[0], costs[1], costs[2]
+        );
+    }
+    let target = args.auto.target_psnr;
+    match analysis.cheapest(args.auto.cost_on, target, &methods) {
+        Some(verdict) => {
+            let how = match verdict.fit {
+                Fit::Rescaled(factor) => format!(", rescaled ×{factor} about the eye"),
+                Fit::Holds | Fit::Refused(_) => String::new(),
+            };
+            println!(
+                "\nthe cheapest on {:?} predicted to reach {target} dB: {}{how} (--format auto)",
+                args.auto.cost_on, verdict.format
+            );
+        }
+        None => println!(
+            "\nno format holds the scene and is predicted to reach {target} dB: lower \
+             --target-psnr, or change the scene as the refusals above say"
+        ),
+    }
+    Ok(())
+}
+
+fn print_extents(e: &Extents) {
+    println!("## Extents, relative to the eye\n");
+    println!(
+        "- {} objects, {} lights; the world reaches {} from the eye",
+        e.objects, e.lights, e.world
+    );
+    if let Some((lo, hi)) = e.bounds {
+        println!(
+            "- spheres and triangles within x {:.3} to {:.3}, y {:.3} to {:.3}, z {:.3} to {:.3}",
+            lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]
+        );
+    }
+    println!(
+        "- depth: the nearest surface {:.4} from the eye, the farthest {:.4}",
+        e.nearest, e.farthest
+    );
+    let smallest = |what: &str, found: Option<(f64, usize)>| {
+        if let Some((value, object)) = found {
+            println!("- smallest {what}: {value} (object {object})");
+        }
+    };
+    smallest("sphere radius", e.smallest_radius);
+    smallest("triangle edge", e.shortest_edge);
+    smallest("checker square", e.smallest_square);
+}
+
+fn print_bits(rows: &[Bits]) {
+    println!(
+        "\n## Bits a fixed-point format needs\n\nInteger bits (sign included) hold the largest \
+         intermediate value; fraction bits resolve the most demanding feature.\n"
+    );
+    println!(
+        "| computation | largest intermediate | integer bits | most demanding feature | \
+         fraction bits |"
+    );
+    println!("|---|---|---:|---|---:|");
+    for row in rows {
+        let largest = row.largest.map_or("–".to_owned(), |m| {
+            format!("{}: {} = {:.4e}", m.item, m.quantity, m.value)
+        });
+        let finest = row.finest.map_or("–".to_owned(), |f| {
+            format!("{}: {} = {:.4e}", f.item, f.quantity, f.value)
+        });
+        println!(
+            "| {} | {largest} | {} | {finest} | {} |",
+            row.computation, row.integer, row.fraction
+        );
+    }
+}

@@ -1,0 +1,391 @@
+//! `obscura chart`: speed against accuracy for every format and method variant that makes
+//! sense, on both built-in scenes. Cost three ways (instructions per pixel on the Cortex-M4F and
+//! the Cortex-M0, counted under QEMU; host time per pixel, timed in one run), error two ways
+//! (PSNR and object mismatch against f64), and the Pareto front of each pairing.
+
+use crate::cli::ChartArgs;
+use crate::firmware::{self, Target};
+use crate::format::Format;
+use crate::metrics::accuracy;
+use crate::pareto;
+use crate::plot::{self, SpeedPoint};
+use crate::render::{AnyFormat, Request, prepare};
+use crate::timing::interleaved_median_ms;
+use crate::variant;
+use anyhow::{Context, Result, bail};
+use obscura::scenes::{self, BuiltIn};
+use obscura::{Methods, RootMethod};
+use std::collections::HashMap;
+use std::fmt::Write as _;
+use std::time::Duration;
+
+/// The PSNR a render must reach, on both scenes, to be recommended.
+const TARGET_PSNR_DB: f64 = 40.0;
+
+/// One variant: a scene in a format by some methods.
+struct Variant {
+    scene: &'static BuiltIn,
+    format: Format,
+    methods: Methods,
+}
+
+/// Every scene × firmware format × variant of the lecture's methods that makes sense, in the
+/// order the firmware draws them.
+fn variants() -> Vec<Variant> {
+    let base = Methods::LECTURE;
+    let mut all = Vec::new();
+    for scene in &scenes::BUILT_IN {
+        for format in Format::FIRMWARE {
+            let mut seen = Vec::new();
+            for methods in base.variants() {
+                if !seen.contains(&methods)
+                    && format.methods_matter(&methods, &base, scene.desc.has_triangles())
+                {
+                    seen.push(methods);
+                    all.push(Variant {
+                        scene,
+                        format,
+                        methods,
+                    });
+                }
+            }
+        }
+    }
+    all
+}
+
+pub fn run(args: &ChartArgs) -> Result<()> {
+    let (width, height) = args.size;
+    let variants = variants();
+    std::fs::create_dir_all(&args.out_dir)
+        .with_context(|| format!("cannot create {}", args.out_dir.display()))?;
+
+    // The microcontrollers: one firmware image per flash-full of formats, each drawing every
+    // variant; each run is also held to the host's frames, bit for bit in fixed point.
+    let mut costs: HashMap<(Target, &str, Format, Methods), f64> = HashMap::new();
+    let targets: &[Target] = if args.no_firmware {
+        &[]
+    } else {
+        &[Target::M4f, Target::M0]
+    };
+    for &target in targets {
+        firmware::check_prerequisites(target)?;
+        for (i, formats) in target.chart_images().iter().enumerate() {
+            let mut features: Vec<String> = scenes::BUILT_IN
+                .iter()
+                .map(|s| format!("scene-{}", s.name))
+                .collect();
+            for &format in *formats {
+                features.push(firmware::firmware_format(format)?.to_owned());
+            }
+            features.push("chart".to_owned());
+            let elf = firmware::build(target, &features)?;
+            let dir = args
+                .out_dir
+                .join("firmware")
+                .join(format!("{}-{i}", target.name()));
+            std::fs::create_dir_all(&dir)
+                .with_context(|| format!("cannot create {}", dir.display()))?;
+            eprintln!(
+                "running the chart firmware for {} ({}) under QEMU; this takes minutes",
+                target.name(),
+                formats
+                    .iter()
+                    .map(|f| f.name())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            );
+            let frames = firmware::run(target, &elf, &dir, Duration::from_secs(args.timeout))?;
+            for frame in &frames {
+                let (scene, format) = find(&frame.scene, &frame.format)?;
+                let (_, _, differing) = firmware::compare_frame(&scene.desc, format, frame, &dir)?;
+                if format.is_fixed_point() && !differing.is_empty() {
+                    bail!(
+                        "{} in {format} by {}: the firmware's frame differs from the host's in {} pixels",
+                        scene.name,
+                        frame.methods,
+                        differing.len()
+                    );
+                }
+                let pixels = f64::from(frame.width) * f64::from(frame.height);
+                costs.insert(
+                    (target, scene.name, format, frame.methods),
+                    target.instructions(frame.ticks) as f64 / pixels,
+                );
+            }
+        }
+    }
+
+    // The host: accuracy against f64 (same methods, exact roots), and single-thread time per
+    // pixel, all variants timed in one interleaved run.
+    eprintln!(
+        "measuring {} variants on the host at {width}x{height}",
+        variants.len()
+    );
+    let threads = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
+    let mut prepared: Vec<Box<dyn AnyFormat>> = Vec::new();
+    let mut accuracies = Vec::new();
+    let mut measured = Vec::new();
+    let mut refused = Vec::new();
+    for variant in &variants {
+        let request = Request {
+            desc: &variant.scene.desc,
+            width,
+            height,
+            methods: variant.methods,
+        };
+        // The scene build refuses what the format cannot hold by these methods (the firmware
+        // refuses the same, by the same code): an outcome to show, not a point to plot.
+        let contender = match prepare(variant.format, &request) {
+            Ok(contender) => contender,
+            Err(error) => {
+                refused.push((variant, format!("{error:#}")));
+                continue;
+            }
+        };
+        let exact = Methods {
+            roots: RootMethod::Exact,
+            ..variant.methods
+        };
+        let reference = prepare(
+            Format::F64,
+            &Request {
+                methods: exact,
+                ..request
+            },
+        )?;
+        let image = contender.render(threads, None);
+        let truth = reference.render(threads, None);
+        accuracies.push(accuracy(
+            &image,
+            &truth,
+            &contender.object_map(),
+            &reference.object_map(),
+        ));
+        prepared.push(contender);
+        measured.push(variant);
+    }
+    let tasks: Vec<Box<dyn Fn() + '_>> = prepared
+        .iter()
+        .map(|p| -> Box<dyn Fn() + '_> { Box::new(move || drop(p.render(1, None))) })
+        .collect();
+    let task_refs: Vec<&dyn Fn()> = tasks.iter().map(|task| &**task).collect();
+    let times = interleaved_median_ms(usize::from(args.runs), &task_refs);
+    let pixels = f64::from(width) * f64::from(height);
+
+    let points: Vec<SpeedPoint> = measured
+        .iter()
+        .zip(&accuracies)
+        .zip(&times)
+        .map(|((v, acc), ms)| SpeedPoint {
+            scene: v.scene.name.to_owned(),
+            format: v.format.name().to_owned(),
+            variant: variant::label(&v.methods),
+            m4f_instructions_per_pixel: costs
+                .get(&(Target::M4f, v.scene.name, v.format, v.methods))
+                .copied(),
+            m0_instructions_per_pixel: costs
+                .get(&(Target::M0, v.scene.name, v.format, v.methods))
+                .copied(),
+            host_ns_per_pixel: ms * 1e6 / pixels,
+            psnr_db: acc.psnr_db,
+            object_mismatch_pct: acc.object_mismatch_pct,
+        })
+        .collect();
+    if !args.no_firmware {
+        if let Some(missing) = points.iter().find(|p| {
+            p.m4f_instructions_per_pixel.is_none() || p.m0_instructions_per_pixel.is_none()
+        }) {
+            bail!(
+                "the firmware reported no frame of {} in {} by {}",
+                missing.scene,
+                missing.format,
+                missing.variant
+            );
+        }
+    }
+
+    let csv = args.out_dir.join("speed-accuracy.csv");
+    std::fs::write(&csv, to_csv(&points))
+        .with_context(|| format!("cannot write {}", csv.display()))?;
+    let (svg, png) = (
+        args.out_dir.join("speed-accuracy.svg"),
+        args.out_dir.join("speed-accuracy.png"),
+    );
+    plot::speed_accuracy(&points, &svg, &png)?;
+    print_table(&points);
+    for (v, reason) in &refused {
+        println!(
+            "refused: {} in {} by {}: {reason}",
+            v.scene.name,
+            v.format,
+            variant::label(&v.methods)
+        );
+    }
+    print_recommendations(&measured, &points);
+    println!(
+        "wrote {}, {} and {}",
+        csv.display(),
+        svg.display(),
+        png.display()
+    );
+    Ok(())
+}
+
+fn find(scene: &str, format: &str) -> Result<(&'static BuiltIn, Format)> {
+    let built_in = scenes::find(scene)
+        .with_context(|| format!("the firmware drew an unknown scene `{scene}`"))?;
+    let format = Format::FIRMWARE
+        .into_iter()
+        .find(|f| f.name() == format)
+        .with_context(|| format!("the firmware drew an unknown format `{format}`"))?;
+    Ok((built_in, format))
+}
+
+/// The cost columns: a name and how to read the cost off a point.
+type CostAxis = (&'static str, fn(&SpeedPoint) -> Option<f64>);
+
+const COSTS: [CostAxis; 3] = [
+    ("m4f", |p| p.m4f_instructions_per_pixel),
+    ("m0", |p| p.m0_instructions_per_pixel),
+    ("host", |p| Some(p.host_ns_per_pixel)),
+];
+
+/// Whether each point is on the Pareto front of its scene for `cost` against PSNR (when
+/// `psnr`) or object mismatch.
+fn fronts(points: &[SpeedPoint], cost: fn(&SpeedPoint) -> Option<f64>, psnr: bool) -> Vec<bool> {
+    let mut on_front = vec![false; points.len()];
+    let mut scenes: Vec<&str> = points.iter().map(|p| p.scene.as_str()).collect();
+    scenes.dedup();
+    for scene in scenes {
+        let members: Vec<usize> = (0..points.len())
+            .filter(|&i| points[i].scene == scene && cost(&points[i]).is_some())
+            .collect();
+        let pairs: Vec<(f64, f64)> = members
+            .iter()
+            .map(|&i| {
+                let p = &points[i];
+                let error = if psnr {
+                    -p.psnr_db
+                } else {
+                    p.object_mismatch_pct
+                };
+                (cost(p).unwrap_or(f64::NAN), error)
+            })
+            .collect();
+        for (&i, front) in members.iter().zip(pareto::front(&pairs)) {
+            on_front[i] = front;
+        }
+    }
+    on_front
+}
+
+fn to_csv(points: &[SpeedPoint]) -> String {
+    let mut text = String::from(
+        "scene,format,variant,m4f_instructions_per_pixel,m0_instructions_per_pixel,host_ns_per_pixel,psnr_db,object_mismatch_pct",
+    );
+    let mut all_fronts = Vec::new();
+    for (name, cost) in COSTS {
+        for (metric, psnr) in [("psnr", true), ("mismatch", false)] {
+            let _ = write!(text, ",pareto_{name}_{metric}");
+            all_fronts.push(fronts(points, cost, psnr));
+        }
+    }
+    text.push('\n');
+    let number = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x:.4}"));
+    for (i, p) in points.iter().enumerate() {
+        let _ = write!(
+            text,
+            "{},{},\"{}\",{},{},{:.3},{},{:.4}",
+            p.scene,
+            p.format,
+            p.variant,
+            number(p.m4f_instructions_per_pixel),
+            number(p.m0_instructions_per_pixel),
+            p.host_ns_per_pixel,
+            if p.psnr_db.is_infinite() {
+                "inf".to_owned()
+            } else {
+                format!("{:.3}", p.psnr_db)
+            },
+            p.object_mismatch_pct
+        );
+        for front in &all_fronts {
+            text.push_str(if front[i] { ",1" } else { ",0" });
+        }
+        text.push('\n');
+    }
+    text
+}
+
+fn print_table(points: &[SpeedPoint]) {
+    println!(
+        "| scene | format | methods | M4F instr/px | M0 instr/px | host ns/px | PSNR (dB) | object mismatch |"
+    );
+    println!("|---|---|---|---:|---:|---:|---:|---:|");
+    let count = |x: Option<f64>| x.map_or("–".to_owned(), |x| format!("{x:.0}"));
+    for p in points {
+        let psnr = if p.psnr_db.is_infinite() {
+            "∞".to_owned()
+        } else {
+            format!("{:.2}", p.psnr_db)
+        };
+        println!(
+            "| {} | {} | {} | {} | {} | {:.0} | {psnr} | {:.4} % |",
+            p.scene,
+            p.format,
+            p.variant,
+            count(p.m4f_instructions_per_pixel),
+            count(p.m0_instructions_per_pixel),
+            p.host_ns_per_pixel,
+            p.object_mismatch_pct
+        );
+    }
+}
+
+/// For each cost axis, the cheapest format and methods that reach [`TARGET_PSNR_DB`] on every
+/// scene (cost summed over the scenes). On a scene where the methods change nothing (a triangle
+/// method, and no triangles) the lecture's run stands in for them; a scene they are refused on
+/// rules them out.
+fn print_recommendations(measured: &[&Variant], points: &[SpeedPoint]) {
+    println!("\nthe cheapest to reach {TARGET_PSNR_DB} dB on every scene:");
+    let point = |scene: &str, format: Format, methods: &Methods| {
+        measured
+            .iter()
+            .zip(points)
+            .find(|(v, _)| v.scene.name == scene && v.format == format && v.methods == *methods)
+            .map(|(_, p)| p)
+    };
+    for (name, cost) in COSTS {
+        let mut best: Option<(f64, Format, Methods)> = None;
+        for candidate in measured {
+            let (format, methods) = (candidate.format, candidate.methods);
+            let runs: Option<Vec<&SpeedPoint>> = scenes::BUILT_IN
+                .iter()
+                .map(|scene| {
+                    let applies = format.methods_matter(
+                        &methods,
+                        &Methods::LECTURE,
+                        scene.desc.has_triangles(),
+                    );
+                    let stand_in = if applies { methods } else { Methods::LECTURE };
+                    point(scene.name, format, &stand_in)
+                })
+                .collect();
+            let Some(runs) = runs else { continue };
+            let total: Option<f64> = runs.iter().map(|p| cost(p)).sum();
+            let good = runs.iter().all(|p| p.psnr_db >= TARGET_PSNR_DB);
+            if let (Some(total), true) = (total, good) {
+                if best.is_none_or(|(b, _, _)| total < b) {
+                    best = Some((total, format, methods));
+                }
+            }
+        }
+        match best {
+            Some((_, format, methods)) => {
+                println!("  {name}: {format} by {}", variant::label(&methods));
+            }
+            None => println!("  {name}: no measurement"),
+        }
+    }
+}

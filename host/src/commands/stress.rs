@@ -1,0 +1,178 @@
+//! `obscura stress`: the stress cases, their verdicts in a table, and the stability chart.
+
+use crate::cli::StressArgs;
+use crate::plot::{self, StabilitySeries};
+use crate::stress::{self, CASES, Case, Outcome, Row};
+use anyhow::{Context, Result, bail};
+use serde::Serialize;
+use std::fmt::Write as _;
+
+#[derive(Serialize)]
+struct CaseReport<'a> {
+    case: &'static str,
+    about: &'static str,
+    x: &'static str,
+    y: &'static str,
+    rows: &'a [Row],
+}
+
+pub fn run(args: &StressArgs) -> Result<()> {
+    let chosen: Vec<&Case> = if args.case.is_empty() {
+        CASES.iter().collect()
+    } else {
+        args.case
+            .iter()
+            .map(|name| {
+                CASES.iter().find(|c| c.name == name).with_context(|| {
+                    let names: Vec<_> = CASES.iter().map(|c| c.name).collect();
+                    format!(
+                        "there is no stress case `{name}`; the cases are: {}",
+                        names.join(", ")
+                    )
+                })
+            })
+            .collect::<Result<_>>()?
+    };
+    let mut results = Vec::new();
+    for case in chosen {
+        eprintln!("stress case {}: {}", case.name, case.about);
+        let rows = stress::run_case(case)?;
+        print_case(case, &rows);
+        results.push((case, rows));
+    }
+    let count = |f: fn(&Outcome) -> bool| {
+        results
+            .iter()
+            .flat_map(|(_, rows)| rows)
+            .filter(|r| f(&r.outcome))
+            .count()
+    };
+    let failed = count(|o| matches!(o, Outcome::Failed { .. }));
+    println!(
+        "verdicts: {} within their error bound, {} refused up front, {} reported, {failed} failed",
+        count(|o| matches!(o, Outcome::Within { .. })),
+        count(|o| matches!(o, Outcome::Refused { .. })),
+        count(|o| matches!(o, Outcome::Reported { .. })),
+    );
+
+    std::fs::create_dir_all(&args.out_dir)
+        .with_context(|| format!("cannot create {}", args.out_dir.display()))?;
+    let series: Vec<StabilitySeries> = results
+        .iter()
+        .flat_map(|(case, rows)| to_series(case, rows))
+        .collect();
+    let (svg, png) = (
+        args.out_dir.join("stability.svg"),
+        args.out_dir.join("stability.png"),
+    );
+    plot::stability(&series, &svg, &png)?;
+    println!("wrote {} and {}", svg.display(), png.display());
+    if let Some(path) = &args.json {
+        let reports: Vec<CaseReport<'_>> = results
+            .iter()
+            .map(|(case, rows)| CaseReport {
+                case: case.name,
+                about: case.about,
+                x: case.x_label,
+                y: case.y_label,
+                rows,
+            })
+            .collect();
+        std::fs::write(path, serde_json::to_string_pretty(&reports)? + "\n")
+            .with_context(|| format!("cannot write {}", path.display()))?;
+        println!("wrote {}", path.display());
+    }
+    if failed > 0 {
+        bail!("{failed} measurements exceeded their error bound (marked FAILED above)");
+    }
+    Ok(())
+}
+
+/// One line per format and method, one column per value of the stressed parameter.
+fn print_case(case: &Case, rows: &[Row]) {
+    let mut xs: Vec<f64> = Vec::new();
+    for row in rows {
+        if !xs.contains(&row.x) {
+            xs.push(row.x);
+        }
+    }
+    println!("\n### {}: {}\n", case.name, case.about);
+    println!(
+        "{} against {}; a cell is the measurement, or why the scene was refused.\n",
+        case.y_label, case.x_label
+    );
+    let mut header = String::from("| format | method |");
+    let mut rule = String::from("|---|---|");
+    for x in &xs {
+        let _ = write!(header, " {x:.3e} |");
+        rule.push_str("---:|");
+    }
+    println!("{header}\n{rule}");
+    let mut lines: Vec<(&str, &str)> = Vec::new();
+    for row in rows {
+        if !lines.contains(&(row.format, row.method)) {
+            lines.push((row.format, row.method));
+        }
+    }
+    for (format, method) in lines {
+        let mut line = format!(
+            "| {format} | {} |",
+            if method.is_empty() { "–" } else { method }
+        );
+        for x in &xs {
+            let cell = rows
+                .iter()
+                .find(|r| r.format == format && r.method == method && r.x == *x);
+            let text = match cell.map(|r| (&r.outcome, r.y)) {
+                None => "".to_owned(),
+                Some((Outcome::Refused { reason }, _)) => {
+                    format!("refused ({})", short_reason(reason))
+                }
+                Some((Outcome::Failed { value, bound }, _)) => {
+                    format!("**FAILED** {value} > {bound}")
+                }
+                Some((_, Some(y))) => format!("{y:.3}"),
+                Some((_, None)) => "–".to_owned(),
+            };
+            let _ = write!(line, " {text} |");
+        }
+        println!("{line}");
+    }
+}
+
+/// The kind of refusal, for a table cell: the quantity that did not fit or resolve.
+fn short_reason(reason: &str) -> &str {
+    if reason.contains("beyond") && reason.contains("range") {
+        "range"
+    } else if reason.contains("resolves") {
+        "resolution"
+    } else if reason.contains("one line") {
+        "degenerate"
+    } else {
+        "invalid"
+    }
+}
+
+fn to_series(case: &Case, rows: &[Row]) -> Vec<StabilitySeries> {
+    let mut series: Vec<StabilitySeries> = Vec::new();
+    for row in rows {
+        let label = if row.method.is_empty() {
+            row.format.to_owned()
+        } else {
+            format!("{} {}", row.format, row.method)
+        };
+        let point = (row.x, row.y);
+        match series.iter_mut().find(|s| s.label == label) {
+            Some(s) => s.points.push(point),
+            None => series.push(StabilitySeries {
+                case: case.name.to_owned(),
+                x_label: case.x_label.to_owned(),
+                y_label: case.y_label.to_owned(),
+                log_x: case.log_x,
+                label,
+                points: vec![point],
+            }),
+        }
+    }
+    series
+}

@@ -1,0 +1,169 @@
+//! [`OwnedScene`]: a scene description that owns its objects and lights, so that the harness
+//! can make scenes at run time (scene files, stress cases, rescaled copies) and lend them to
+//! the core.
+
+use obscura::{BackgroundDesc, CameraDesc, LightDesc, ObjectDesc, SceneDesc, ShapeDesc};
+use serde::Deserialize;
+
+/// A scene description with owned lists; what a scene file holds (lights, ambient light,
+/// background and depth may be left out).
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OwnedScene {
+    /// See [`SceneDesc::camera`].
+    pub camera: CameraDesc,
+    /// See [`SceneDesc::objects`].
+    pub objects: Vec<ObjectDesc>,
+    /// See [`SceneDesc::lights`].
+    #[serde(default)]
+    pub lights: Vec<LightDesc>,
+    /// See [`SceneDesc::ambient`].
+    #[serde(default = "default_ambient")]
+    pub ambient: [f32; 3],
+    /// See [`SceneDesc::background`].
+    #[serde(default = "default_background")]
+    pub background: BackgroundDesc,
+    /// See [`SceneDesc::far`].
+    pub far: f32,
+    /// See [`SceneDesc::max_depth`].
+    #[serde(default = "default_max_depth")]
+    pub max_depth: u8,
+}
+
+fn default_ambient() -> [f32; 3] {
+    [0.1; 3]
+}
+
+fn default_background() -> BackgroundDesc {
+    BackgroundDesc::Solid([0.0; 3])
+}
+
+fn default_max_depth() -> u8 {
+    5
+}
+
+impl OwnedScene {
+    /// A copy of `desc`.
+    pub fn from_desc(desc: &SceneDesc<'_>) -> Self {
+        Self {
+            camera: desc.camera,
+            objects: desc.objects.to_vec(),
+            lights: desc.lights.to_vec(),
+            ambient: desc.ambient,
+            background: desc.background,
+            far: desc.far,
+            max_depth: desc.max_depth,
+        }
+    }
+
+    /// The description, borrowing the lists.
+    pub fn desc(&self) -> SceneDesc<'_> {
+        SceneDesc {
+            camera: self.camera,
+            objects: &self.objects,
+            lights: &self.lights,
+            ambient: self.ambient,
+            background: self.background,
+            far: self.far,
+            max_depth: self.max_depth,
+        }
+    }
+
+    /// The scene scaled by `s` about the eye: every position moved to eye + s·(p − eye), every
+    /// length multiplied by s. The camera sees the very same image.
+    pub fn scaled(&self, s: f32) -> Self {
+        let eye = self.camera.eye;
+        let point = |p: [f32; 3]| std::array::from_fn(|i| eye[i] + s * (p[i] - eye[i]));
+        let objects = self
+            .objects
+            .iter()
+            .map(|object| {
+                let shape = match object.shape {
+                    ShapeDesc::Sphere { center, radius } => ShapeDesc::Sphere {
+                        center: point(center),
+                        radius: s * radius,
+                    },
+                    ShapeDesc::Plane {
+                        point: on,
+                        normal,
+                        checker,
+                    } => ShapeDesc::Plane {
+                        point: point(on),
+                        normal,
+                        checker: checker.map(|c| obscura::CheckerDesc {
+                            size: s * c.size,
+                            ..c
+                        }),
+                    },
+                    ShapeDesc::Triangle { vertices } => ShapeDesc::Triangle {
+                        vertices: vertices.map(point),
+                    },
+                };
+                ObjectDesc { shape, ..*object }
+            })
+            .collect();
+        let lights = self
+            .lights
+            .iter()
+            .map(|light| LightDesc {
+                position: point(light.position),
+                ..*light
+            })
+            .collect();
+        Self {
+            camera: CameraDesc {
+                look_at: point(self.camera.look_at),
+                ..self.camera
+            },
+            objects,
+            lights,
+            far: s * self.far,
+            ..*self
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use obscura::scenes;
+
+    #[test]
+    fn scaling_moves_everything_about_the_eye() {
+        let whitted = OwnedScene::from_desc(&scenes::WHITTED);
+        assert_eq!(whitted.desc(), scenes::WHITTED);
+        let half = whitted.scaled(0.5);
+        assert_eq!(half.camera.eye, scenes::WHITTED.camera.eye);
+        assert_eq!(half.far, 15.0);
+        let ShapeDesc::Sphere { center, radius } = half.objects[1].shape else {
+            panic!()
+        };
+        // (−1.2, 1.0, 3.2) about the eye (0, 3, −6), halved.
+        let want = [-0.6, 2.0, -1.4];
+        assert!(
+            center.iter().zip(want).all(|(c, w)| (c - w).abs() < 1e-6),
+            "{center:?}"
+        );
+        assert_eq!(radius, 0.5);
+        // Scaling back restores every position, up to f32's rounding.
+        for (back, original) in half.scaled(2.0).objects.iter().zip(&whitted.objects) {
+            if let (
+                ShapeDesc::Sphere {
+                    center: b,
+                    radius: rb,
+                },
+                ShapeDesc::Sphere {
+                    center: o,
+                    radius: ro,
+                },
+            ) = (back.shape, original.shape)
+            {
+                assert!((rb - ro).abs() < 1e-6);
+                assert!(
+                    b.iter().zip(o).all(|(b, o)| (b - o).abs() < 1e-6),
+                    "{b:?} {o:?}"
+                );
+            }
+        }
+    }
+}

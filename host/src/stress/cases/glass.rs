@@ -1,0 +1,104 @@
+//! Rays starting inside a glass sphere: the eye inside it, ever nearer its surface, looking at
+//! a checkered floor and a red ball through it; the rays that meet the surface beyond the
+//! critical angle are totally reflected. Per self-intersection method.
+
+use super::{image_row, wrong};
+use crate::format::FormatJob;
+use crate::stress::{Case, Row};
+use anyhow::Result;
+use obscura::methods::MethodName;
+use obscura::{
+    BackgroundDesc, BiasMethod, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, Methods,
+    ObjectDesc, Scalar, SceneDesc, ShapeDesc,
+};
+
+pub const CASE: Case = Case {
+    name: "glass",
+    about: "rays starting inside a glass sphere, total internal reflection",
+    x_label: "the eye's distance from the sphere's centre, over its radius",
+    log_x: false,
+    y_label: "wrong pixels (%)",
+    run: |format| format.run(Job),
+};
+
+const OFFSETS: [f64; 5] = [0.0, 0.3, 0.6, 0.9, 0.99];
+
+const GLASS: MaterialDesc = MaterialDesc {
+    colour: [1.0; 3],
+    diffuse: 0.0,
+    specular: 0.0,
+    shininess: 1,
+    reflection: 0.1,
+    transmission: 0.9,
+    ior: 1.5,
+};
+
+const OBJECTS: [ObjectDesc; 3] = [
+    ObjectDesc {
+        shape: ShapeDesc::Sphere {
+            center: [0.0, 0.0, 0.0],
+            radius: 1.0,
+        },
+        material: GLASS,
+    },
+    ObjectDesc {
+        shape: ShapeDesc::Plane {
+            point: [0.0, -2.0, 0.0],
+            normal: [0.0, 1.0, 0.0],
+            checker: Some(CheckerDesc {
+                colour: [0.1, 0.1, 0.8],
+                size: 0.5,
+            }),
+        },
+        material: MaterialDesc::matte([0.9, 0.9, 0.2]),
+    },
+    ObjectDesc {
+        shape: ShapeDesc::Sphere {
+            center: [0.0, 0.0, 4.0],
+            radius: 1.0,
+        },
+        material: MaterialDesc::matte([0.9, 0.1, 0.1]),
+    },
+];
+
+const LIGHTS: [LightDesc; 1] = [LightDesc {
+    position: [3.0, 5.0, -2.0],
+    colour: [1.0; 3],
+}];
+
+struct Job;
+
+impl FormatJob for Job {
+    type Output = Result<Vec<Row>>;
+    fn run<S: Scalar>(self) -> Result<Vec<Row>> {
+        let mut rows = Vec::new();
+        for offset in OFFSETS {
+            let eye = [offset as f32, 0.0, 0.0];
+            let desc = SceneDesc {
+                camera: CameraDesc {
+                    eye,
+                    look_at: [offset as f32, -0.3, 1.0],
+                    up: [0.0, 1.0, 0.0],
+                    vfov_degrees: 90.0,
+                },
+                objects: &OBJECTS,
+                lights: &LIGHTS,
+                ambient: [0.15; 3],
+                background: BackgroundDesc::Gradient {
+                    horizon: [0.6, 0.7, 0.9],
+                    zenith: [0.1, 0.2, 0.6],
+                },
+                far: 12.0,
+                max_depth: 4,
+            };
+            for &(bias, name) in BiasMethod::ALL {
+                let methods = Methods {
+                    bias,
+                    ..Methods::LECTURE
+                };
+                rows.push(image_row::<S>(&desc, methods, name, offset, wrong));
+            }
+        }
+        Ok(rows)
+    }
+}

@@ -1,0 +1,108 @@
+//! The stress cases, one file each, and the scene pieces they share.
+
+mod acne;
+mod distant;
+mod floor;
+mod glass;
+mod grazing;
+mod mesh;
+mod plane;
+mod scale;
+mod sliver;
+
+use super::check::{ImageCheck, image};
+use super::{Case, Outcome, Row};
+use obscura::{BackgroundDesc, CameraDesc, MaterialDesc, Methods, Scalar, SceneDesc, SceneError};
+
+/// Every case, in the order they run.
+pub static CASES: [Case; 9] = [
+    grazing::CASE,
+    distant::CASE,
+    floor::CASE,
+    plane::CASE,
+    sliver::CASE,
+    mesh::CASE,
+    acne::CASE,
+    glass::CASE,
+    scale::CASE,
+];
+
+/// A camera at the origin looking along +z, for cases that shoot their own rays.
+const CAMERA: CameraDesc = CameraDesc {
+    eye: [0.0, 0.0, 0.0],
+    look_at: [0.0, 0.0, 1.0],
+    up: [0.0, 1.0, 0.0],
+    vfov_degrees: 45.0,
+};
+
+/// A grey matte surface.
+const MATTE: MaterialDesc = MaterialDesc::matte([0.7, 0.7, 0.7]);
+
+/// A scene with these objects and nothing else, seen from the origin, within `far`.
+fn bare<'a>(objects: &'a [obscura::ObjectDesc], far: f32) -> SceneDesc<'a> {
+    SceneDesc {
+        camera: CAMERA,
+        objects,
+        lights: &[],
+        ambient: [0.2; 3],
+        background: BackgroundDesc::Solid([0.0; 3]),
+        far,
+        max_depth: 0,
+    }
+}
+
+/// A row for a scene the build refused.
+fn refused(format: &'static str, method: &'static str, x: f64, error: &SceneError) -> Row {
+    Row {
+        format,
+        method,
+        x,
+        y: None,
+        outcome: Outcome::Refused {
+            reason: error.to_string(),
+        },
+    }
+}
+
+/// The images the cases compare are this many pixels square.
+const SIZE: u32 = 48;
+
+/// The row of `desc` in format `S` by `methods` ([`image`]) where the stressed parameter is
+/// `x`: `y` of the check, within its bound when no pixel is off unexcused; or the build's
+/// refusal.
+fn image_row<S: Scalar>(
+    desc: &SceneDesc<'_>,
+    methods: Methods,
+    method: &'static str,
+    x: f64,
+    y: fn(&ImageCheck) -> f64,
+) -> Row {
+    match image::<S>(desc, methods, SIZE) {
+        Ok(check) => Row {
+            format: S::NAME,
+            method,
+            x,
+            y: Some(y(&check)),
+            outcome: Outcome::bounded(check.unexcused as f64, 0.0),
+        },
+        Err(error) => refused(S::NAME, method, x, &error),
+    }
+}
+
+/// An image's PSNR, with identical images drawn at 100 dB.
+fn psnr(check: &ImageCheck) -> f64 {
+    check.psnr_db.min(100.0)
+}
+
+/// An image's share of wrong pixels, in percent.
+fn wrong(check: &ImageCheck) -> f64 {
+    check.wrong_pct
+}
+
+/// `count` values from `first` to `last`, evenly spaced on a log scale.
+fn log_sweep(first: f64, last: f64, count: usize) -> Vec<f64> {
+    let step = (last / first).ln() / (count - 1).max(1) as f64;
+    (0..count)
+        .map(|i| first * (step * i as f64).exp())
+        .collect()
+}
