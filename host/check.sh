@@ -62,9 +62,9 @@ step "firmware for the ST7789 on an STM32F411 Black Pill"
 cargo build --release --bin firmware --target "$M4F" --features "$BOARD" --locked
 
 for target in m4f m0; do
-    step "firmware under QEMU ($target), bit for bit against the host"
+    step "firmware under QEMU ($target), bit for bit against the host, within its budget"
     cargo run --release --locked -p obscura-host -- firmware --target "$target" \
-        --scene whitted,shapes --format i16f16
+        --scene whitted,shapes --format i16f16 --budget
 done
 
 step "firmware under QEMU (m4f), the other formats and methods, bit for bit against the host"

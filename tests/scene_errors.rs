@@ -461,3 +461,58 @@ fn every_message_says_what_to_do() {
         );
     }
 }
+
+#[test]
+fn messages_without_figures_keep_the_words_and_drop_the_numbers() {
+    let cases = [
+        (
+            SceneError::OutOfBounds {
+                item: Item::Camera,
+                field: "vfov_degrees",
+                value: 270.5,
+                expected: "in (0, 180)",
+            },
+            "270.5",
+        ),
+        (
+            SceneError::OutsideWorld {
+                item: Item::Light(0),
+                distance: 123.25,
+                far: 100.0,
+            },
+            "123.25",
+        ),
+        (
+            SceneError::OutOfRange {
+                item: Item::Scene,
+                quantity: "|o − c|²",
+                value: 4.5e9,
+                format: "i16f16",
+                range: 32768.0,
+            },
+            "4.500000e9",
+        ),
+        (
+            SceneError::BelowResolution {
+                item: Item::Scene,
+                quantity: "radius²",
+                value: 1.25e-4,
+                format: "i16f16",
+                minimum: 2e-4,
+            },
+            "1.250e-4",
+        ),
+    ];
+    for (error, figure) in cases {
+        let full = error.to_string();
+        let brief = error.without_figures().to_string();
+        assert!(full.contains(figure), "{figure} not in: {full}");
+        assert!(!brief.contains(figure), "{figure} still in: {brief}");
+        // The same sentence, less the figures: it starts and ends as the full one does.
+        let (head, tail) = (&full[..12], &full[full.len() - 12..]);
+        assert!(
+            brief.starts_with(head) && brief.ends_with(tail),
+            "{brief} / {full}"
+        );
+    }
+}

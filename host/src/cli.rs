@@ -22,7 +22,7 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// List the built-in scenes.
+    /// List the built-in scenes (any command that takes a scene also takes a scene file).
     Scenes,
     /// Range analysis of a scene: its extents and finest features, the bits each method needs,
     /// which formats hold it, the PSNR each is predicted to reach, and the cheapest that meets
@@ -242,6 +242,10 @@ pub struct FirmwareArgs {
     /// Seconds QEMU may run before it is stopped.
     #[arg(long, default_value_t = 900)]
     pub timeout: u64,
+    /// Fail unless the image fits the target's budget: flash ≤ 128 KiB on the M4F (256 KiB on
+    /// the M0), RAM with the measured stack ≤ 16 KiB on both.
+    #[arg(long)]
+    pub budget: bool,
 }
 
 /// `obscura chart`.

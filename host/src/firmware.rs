@@ -70,6 +70,22 @@ impl Target {
         }
     }
 
+    /// What a firmware for this microcontroller may occupy: on the M4F a quarter of the F411's
+    /// 512 KiB of flash, so that it shares the chip with an application; on the M0 the nRF51's
+    /// 256 KiB; on both the 16 KiB of RAM of the micro:bit, stack included.
+    pub fn budget(self) -> ImageSize {
+        match self {
+            Self::M4f => ImageSize {
+                flash: 128 * 1024,
+                ram: 16 * 1024,
+            },
+            Self::M0 => ImageSize {
+                flash: 256 * 1024,
+                ram: 16 * 1024,
+            },
+        }
+    }
+
     /// Instructions executed in `ticks` SysTick ticks.
     pub fn instructions(self, ticks: u64) -> u64 {
         ticks * 1_000_000_000 / self.core_hz()
@@ -304,6 +320,29 @@ pub struct ImageSize {
     pub ram: u64,
 }
 
+impl ImageSize {
+    /// Why this image, with `stack` bytes of stack on top of its static RAM, does not fit
+    /// `budget`; `None` when it does.
+    pub fn exceeds(self, stack: u64, budget: ImageSize) -> Option<String> {
+        let ram = self.ram + stack;
+        let mut over = Vec::new();
+        if self.flash > budget.flash {
+            over.push(format!(
+                "{} bytes of flash, over the {} KiB budget",
+                self.flash,
+                budget.flash / 1024
+            ));
+        }
+        if ram > budget.ram {
+            over.push(format!(
+                "{ram} bytes of RAM with the stack, over the {} KiB budget",
+                budget.ram / 1024
+            ));
+        }
+        (!over.is_empty()).then(|| over.join(" and "))
+    }
+}
+
 /// The host's RGB565 rendering of a frame the firmware reported, and the indices of the pixels
 /// where the firmware's frame (read from `dir`) differs from it.
 pub fn compare_frame(
@@ -371,6 +410,32 @@ pub fn image_size(elf: &Path) -> Result<ImageSize> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_budget_counts_the_stack_with_the_ram_and_names_what_is_over() {
+        let budget = Target::M4f.budget();
+        let image = ImageSize {
+            flash: 100_000,
+            ram: 20,
+        };
+        assert_eq!(image.exceeds(4_500, budget), None);
+        assert_eq!(image.exceeds(16 * 1024 - 20, budget), None);
+        let ram = image.exceeds(16 * 1024 - 19, budget).unwrap();
+        assert!(
+            ram.contains("16385 bytes of RAM") && !ram.contains("flash"),
+            "{ram}"
+        );
+        let big = ImageSize {
+            flash: 128 * 1024 + 1,
+            ram: 20,
+        };
+        let flash = big.exceeds(0, budget).unwrap();
+        assert!(
+            flash.contains("131073 bytes of flash, over the 128 KiB"),
+            "{flash}"
+        );
+        assert_eq!(big.exceeds(0, Target::M0.budget()), None);
+    }
 
     #[test]
     fn frame_lines_parse_and_bad_ones_say_why() {

@@ -144,34 +144,45 @@ pub enum SceneError {
 
 impl fmt::Display for SceneError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match *self {
-            Self::NotFinite { item, field } => {
+        Message::<true>(self).fmt(f)
+    }
+}
+
+impl SceneError {
+    /// The message without its figures (the values, bounds and ranges), for a firmware:
+    /// formatting floating-point numbers would take a quarter of its flash. The host's message
+    /// for the same scene and format (the [`fmt::Display`] of the error) has them.
+    pub fn without_figures(&self) -> impl fmt::Display + '_ {
+        Message::<false>(self)
+    }
+}
+
+/// The message of a [`SceneError`], with its figures or without (then no floating-point
+/// formatting is linked).
+struct Message<'a, const FIGURES: bool>(&'a SceneError);
+
+impl<const FIGURES: bool> fmt::Display for Message<'_, FIGURES> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self.0 {
+            SceneError::NotFinite { item, field } => {
                 write!(
                     f,
                     "{item}: {field} is not a finite number; give a finite value"
                 )
             }
-            Self::OutOfBounds {
-                item,
-                field,
-                value,
-                expected,
-            } => {
-                write!(f, "{item}: {field} is {value}, but it must be {expected}")
-            }
-            Self::ZeroLength { item, field } => {
+            SceneError::ZeroLength { item, field } => {
                 write!(f, "{item}: {field} has zero length; give it a direction")
             }
-            Self::DegenerateTriangle { item } => write!(
+            SceneError::DegenerateTriangle { item } => write!(
                 f,
                 "{item}: the triangle's corners lie on one line, so it has no area; move a \
                  corner off that line or leave the triangle out"
             ),
-            Self::UpParallelToView => f.write_str(
+            SceneError::UpParallelToView => f.write_str(
                 "the camera: the up vector is parallel to the view direction; choose an up \
                  vector that does not point along the line from eye to look_at",
             ),
-            Self::TooMany {
+            SceneError::TooMany {
                 what,
                 count,
                 capacity,
@@ -180,7 +191,7 @@ impl fmt::Display for SceneError {
                 "the scene has {count} {what}, but the scene type holds at most {capacity}; \
                  raise the capacity or model fewer {what}"
             ),
-            Self::DepthExceedsStack {
+            SceneError::DepthExceedsStack {
                 max_depth,
                 capacity,
             } => write!(
@@ -189,26 +200,57 @@ impl fmt::Display for SceneError {
                  lower max_depth or raise the stack capacity",
                 usize::from(max_depth) + 1
             ),
-            Self::OutsideWorld {
+            SceneError::MethodUnavailable { method, format } => write!(
+                f,
+                "{method} is not a method of {format}: the fast roots belong to the 32-bit fixed \
+                 formats (i16f16, i20f12); use sqrt=exact, or the f32-approx format for floats \
+                 with approximate roots"
+            ),
+            SceneError::ImageSize { width, height } => write!(
+                f,
+                "an image of {width}x{height} pixels: each side must be 1 to {}",
+                crate::MAX_IMAGE_SIDE
+            ),
+            SceneError::OutOfBounds {
+                item,
+                field,
+                value,
+                expected,
+            } => {
+                write!(f, "{item}: {field} ")?;
+                if FIGURES {
+                    write!(f, "is {value}, but it ")?;
+                }
+                write!(f, "must be {expected}")
+            }
+            SceneError::OutsideWorld {
                 item,
                 distance,
                 far,
-            } => write!(
-                f,
-                "{item} reaches {distance:.4} from the eye, beyond the world radius far = {far}; \
-                 raise far or move it closer"
-            ),
-            Self::OutOfRange {
+            } => {
+                write!(f, "{item} reaches ")?;
+                if FIGURES {
+                    write!(f, "{distance:.4} from the eye, ")?;
+                }
+                f.write_str("beyond the world radius far")?;
+                if FIGURES {
+                    write!(f, " = {far}")?;
+                }
+                f.write_str("; raise far or move it closer")
+            }
+            SceneError::OutOfRange {
                 item,
                 quantity,
                 value,
                 format,
                 range,
             } => {
-                write!(
-                    f,
-                    "{item}: {quantity} reaches {value:.6e}, beyond {format}'s range of ±{range:.6e}"
-                )?;
+                write!(f, "{item}: {quantity} reaches ")?;
+                if FIGURES {
+                    write!(f, "{value:.6e}, beyond {format}'s range of ±{range:.6e}")?;
+                } else {
+                    write!(f, "beyond {format}'s range")?;
+                }
                 let mut fits = FORMATS.iter().filter(|fmt| fmt.range >= value).peekable();
                 if fits.peek().is_some() {
                     f.write_str("; formats that hold it:")?;
@@ -218,29 +260,27 @@ impl fmt::Display for SceneError {
                 }
                 f.write_str("; or shrink the scene (a smaller far, objects nearer the eye)")
             }
-            Self::BelowResolution {
+            SceneError::BelowResolution {
                 item,
                 quantity,
                 value,
                 format,
                 minimum,
-            } => write!(
-                f,
-                "{item}: {quantity} is {value:.3e}, below the {minimum:.3e} that {format} \
-                 resolves in a world of this size; use a finer format or a steadier method \
-                 (`obscura analyze` compares them), enlarge it, or shrink far"
-            ),
-            Self::MethodUnavailable { method, format } => write!(
-                f,
-                "{method} is not a method of {format}: the fast roots belong to the 32-bit fixed \
-                 formats (i16f16, i20f12); use sqrt=exact, or the f32-approx format for floats \
-                 with approximate roots"
-            ),
-            Self::ImageSize { width, height } => write!(
-                f,
-                "an image of {width}x{height} pixels: each side must be 1 to {}",
-                crate::MAX_IMAGE_SIDE
-            ),
+            } => {
+                write!(f, "{item}: {quantity} is ")?;
+                if FIGURES {
+                    write!(
+                        f,
+                        "{value:.3e}, below the {minimum:.3e} that {format} resolves"
+                    )?;
+                } else {
+                    write!(f, "below what {format} resolves")?;
+                }
+                f.write_str(
+                    " in a world of this size; use a finer format or a steadier method \
+                     (`obscura analyze` compares them), enlarge it, or shrink far",
+                )
+            }
         }
     }
 }

@@ -68,7 +68,7 @@ pub fn run(args: &AnalyzeArgs) -> Result<()> {
 fn print_extents(e: &Extents) {
     println!("## Extents, relative to the eye\n");
     println!(
-        "- {} objects, {} lights; the world reaches {} from the eye",
+        "- objects: {}, lights: {}; the world reaches {} from the eye",
         e.objects, e.lights, e.world
     );
     if let Some((lo, hi)) = e.bounds {

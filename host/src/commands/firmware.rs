@@ -184,6 +184,20 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
         }
     }
     print_table(target, &reports);
+    let budget = target.budget();
+    let stack = reports.iter().map(|r| r.stack_bytes).max().unwrap_or(0);
+    let over = size.exceeds(stack, budget);
+    match &over {
+        None => println!(
+            "within the {} budget: {} of {} KiB flash, {} of {} KiB RAM with the stack",
+            target.name(),
+            size.flash,
+            budget.flash / 1024,
+            size.ram + stack,
+            budget.ram / 1024
+        ),
+        Some(why) => println!("over the {} budget: {why}", target.name()),
+    }
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&reports)?;
         std::fs::write(path, text + "\n")
@@ -194,6 +208,12 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
         bail!(
             "the firmware's frames differ from the host's in fixed point: {}",
             mismatched.join(", ")
+        );
+    }
+    if let (true, Some(why)) = (args.budget, over) {
+        bail!(
+            "the firmware image takes {why}; build fewer scenes or formats into one image \
+             (one of each is what a board needs)"
         );
     }
     Ok(())

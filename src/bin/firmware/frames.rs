@@ -163,8 +163,12 @@ fn render<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usiz
         });
     let (scene, camera) = match built {
         Ok(built) => built,
-        Err(error) if cfg!(feature = "chart") => return backend.refused(job, &error),
-        Err(error) => return backend.failed(job, &error),
+        // Without its figures: formatting floats would cost a quarter of the flash, and the
+        // host's build of the same scene and format says the same with them.
+        Err(error) if cfg!(feature = "chart") => {
+            return backend.refused(job, &error.without_figures());
+        }
+        Err(error) => return backend.failed(job, &error.without_figures()),
     };
     let ((drawn, ticks), stack_bytes) = backend.frame(job, |display| {
         let mut line = [Rgb565::BLACK; SIDE as usize];
