@@ -8,6 +8,7 @@ use crate::format::Format;
 use crate::variant;
 use clap::ValueEnum;
 use obscura::Methods;
+use std::fmt;
 use std::sync::OnceLock;
 
 /// The chart's measurements, as committed.
@@ -27,6 +28,16 @@ pub enum Machine {
 impl Machine {
     /// Every machine, in the chart's order.
     pub const ALL: [Self; 3] = [Self::M4f, Self::M0, Self::Host];
+}
+
+impl fmt::Display for Machine {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::M4f => "the Cortex-M4F",
+            Self::M0 => "the Cortex-M0",
+            Self::Host => "this computer",
+        })
+    }
 }
 
 impl From<Target> for Machine {

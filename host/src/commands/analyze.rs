@@ -53,7 +53,7 @@ pub fn run(args: &AnalyzeArgs) -> Result<()> {
                 Fit::Holds | Fit::Refused(_) => String::new(),
             };
             println!(
-                "\nthe cheapest on {:?} predicted to reach {target} dB: {}{how} (--format auto)",
+                "\nthe cheapest on {} predicted to reach {target} dB: {}{how} (--format auto)",
                 args.auto.cost_on, verdict.format
             );
         }

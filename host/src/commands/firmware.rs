@@ -85,7 +85,7 @@ fn auto_format(args: &FirmwareArgs, scenes: &[&BuiltIn], methods: &Methods) -> R
         })?;
     eprintln!(
         "--format auto: {chosen} is the cheapest on {} predicted to reach {} dB on every scene",
-        args.target.name(),
+        Machine::from(args.target),
         args.target_psnr
     );
     Ok(chosen)

@@ -75,7 +75,7 @@ pub fn resolve(
         };
         let predicted = verdict.predicted_psnr.unwrap_or(f64::INFINITY);
         eprintln!(
-            "--format auto: {} is the cheapest on {:?} predicted to reach {} dB ({predicted:.1} \
+            "--format auto: {} is the cheapest on {} predicted to reach {} dB ({predicted:.1} \
              dB predicted)",
             verdict.format, auto.cost_on, auto.target_psnr
         );
