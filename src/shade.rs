@@ -9,6 +9,7 @@ use crate::methods::BiasMethod;
 use crate::ray::{Ray, Span};
 use crate::scalar::Scalar;
 use crate::scene::{Object, Scene, Settings};
+use crate::shape::PerRay;
 use crate::vec3::Vec3;
 use heapless::{Vec, VecView};
 
@@ -146,6 +147,7 @@ impl<S: Scalar> Tracer<'_, S> {
         index: usize,
         object: &Object<S>,
         from: Option<Leaving<S>>,
+        per_ray: &mut PerRay<S>,
     ) -> Option<S> {
         match from {
             Some(leaving)
@@ -155,7 +157,9 @@ impl<S: Scalar> Tracer<'_, S> {
                     .shape
                     .intersect_again(ray, span, &self.settings.methods, leaving.into)
             }
-            _ => object.shape.intersect(ray, span, &self.settings.methods),
+            _ => object
+                .shape
+                .intersect(ray, span, &self.settings.methods, per_ray),
         }
     }
 
@@ -164,8 +168,9 @@ impl<S: Scalar> Tracer<'_, S> {
     fn nearest(&self, ray: &Ray<S>, from: Option<Leaving<S>>) -> Option<Hit<'_, S>> {
         let mut span = self.span(from, self.settings.ray_length);
         let mut nearest = None;
+        let mut per_ray = PerRay::new();
         for (index, object) in self.objects.iter().enumerate() {
-            if let Some(t) = self.meet(ray, span, index, object, from) {
+            if let Some(t) = self.meet(ray, span, index, object, from, &mut per_ray) {
                 span.max = t;
                 nearest = Some(Hit { object, index, t });
             }
@@ -298,8 +303,12 @@ impl<S: Scalar> Tracer<'_, S> {
     fn transmittance(&self, ray: &Ray<S>, distance: S, from: Leaving<S>) -> S {
         let span = self.span(Some(from), distance);
         let mut passed = S::ONE;
+        let mut per_ray = PerRay::new();
         for (index, object) in self.objects.iter().enumerate() {
-            if self.meet(ray, span, index, object, Some(from)).is_some() {
+            if self
+                .meet(ray, span, index, object, Some(from), &mut per_ray)
+                .is_some()
+            {
                 passed = passed * object.material.transmission;
                 if passed == S::ZERO {
                     break;

@@ -13,7 +13,7 @@
 use crate::cost::{Machine, cost};
 use crate::format::{Format, FormatJob};
 use crate::owned::OwnedScene;
-use crate::render::{HostScene, Request, prepare};
+use crate::render::{HostScene, Request, all_cores, prepare_reference};
 use anyhow::Result;
 use image::RgbImage;
 use obscura::methods::MethodName;
@@ -43,6 +43,8 @@ pub struct Analysis {
     pub verdicts: Vec<Verdict>,
     /// G: the f64 image's mean squared difference of neighbouring pixels, in 8-bit levels².
     pub edge_energy: f64,
+    /// Whether the scene has triangles (which decides the chart scene it is priced like).
+    pub has_triangles: bool,
 }
 
 /// Where the scene's things are, relative to the eye.
@@ -112,22 +114,14 @@ impl Analysis {
     /// When the scene is invalid or too large even for f64: no format can hold it.
     pub fn of(scene: &OwnedScene, methods: Methods, width: u32, height: u32) -> Result<Self> {
         let desc = scene.desc();
-        let exact = Methods {
-            roots: RootMethod::Exact,
-            ..methods
-        };
-        let reference = prepare(
-            Format::F64,
-            &Request {
-                desc: &desc,
-                width,
-                height,
-                methods: exact,
-            },
-        )
+        let reference = prepare_reference(&Request {
+            desc: &desc,
+            width,
+            height,
+            methods,
+        })
         .map_err(|error| error.context("no format can hold the scene"))?;
-        let threads = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
-        let edge_energy = edge_energy(&reference.render(threads, None));
+        let edge_energy = edge_energy(&reference.render(all_cores(), None));
         let verdicts = Format::ALL
             .into_iter()
             .map(|format| {
@@ -165,7 +159,13 @@ impl Analysis {
             bits: bits(&desc, methods),
             verdicts,
             edge_energy,
+            has_triangles: desc.has_triangles(),
         })
+    }
+
+    /// What `format` by `methods` costs per pixel on `machine` in this scene, by the chart.
+    pub fn cost(&self, machine: Machine, format: Format, methods: &Methods) -> Option<f64> {
+        cost(machine, format, methods, self.has_triangles)
     }
 
     /// The cheapest format on `machine` that holds the scene and is predicted to reach
@@ -182,7 +182,7 @@ impl Analysis {
                 !matches!(v.fit, Fit::Refused(_))
                     && v.predicted_psnr.is_some_and(|p| p >= target_psnr)
             })
-            .filter_map(|v| cost(machine, v.format, methods).map(|c| (c, v)))
+            .filter_map(|v| self.cost(machine, v.format, methods).map(|c| (c, v)))
             .min_by(|a, b| a.0.total_cmp(&b.0))
             .map(|(_, v)| v)
     }
@@ -442,7 +442,7 @@ mod tests {
     use super::*;
     use crate::metrics::accuracy;
     use crate::peak::{self, Peak};
-    use crate::render::Prepared;
+    use crate::render::{Prepared, prepare};
     use obscura::{BiasMethod, SphereMethod, scenes};
 
     #[test]
@@ -497,18 +497,11 @@ mod tests {
             height: size,
             methods,
         };
-        let exact = Request {
-            methods: Methods {
-                roots: RootMethod::Exact,
-                ..methods
-            },
-            ..request
-        };
         let (contender, reference) = (
             prepare(format, &request).expect("builds"),
-            prepare(Format::F64, &exact).expect("builds"),
+            prepare_reference(&request).expect("builds"),
         );
-        let threads = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
+        let threads = all_cores();
         accuracy(
             &contender.render(threads, None),
             &reference.render(threads, None),

@@ -22,7 +22,7 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// List the built-in scenes (any command that takes a scene also takes a scene file).
+    /// List the built-in scenes (all but `firmware` take a scene file as well).
     Scenes,
     /// Range analysis of a scene: its extents and finest features, the bits each method needs,
     /// which formats hold it, the PSNR each is predicted to reach, and the cheapest that meets
@@ -43,7 +43,7 @@ pub enum Command {
     Stress(StressArgs),
 }
 
-/// The numerical methods, one choice each (see `obscura_host::methods` and the README).
+/// The numerical methods, one choice each (see `obscura::methods` and the README).
 #[derive(Clone, Copy, Debug, Args)]
 pub struct MethodArgs {
     /// Ray–sphere: the lecture's quadratic, or the stable form (Haines et al.).
@@ -205,7 +205,7 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u16).range(1..=1000))]
     pub runs: u16,
     /// The thread counts to time the first format with.
-    #[arg(long, value_delimiter = ',', default_values_t = [1_u16, 2])]
+    #[arg(long, value_delimiter = ',', default_values_t = [1_u16, 2], value_parser = clap::value_parser!(u16).range(1..=1024))]
     pub threads: Vec<u16>,
     /// Also write the figures as JSON to this file.
     #[arg(long)]

@@ -8,6 +8,7 @@ use crate::format::Format;
 use crate::variant;
 use clap::ValueEnum;
 use obscura::Methods;
+use obscura::scenes::{BUILT_IN, BuiltIn};
 use std::fmt;
 use std::sync::OnceLock;
 
@@ -21,7 +22,7 @@ pub enum Machine {
     M4f,
     /// The Cortex-M0 (instructions per pixel).
     M0,
-    /// This computer (nanoseconds per pixel, single thread).
+    /// The PC the chart ran on (nanoseconds per pixel, single thread).
     Host,
 }
 
@@ -35,7 +36,7 @@ impl fmt::Display for Machine {
         f.write_str(match self {
             Self::M4f => "the Cortex-M4F",
             Self::M0 => "the Cortex-M0",
-            Self::Host => "this computer",
+            Self::Host => "the PC",
         })
     }
 }
@@ -52,6 +53,7 @@ impl From<Target> for Machine {
 /// One row of the chart: a format and methods on a scene, and its cost on each machine.
 #[derive(Debug)]
 struct Row {
+    scene: String,
     format: String,
     variant: String,
     m4f: Option<f64>,
@@ -65,55 +67,139 @@ fn rows() -> &'static [Row] {
 }
 
 /// The rows of the chart's CSV (scene, format, variant, M4F, M0, host, ...); a row that does not
-/// parse is left out.
+/// parse is left out. A variant is quoted, and may hold commas.
 fn parse(csv: &str) -> Vec<Row> {
     csv.lines()
         .skip(1)
         .filter_map(|line| {
-            let fields: Vec<&str> = line.split(',').map(|f| f.trim_matches('"')).collect();
+            let (scene, rest) = line.split_once(',')?;
+            let (format, rest) = rest.split_once(',')?;
+            let (variant, rest) = rest.strip_prefix('"')?.split_once("\",")?;
+            let fields: Vec<&str> = rest.split(',').collect();
             let number = |i: usize| fields.get(i).and_then(|f| f.parse::<f64>().ok());
             Some(Row {
-                format: (*fields.get(1)?).to_owned(),
-                variant: (*fields.get(2)?).to_owned(),
-                m4f: number(3),
-                m0: number(4),
-                host: number(5),
+                scene: scene.to_owned(),
+                format: format.to_owned(),
+                variant: variant.to_owned(),
+                m4f: number(0),
+                m0: number(1),
+                host: number(2),
             })
         })
         .collect()
 }
 
-/// The mean cost per pixel of `format` by `methods` on `machine` over the chart's scenes (by
-/// the lecture's methods where the chart has no run of these); `None` where the chart has no
-/// measurement at all (f64, which the chart measures others against).
-pub fn cost(machine: Machine, format: Format, methods: &Methods) -> Option<f64> {
-    let of = |label: &str| {
-        let costs: Vec<f64> = rows()
+/// What `format` by `methods` costs per pixel on `machine` in a scene with triangles or without,
+/// as the chart measured it on the built-in scenes like it (on the others where those refused
+/// the format): by these methods where they change something there and the chart ran them, by
+/// the lecture's otherwise. `None` where the chart has no measurement at all (f64, which the
+/// chart measures others against).
+pub fn cost(
+    machine: Machine,
+    format: Format,
+    methods: &Methods,
+    has_triangles: bool,
+) -> Option<f64> {
+    let label = variant::label(methods);
+    let on = |scene: &BuiltIn| {
+        let matters = format.methods_matter(methods, &Methods::LECTURE, scene.desc.has_triangles());
+        let of = |variant: &str| {
+            rows()
+                .iter()
+                .find(|r| {
+                    r.scene == scene.name && r.format == format.name() && r.variant == variant
+                })
+                .and_then(|r| match machine {
+                    Machine::M4f => r.m4f,
+                    Machine::M0 => r.m0,
+                    Machine::Host => r.host,
+                })
+        };
+        if matters { of(&label) } else { None }.or_else(|| of("lecture"))
+    };
+    let mean = |alike: bool| {
+        let costs: Vec<f64> = BUILT_IN
             .iter()
-            .filter(|r| r.format == format.name() && r.variant == label)
-            .filter_map(|r| match machine {
-                Machine::M4f => r.m4f,
-                Machine::M0 => r.m0,
-                Machine::Host => r.host,
-            })
+            .filter(|scene| (scene.desc.has_triangles() == has_triangles) == alike)
+            .filter_map(on)
             .collect();
         (!costs.is_empty()).then(|| costs.iter().sum::<f64>() / costs.len() as f64)
     };
-    of(&variant::label(methods)).or_else(|| of("lecture"))
+    mean(true).or_else(|| mean(false))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use obscura::TriangleMethod;
 
     #[test]
     fn the_committed_chart_prices_every_firmware_format_on_every_machine() {
         for format in Format::FIRMWARE {
             for machine in Machine::ALL {
-                let cost = cost(machine, format, &Methods::LECTURE);
-                assert!(cost.is_some_and(|c| c > 0.0), "{format} on {machine:?}");
+                for triangles in [false, true] {
+                    let cost = cost(machine, format, &Methods::LECTURE, triangles);
+                    assert!(cost.is_some_and(|c| c > 0.0), "{format} on {machine:?}");
+                }
             }
         }
-        assert_eq!(cost(Machine::M0, Format::F64, &Methods::LECTURE), None);
+        assert_eq!(
+            cost(Machine::M0, Format::F64, &Methods::LECTURE, false),
+            None
+        );
+    }
+
+    /// The chart's cost of a run, read off its CSV directly.
+    fn charted(scene: &str, format: &str, variant: &str) -> f64 {
+        rows()
+            .iter()
+            .find(|r| r.scene == scene && r.format == format && r.variant == variant)
+            .and_then(|r| r.m4f)
+            .expect("charted")
+    }
+
+    #[test]
+    fn a_format_is_priced_on_the_built_in_scene_like_the_one_analysed() {
+        let lecture = Methods::LECTURE;
+        // Without triangles, as whitted; with them, as shapes.
+        assert_eq!(
+            cost(Machine::M4f, Format::I16f16, &lecture, false),
+            Some(charted("whitted", "i16f16", "lecture"))
+        );
+        assert_eq!(
+            cost(Machine::M4f, Format::I16f16, &lecture, true),
+            Some(charted("shapes", "i16f16", "lecture"))
+        );
+        // A triangle method changes nothing without triangles: the lecture's run stands in.
+        let watertight = Methods {
+            triangle: TriangleMethod::Watertight,
+            ..lecture
+        };
+        assert_eq!(
+            cost(Machine::M4f, Format::F32, &watertight, false),
+            Some(charted("whitted", "f32", "lecture"))
+        );
+        assert_eq!(
+            cost(Machine::M4f, Format::F32, &watertight, true),
+            Some(charted("shapes", "f32", "triangle=watertight"))
+        );
+        // shapes refuses i20f12 by the lecture's methods: priced on whitted instead.
+        assert_eq!(
+            cost(Machine::M4f, Format::I20f12, &lecture, true),
+            Some(charted("whitted", "i20f12", "lecture"))
+        );
+    }
+
+    #[test]
+    fn a_quoted_variant_may_hold_commas() {
+        let csv = "scene,format,variant,m4f,m0,host\n\
+                   whitted,i16f16,\"sphere=stable,bias=exclude\",1.5,2,3\n";
+        let rows = parse(csv);
+        assert_eq!(rows.len(), 1);
+        assert_eq!(rows[0].variant, "sphere=stable,bias=exclude");
+        assert_eq!(
+            (rows[0].m4f, rows[0].m0, rows[0].host),
+            (Some(1.5), Some(2.0), Some(3.0))
+        );
     }
 }

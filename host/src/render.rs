@@ -8,12 +8,41 @@ use embedded_graphics::pixelcolor::{IntoStorage, Rgb565, Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use image::RgbImage;
-use obscura::{Camera, Methods, Scalar, Scene, SceneDesc, render_rows};
+use obscura::{Camera, Methods, RootMethod, Scalar, Scene, SceneDesc, render_rows};
 use std::convert::Infallible;
 use std::io::Write;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicU32, Ordering};
 use std::time::{Duration, Instant};
+
+/// Every core of this machine: the threads of a render that is not timed.
+pub fn all_cores() -> usize {
+    std::thread::available_parallelism().map_or(1, std::num::NonZero::get)
+}
+
+/// `methods` with exact roots and quotients: what a format without fast roots (f64, f32)
+/// computes by the same methods.
+pub fn exact_roots(methods: Methods) -> Methods {
+    Methods {
+        roots: RootMethod::Exact,
+        ..methods
+    }
+}
+
+/// The f64 reference a format is measured against: the same scene, size and methods, with
+/// exact roots (f64 has no others), so that a difference is the format's numeric error alone.
+///
+/// # Errors
+/// When the scene is invalid or too large even for f64.
+pub fn prepare_reference(request: &Request<'_>) -> Result<Box<dyn AnyFormat>> {
+    prepare(
+        Format::F64,
+        &Request {
+            methods: exact_roots(request.methods),
+            ..*request
+        },
+    )
+}
 
 /// Objects a scene on the host may have.
 pub const MAX_OBJECTS: usize = 64;

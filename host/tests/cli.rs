@@ -219,6 +219,61 @@ fn firmware_refuses_f64_and_unknown_targets() {
 }
 
 #[test]
+fn bench_times_fast_roots_against_f32_by_exact_roots() {
+    let output = obscura(&[
+        "bench",
+        "whitted",
+        "--size",
+        "16x16",
+        "--formats",
+        "i16f16",
+        "--sqrt",
+        "approx",
+        "--runs",
+        "1",
+        "--threads",
+        "1",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert!(
+        stdout(&output).contains("by exact roots"),
+        "{}",
+        stdout(&output)
+    );
+    let output = obscura(&["bench", "whitted", "--threads", "0"]);
+    assert!(!output.status.success());
+    assert!(stderr(&output).contains("--threads"), "{}", stderr(&output));
+}
+
+#[test]
+fn firmware_refuses_what_it_cannot_draw_before_building() {
+    // No cargo on the PATH: the refusal must come before any build.
+    let output = Command::new(env!("CARGO_BIN_EXE_obscura"))
+        .args([
+            "firmware", "--target", "m0", "--scene", "shapes", "--format", "i20f12",
+        ])
+        .env("PATH", scratch("no-cargo"))
+        .output()
+        .unwrap();
+    assert!(!output.status.success());
+    let message = stderr(&output);
+    assert!(
+        message.contains("cannot draw shapes in i20f12") && message.contains("below the"),
+        "{message}"
+    );
+    let output = Command::new(env!("CARGO_BIN_EXE_obscura"))
+        .args([
+            "firmware", "--target", "m4f", "--format", "f32", "--sqrt", "approx",
+        ])
+        .env("PATH", scratch("no-cargo"))
+        .output()
+        .unwrap();
+    assert!(!output.status.success());
+    let message = stderr(&output);
+    assert!(message.contains("f32-approx"), "{message}");
+}
+
+#[test]
 fn firmware_without_qemu_says_how_to_install_it() {
     // A PATH with rustc on it and nothing else: no QEMU (and perhaps no thumb target).
     let dir = scratch("no-qemu");

@@ -64,8 +64,13 @@ impl Div for F32Approx {
         reason = "that product is the approximation"
     )]
     fn div(self, rhs: Self) -> Self {
-        // Newton for 1/x: y ← y·(2 − x·y), squaring the relative error.
         let y = F32(rhs.0).recip().0;
+        if !y.is_finite() {
+            // A zero or subnormal divisor: the quotient is as infinite as the reciprocal (a
+            // Newton step would turn it into NaN, or flip its sign).
+            return Self(self.0 * y);
+        }
+        // Newton for 1/x: y ← y·(2 − x·y), squaring the relative error.
         Self(self.0 * (y * (2.0 - rhs.0 * y)))
     }
 }
@@ -164,5 +169,15 @@ mod tests {
         );
         assert_eq!(F32Approx(-4.0).sqrt(), F32Approx::ZERO);
         assert_eq!(F32Approx(0.0).rsqrt(), F32Approx::MAX);
+    }
+
+    #[test]
+    fn a_quotient_by_zero_or_a_subnormal_is_infinite_with_the_right_sign() {
+        let (two, minus_two) = (F32Approx(2.0), F32Approx(-2.0));
+        assert_eq!((two / F32Approx(0.0)).0, f32::INFINITY);
+        assert_eq!((minus_two / F32Approx(0.0)).0, f32::NEG_INFINITY);
+        let tiny = F32Approx(f32::MIN_POSITIVE / 4.0);
+        assert!((two / tiny).0 > 0.0 && (minus_two / tiny).0 < 0.0);
+        assert!(!(two / tiny).0.is_nan());
     }
 }

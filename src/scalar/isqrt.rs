@@ -1,4 +1,4 @@
-//! Integer square roots and reciprocal square roots for the 32-bit fixed-point formats, by
+//! Integer square roots and reciprocal square roots for the fixed-point formats, by
 //! multiplication only: no division, and no bit-by-bit loop with a branch per bit.
 //!
 //! Both start from the reciprocal square root of a normalised value ([`rsqrt_q30`]):

@@ -92,8 +92,8 @@ pub trait Scalar:
     }
 
     /// The unit vector along `v` and |v|, the roots approximate when `approx`; a zero vector
-    /// gives itself and zero. Fixed formats override it to keep every bit of the unit vector
-    /// however long `v` is.
+    /// gives itself and zero. Fixed formats override it to keep the unit vector to within a few
+    /// steps of their resolution however long `v` is.
     #[must_use]
     fn normalize3(v: [Self; 3], approx: bool) -> ([Self; 3], Self) {
         let squared = Self::dot3(v, v);
@@ -130,8 +130,9 @@ pub trait Scalar:
         self / rhs
     }
 
-    /// a·b − c·d rounded once, and the exact sign of the exact value: what an edge function
-    /// needs to tell on which side of an edge a point lies without ever contradicting itself.
+    /// a·b − c·d (rounded to within a couple of units in the last place), and the exact sign of
+    /// the exact value: what an edge function needs to tell on which side of an edge a point
+    /// lies without ever contradicting itself.
     fn diff_of_products(a: Self, b: Self, c: Self, d: Self) -> (Self, Ordering);
 
     /// `a₀b₀ + a₁b₁ + a₂b₂`. Fixed formats override it to add the exact products and round

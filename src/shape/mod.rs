@@ -7,7 +7,7 @@ mod triangle;
 
 pub use plane::{Checker, Plane};
 pub use sphere::Sphere;
-pub use triangle::{Triangle, TriangleHit};
+pub use triangle::{PerRay, Triangle, TriangleHit};
 
 use crate::color::Rgb;
 use crate::methods::{Methods, RootMethod};
@@ -27,15 +27,22 @@ pub enum Shape<S> {
 }
 
 impl<S: Scalar> Shape<S> {
-    /// The nearest distance in `span` at which `ray` meets the shape.
+    /// The nearest distance in `span` at which `ray` meets the shape; `per_ray` carries what
+    /// the tests of this ray against several shapes share.
     #[inline(always)]
     #[must_use]
-    pub fn intersect(&self, ray: &Ray<S>, span: Span<S>, methods: &Methods) -> Option<S> {
+    pub fn intersect(
+        &self,
+        ray: &Ray<S>,
+        span: Span<S>,
+        methods: &Methods,
+        per_ray: &mut PerRay<S>,
+    ) -> Option<S> {
         match self {
             Self::Sphere(sphere) => sphere.intersect(ray, span, methods.sphere, methods.roots),
             Self::Plane(plane) => plane.intersect(ray, span, methods.roots),
             Self::Triangle(triangle) => triangle
-                .intersect(ray, span, methods.triangle, methods.roots)
+                .intersect_sharing(ray, span, methods.triangle, methods.roots, per_ray)
                 .map(|hit| hit.t),
         }
     }

@@ -21,7 +21,7 @@ pub struct Triangle<S> {
     /// n·a: the triangle's plane is n·p = offset.
     offset: S,
     /// Möller–Trumbore treats a smaller |det| as parallel: below it, the products with
-    /// 1/det would leave the format (the scene build derives it; zero for floats).
+    /// 1/det would leave the format (the scene build derives it; for floats it is tiny).
     min_det: S,
 }
 
@@ -78,10 +78,28 @@ impl<S: Scalar> Triangle<S> {
         method: TriangleMethod,
         roots: RootMethod,
     ) -> Option<TriangleHit<S>> {
+        self.intersect_sharing(ray, span, method, roots, &mut PerRay::new())
+    }
+
+    /// [`Self::intersect`] for one of several triangles tested against `ray`, sharing with the
+    /// others what depends on the ray alone.
+    #[inline(always)]
+    #[must_use]
+    pub fn intersect_sharing(
+        &self,
+        ray: &Ray<S>,
+        span: Span<S>,
+        method: TriangleMethod,
+        roots: RootMethod,
+        per_ray: &mut PerRay<S>,
+    ) -> Option<TriangleHit<S>> {
         match method {
             TriangleMethod::Cramer => self.cramer(ray, span, roots),
             TriangleMethod::MollerTrumbore => self.moller_trumbore(ray, span, roots),
-            TriangleMethod::Watertight => self.watertight(ray, span, roots),
+            TriangleMethod::Watertight => {
+                let shear = *per_ray.shear.get_or_insert_with(|| Shear::of(ray, roots));
+                self.watertight(ray, span, roots, &shear)
+            }
         }
     }
 
@@ -144,8 +162,13 @@ impl<S: Scalar> Triangle<S> {
     /// ([`Scalar::diff_of_products`]), and a vertex shared by two triangles is sheared into the
     /// same numbers for both, so the two tests of a shared edge can never both say "outside":
     /// no ray slips through. The distance is then the plane's, t = (n·a − n·o)/(n·d).
-    fn watertight(&self, ray: &Ray<S>, span: Span<S>, roots: RootMethod) -> Option<TriangleHit<S>> {
-        let shear = Shear::of(ray, roots);
+    fn watertight(
+        &self,
+        ray: &Ray<S>,
+        span: Span<S>,
+        roots: RootMethod,
+        shear: &Shear<S>,
+    ) -> Option<TriangleHit<S>> {
         let [a, b, c] = self.vertices.map(|vertex| shear.apply(vertex - ray.origin));
         let (u_edge, u_sign) = S::diff_of_products(c[0], b[1], c[1], b[0]);
         let (v_edge, v_sign) = S::diff_of_products(a[0], c[1], a[1], c[0]);
@@ -184,6 +207,27 @@ impl<S: Scalar> Triangle<S> {
     #[must_use]
     pub fn project(&self, point: Vec3<S>) -> Vec3<S> {
         point.onto_plane(self.normal, self.offset)
+    }
+}
+
+/// What the tests of one ray against several triangles share, computed by the first test that
+/// needs it: the watertight test's shear, which costs two divisions.
+#[derive(Clone, Copy, Debug)]
+pub struct PerRay<S> {
+    shear: Option<Shear<S>>,
+}
+
+impl<S> PerRay<S> {
+    /// Nothing computed yet, for a new ray.
+    #[must_use]
+    pub const fn new() -> Self {
+        Self { shear: None }
+    }
+}
+
+impl<S> Default for PerRay<S> {
+    fn default() -> Self {
+        Self::new()
     }
 }
 
@@ -283,6 +327,28 @@ mod tests {
                 assert_close(hit.u, 0.25, 1e-4);
                 assert_close(hit.v, 0.5, 1e-4);
             });
+        });
+    }
+
+    #[test]
+    fn triangles_tested_against_one_ray_share_its_shear() {
+        for_each_format!(S, {
+            let near = triangle::<S>();
+            let far = Triangle::new(
+                [v(0.0, -2.0, 6.0), v(3.0, -2.0, 6.0), v(0.0, 1.0, 6.0)],
+                v(0.0, 0.0, 1.0),
+                S::ZERO,
+            );
+            let ray = Ray::new(v(0.5, -2.5, 8.0), v::<S>(0.0, 0.6, -0.8));
+            let mut per_ray = PerRay::new();
+            for tri in [near, far] {
+                let (watertight, exact) = (TriangleMethod::Watertight, RootMethod::Exact);
+                let shared =
+                    tri.intersect_sharing(&ray, span(100.0), watertight, exact, &mut per_ray);
+                let alone = tri.intersect(&ray, span(100.0), watertight, exact);
+                assert_eq!(shared.map(|h| h.t), alone.map(|h| h.t));
+                assert!(shared.is_some());
+            }
         });
     }
 

@@ -2,7 +2,7 @@
 
 use crate::analysis::{Analysis, Bits, Extents, Fit};
 use crate::cli::AnalyzeArgs;
-use crate::cost::cost;
+use crate::cost::Machine;
 use crate::scene_file;
 use anyhow::Result;
 
@@ -16,9 +16,14 @@ pub fn run(args: &AnalyzeArgs) -> Result<()> {
     print_bits(&analysis.bits);
     println!(
         "\n## Formats, at {width}x{height}\n\nPredicted PSNR against f64 from the image's \
-         edges (G = {:.1} levels² per pixel) and each format's rounding; cost from the committed \
-         chart, per pixel.\n",
-        analysis.edge_energy
+         edges (G = {:.1} levels² per pixel) and each format's rounding; cost per pixel from the \
+         committed chart, on the built-in scene like this one ({}).\n",
+        analysis.edge_energy,
+        if analysis.has_triangles {
+            "with triangles"
+        } else {
+            "without triangles"
+        }
     );
     println!(
         "| format | holds the scene | predicted PSNR (dB) | M4F instr/px | M0 instr/px | host \
@@ -39,7 +44,7 @@ pub fn run(args: &AnalyzeArgs) -> Result<()> {
                 "∞".to_owned()
             }
         });
-        let costs = crate::cost::Machine::ALL.map(|m| number(cost(m, verdict.format, &methods)));
+        let costs = Machine::ALL.map(|m| number(analysis.cost(m, verdict.format, &methods)));
         println!(
             "| {} | {fit} | {psnr} | {} | {} | {} |",
             verdict.format, costs[0], costs[1], costs[2]

@@ -3,10 +3,11 @@
 
 use crate::cli::BenchArgs;
 use crate::format::Format;
-use crate::render::{Request, prepare};
+use crate::render::{Request, exact_roots, prepare};
 use crate::scene_file;
 use crate::timing::interleaved_median_ms;
 use anyhow::{Context, Result};
+use obscura::Methods;
 use serde::Serialize;
 
 #[derive(Debug, Serialize)]
@@ -43,23 +44,26 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let (width, height) = args.size;
     let methods = args.methods.methods();
     let first = *args.formats.first().context("give at least one format")?;
-    let request = Request {
-        desc: &desc,
-        width,
-        height,
-        methods,
-    };
-    let mut formats = args.formats.clone();
-    if !formats.contains(&Format::F32) {
-        formats.push(Format::F32);
+    let mut jobs: Vec<(Format, Methods)> = args.formats.iter().map(|&f| (f, methods)).collect();
+    if !args.formats.contains(&Format::F32) {
+        // The baseline, by the same methods but for the fast roots, which f32 does not have.
+        jobs.push((Format::F32, exact_roots(methods)));
     }
-    let renderers = formats
+    let renderers = jobs
         .iter()
-        .map(|&format| prepare(format, &request))
+        .map(|&(format, methods)| {
+            let request = Request {
+                desc: &desc,
+                width,
+                height,
+                methods,
+            };
+            prepare(format, &request)
+        })
         .collect::<Result<Vec<_>>>()?;
 
     // Every format on one thread, then the first format on each thread count, all interleaved.
-    let mut configs: Vec<(usize, u16)> = (0..formats.len()).map(|i| (i, 1)).collect();
+    let mut configs: Vec<(usize, u16)> = (0..jobs.len()).map(|i| (i, 1)).collect();
     configs.extend(args.threads.iter().filter(|&&n| n != 1).map(|&n| (0, n)));
     let tasks: Vec<Box<dyn Fn() + '_>> = configs
         .iter()
@@ -83,9 +87,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             .position(|&c| c == (format_index, threads))
             .map(|k| times[k])
     };
-    let f32_index = formats
+    let f32_index = jobs
         .iter()
-        .position(|&f| f == Format::F32)
+        .position(|&(f, _)| f == Format::F32)
         .context("f32 is timed")?;
     let f32_ms = time_of(f32_index, 1).context("f32 is timed on one thread")?;
     let format_times = args
@@ -135,6 +139,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             "| {} | {:.1} | {:.2} |",
             f.format, f.ms_per_frame, f.ratio_to_f32
         );
+    }
+    if jobs.iter().any(|&(_, m)| m != methods) {
+        println!("(f32, which has no fast roots, by exact roots)");
     }
     println!();
     println!("| format | threads | ms/frame | speed-up over 1 thread |");

@@ -9,12 +9,12 @@ use crate::format::Format;
 use crate::metrics::accuracy;
 use crate::pareto;
 use crate::plot::{self, SpeedPoint};
-use crate::render::{AnyFormat, Request, prepare};
+use crate::render::{AnyFormat, Request, all_cores, prepare, prepare_reference};
 use crate::timing::interleaved_median_ms;
 use crate::variant;
 use anyhow::{Context, Result, bail};
+use obscura::Methods;
 use obscura::scenes::{self, BuiltIn};
-use obscura::{Methods, RootMethod};
 use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::time::Duration;
@@ -36,12 +36,8 @@ fn variants() -> Vec<Variant> {
     let mut all = Vec::new();
     for scene in &scenes::BUILT_IN {
         for format in Format::FIRMWARE {
-            let mut seen = Vec::new();
             for methods in base.variants() {
-                if !seen.contains(&methods)
-                    && format.methods_matter(&methods, &base, scene.desc.has_triangles())
-                {
-                    seen.push(methods);
+                if format.methods_matter(&methods, &base, scene.desc.has_triangles()) {
                     all.push(Variant {
                         scene,
                         format,
@@ -122,7 +118,7 @@ pub fn run(args: &ChartArgs) -> Result<()> {
         "measuring {} variants on the host at {width}x{height}",
         variants.len()
     );
-    let threads = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
+    let threads = all_cores();
     let mut prepared: Vec<Box<dyn AnyFormat>> = Vec::new();
     let mut accuracies = Vec::new();
     let mut measured = Vec::new();
@@ -143,17 +139,7 @@ pub fn run(args: &ChartArgs) -> Result<()> {
                 continue;
             }
         };
-        let exact = Methods {
-            roots: RootMethod::Exact,
-            ..variant.methods
-        };
-        let reference = prepare(
-            Format::F64,
-            &Request {
-                methods: exact,
-                ..request
-            },
-        )?;
+        let reference = prepare_reference(&request)?;
         let image = contender.render(threads, None);
         let truth = reference.render(threads, None);
         accuracies.push(accuracy(
@@ -258,21 +244,18 @@ fn fronts(points: &[SpeedPoint], cost: fn(&SpeedPoint) -> Option<f64>, psnr: boo
     let mut scenes: Vec<&str> = points.iter().map(|p| p.scene.as_str()).collect();
     scenes.dedup();
     for scene in scenes {
-        let members: Vec<usize> = (0..points.len())
-            .filter(|&i| points[i].scene == scene && cost(&points[i]).is_some())
-            .collect();
-        let pairs: Vec<(f64, f64)> = members
-            .iter()
-            .map(|&i| {
+        let (members, pairs): (Vec<usize>, Vec<(f64, f64)>) = (0..points.len())
+            .filter(|&i| points[i].scene == scene)
+            .filter_map(|i| {
                 let p = &points[i];
                 let error = if psnr {
                     -p.psnr_db
                 } else {
                     p.object_mismatch_pct
                 };
-                (cost(p).unwrap_or(f64::NAN), error)
+                Some((i, (cost(p)?, error)))
             })
-            .collect();
+            .unzip();
         for (&i, front) in members.iter().zip(pareto::front(&pairs)) {
             on_front[i] = front;
         }

@@ -4,11 +4,10 @@ use crate::cli::CompareArgs;
 use crate::format::Format;
 use crate::heatmap::heatmap;
 use crate::metrics::{Accuracy, accuracy};
-use crate::render::{Request, prepare};
+use crate::render::{Request, all_cores, prepare, prepare_reference};
 use crate::scene_file;
 use crate::timing::interleaved_median_ms;
 use anyhow::{Context, Result};
-use obscura::{Methods, RootMethod};
 use serde::Serialize;
 
 /// The figures `compare` prints and writes as JSON.
@@ -49,21 +48,9 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         height,
         methods,
     };
-    // The reference runs the same methods in f64, with exact roots (f64 has no others), so that
-    // the difference is the format's numeric error alone.
-    let exact = Methods {
-        roots: RootMethod::Exact,
-        ..methods
-    };
     let contender = prepare(format, &request)?;
-    let baseline = prepare(
-        reference,
-        &Request {
-            methods: exact,
-            ..request
-        },
-    )?;
-    let threads = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
+    let baseline = prepare_reference(&request)?;
+    let threads = all_cores();
     let (image, truth) = (
         contender.render(threads, None),
         baseline.render(threads, None),

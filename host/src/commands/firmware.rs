@@ -2,15 +2,16 @@
 
 use crate::analysis::{Analysis, Fit};
 use crate::cli::{FirmwareArgs, FormatChoice};
-use crate::cost::{Machine, cost};
+use crate::cost::Machine;
 use crate::firmware::{self, Target};
 use crate::format::Format;
 use crate::heatmap::heatmap;
 use crate::owned::OwnedScene;
+use crate::render::{Request, prepare};
 use anyhow::{Context, Result, bail};
 use image::RgbImage;
+use obscura::Methods;
 use obscura::scenes::BuiltIn;
-use obscura::{Methods, RootMethod};
 use serde::Serialize;
 use std::path::Path;
 use std::time::Duration;
@@ -73,7 +74,13 @@ fn auto_format(args: &FirmwareArgs, scenes: &[&BuiltIn], methods: &Methods) -> R
     let chosen = Format::FIRMWARE
         .into_iter()
         .filter(|&format| meets(format))
-        .filter_map(|format| cost(machine, format, methods).map(|c| (c, format)))
+        .filter_map(|format| {
+            let costs: Option<Vec<f64>> = analyses
+                .iter()
+                .map(|analysis| analysis.cost(machine, format, methods))
+                .collect();
+            costs.map(|costs| (costs.iter().sum::<f64>(), format))
+        })
         .min_by(|a, b| a.0.total_cmp(&b.0))
         .map(|(_, format)| format)
         .with_context(|| {
@@ -108,11 +115,18 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
         features.push(firmware::firmware_format(format)?.to_owned());
     }
     features.extend(firmware::method_features(&methods));
-    if methods.roots == RootMethod::Approx {
-        if let Some(format) = formats.iter().find(|f| !f.has_fast_roots()) {
-            bail!(
-                "--sqrt approx is a method of the 32-bit fixed formats (i16f16, i20f12), not of {format}; for floats with approximate roots choose --format f32-approx"
-            );
+    // The host builds every frame's scene first: what the firmware would refuse (by the same
+    // code), it refuses here, with the figures, before a build and a QEMU run.
+    for scene in &scenes {
+        for &format in &formats {
+            let request = Request {
+                desc: &scene.desc,
+                width: firmware::SIDE,
+                height: firmware::SIDE,
+                methods,
+            };
+            prepare(format, &request)
+                .with_context(|| format!("the firmware cannot draw {} in {format}", scene.name))?;
         }
     }
     firmware::check_prerequisites(target)?;

@@ -24,7 +24,9 @@ pub fn run(command: Command) -> Result<()> {
             for scene in &scenes::BUILT_IN {
                 println!("{:10} {}", scene.name, scene.summary);
             }
-            println!("(or give a TOML scene file; host/scenes/ has an example)");
+            println!(
+                "(all commands but `firmware` take a TOML scene file as well; host/scenes/ has an example)"
+            );
             Ok(())
         }
         Command::Analyze(args) => analyze::run(&args),

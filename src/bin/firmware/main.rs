@@ -26,10 +26,15 @@ compile_error!("choose a display back-end: add the `qemu` or the `st7789` featur
 compile_error!("choose a scene: add `scene-whitted` and/or `scene-shapes` to the features");
 #[cfg(not(any(
     feature = "format-i16f16",
+    feature = "format-i20f12",
     feature = "format-i32f32",
+    feature = "format-f32-approx",
     feature = "format-f32"
 )))]
-compile_error!("choose a format: add `format-i16f16`, `format-i32f32` and/or `format-f32`");
+compile_error!(
+    "choose a format: add one or more of `format-i16f16`, `format-i20f12`, `format-i32f32`, \
+     `format-f32-approx` and `format-f32`"
+);
 
 mod clock;
 mod frames;
