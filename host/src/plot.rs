@@ -45,8 +45,10 @@ pub struct StabilitySeries {
     pub y_label: String,
     /// Whether the x axis is logarithmic.
     pub log_x: bool,
-    /// The line's label: the format, and the method where the case compares methods.
-    pub label: String,
+    /// The format.
+    pub format: String,
+    /// The method, where the case compares methods ("" where it does not).
+    pub method: String,
     /// (x, y) per stressed value; `None` where the scene was refused up front.
     pub points: Vec<(f64, Option<f64>)>,
 }
@@ -57,6 +59,17 @@ pub fn speed_accuracy(points: &[SpeedPoint], svg: &Path, png: &Path) -> Result<(
 }
 
 /// Draws the stability chart to `svg` and `png`.
+impl StabilitySeries {
+    /// The line's label: the format, and the method where the case compares methods.
+    pub fn label(&self) -> String {
+        if self.method.is_empty() {
+            self.format.clone()
+        } else {
+            format!("{} {}", self.format, self.method)
+        }
+    }
+}
+
 pub fn stability(series: &[StabilitySeries], svg: &Path, png: &Path) -> Result<()> {
     write_both(&StabilityChart::new(series), svg, png)
 }
@@ -129,16 +142,6 @@ const PALETTE: [RGBColor; 10] = [
     RGBColor(188, 189, 34),
     RGBColor(23, 190, 207),
 ];
-
-/// A stability series' format: its label's first word.
-fn format_of(label: &str) -> &str {
-    label.split_whitespace().next().unwrap_or(label)
-}
-
-/// A stability series' method: what follows the format in its label.
-fn method_of(label: &str) -> &str {
-    label.split_once(' ').map_or("", |(_, method)| method)
-}
 
 /// A series' marker: a filled circle for its case's first method, a ring for the second, a
 /// triangle for the third.
@@ -728,7 +731,7 @@ impl<'a> StabilityChart<'a> {
         };
         StabilityChart {
             cases,
-            formats: first_appearance(series.iter().map(|s| format_of(&s.label))),
+            formats: first_appearance(series.iter().map(|s| s.format.as_str())),
             columns,
         }
     }
@@ -802,17 +805,17 @@ impl<'a> StabilityChart<'a> {
         };
 
         // A format keeps its colour across the panels; a method its line and marker within one.
-        let methods = first_appearance(series.iter().map(|s| method_of(&s.label)));
+        let methods = first_appearance(series.iter().map(|s| s.method.as_str()));
         let panel = StabilityPanel {
             case,
             series,
             colours: series
                 .iter()
-                .map(|s| colour(index_of(&self.formats, format_of(&s.label))))
+                .map(|s| colour(index_of(&self.formats, &s.format)))
                 .collect(),
             styles: series
                 .iter()
-                .map(|s| index_of(&methods, method_of(&s.label)))
+                .map(|s| index_of(&methods, &s.method))
                 .collect(),
             usable_x: &usable_x,
             y: bottom..top,
@@ -973,7 +976,7 @@ impl StabilityPanel<'_, '_> {
                 .filter_map(|&(x, y)| Some((x, y.filter(|y| y.is_finite())?)));
             chart
                 .draw_series(values.map(|xy| marker(style, xy, c)))?
-                .label(s.label.as_str())
+                .label(s.label())
                 .legend(move |(x, y)| {
                     EmptyElement::at((x, y))
                         + PathElement::new(vec![(-8, 0), (8, 0)], c.stroke_width(2))
@@ -1121,7 +1124,7 @@ mod tests {
     fn series(
         case: &str,
         log_x: bool,
-        label: &str,
+        format: &str,
         points: &[(f64, Option<f64>)],
     ) -> StabilitySeries {
         StabilitySeries {
@@ -1129,7 +1132,8 @@ mod tests {
             x_label: "r / |o − c|".into(),
             y_label: "misclassified rays (%)".into(),
             log_x,
-            label: label.into(),
+            format: format.into(),
+            method: String::new(),
             points: points.to_vec(),
         }
     }

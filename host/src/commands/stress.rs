@@ -125,9 +125,7 @@ fn print_case(case: &Case, rows: &[Row]) {
                 .find(|r| r.format == format && r.method == method && r.x == *x);
             let text = match cell.map(|r| (&r.outcome, r.y)) {
                 None => "".to_owned(),
-                Some((Outcome::Refused { reason }, _)) => {
-                    format!("refused ({})", short_reason(reason))
-                }
+                Some((Outcome::Refused { kind, .. }, _)) => format!("refused ({kind})"),
                 Some((Outcome::Failed { value, bound }, _)) => {
                     format!("**FAILED** {value} > {bound}")
                 }
@@ -140,36 +138,22 @@ fn print_case(case: &Case, rows: &[Row]) {
     }
 }
 
-/// The kind of refusal, for a table cell: the quantity that did not fit or resolve.
-fn short_reason(reason: &str) -> &str {
-    if reason.contains("beyond") && reason.contains("range") {
-        "range"
-    } else if reason.contains("resolves") {
-        "resolution"
-    } else if reason.contains("one line") {
-        "degenerate"
-    } else {
-        "invalid"
-    }
-}
-
 fn to_series(case: &Case, rows: &[Row]) -> Vec<StabilitySeries> {
     let mut series: Vec<StabilitySeries> = Vec::new();
     for row in rows {
-        let label = if row.method.is_empty() {
-            row.format.to_owned()
-        } else {
-            format!("{} {}", row.format, row.method)
-        };
         let point = (row.x, row.y);
-        match series.iter_mut().find(|s| s.label == label) {
+        match series
+            .iter_mut()
+            .find(|s| s.format == row.format && s.method == row.method)
+        {
             Some(s) => s.points.push(point),
             None => series.push(StabilitySeries {
                 case: case.name.to_owned(),
                 x_label: case.x_label.to_owned(),
                 y_label: case.y_label.to_owned(),
                 log_x: case.log_x,
-                label,
+                format: row.format.to_owned(),
+                method: row.method.to_owned(),
                 points: vec![point],
             }),
         }

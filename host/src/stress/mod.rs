@@ -72,6 +72,8 @@ pub enum Outcome {
     },
     /// The scene build refused it up front.
     Refused {
+        /// What did not hold: "range", "resolution", "degenerate" or "invalid".
+        kind: &'static str,
         /// The build's reason.
         reason: String,
     },
@@ -100,7 +102,7 @@ impl fmt::Display for Outcome {
         match self {
             Self::Within { value, bound } => write!(f, "within bound ({value} ≤ {bound})"),
             Self::Reported { value } => write!(f, "reported ({value})"),
-            Self::Refused { reason } => write!(f, "refused: {reason}"),
+            Self::Refused { reason, .. } => write!(f, "refused: {reason}"),
             Self::Failed { value, bound } => write!(f, "FAILED ({value} > {bound})"),
         }
     }
@@ -146,7 +148,7 @@ mod tests {
     }
 
     fn refused_because(outcome: &Outcome, why: &str) -> bool {
-        matches!(outcome, Outcome::Refused { reason } if reason.contains(why))
+        matches!(outcome, Outcome::Refused { reason, .. } if reason.contains(why))
     }
 
     #[test]

@@ -3,12 +3,12 @@
 //! quadratic computes b² − c from numbers of the size of the distance squared and loses the
 //! radius to cancellation; the scene build refuses it where that happens.
 
-use super::{MATTE, bare, log_sweep, refused};
+use super::{MATTE, Tally, bare, log_sweep, refused, sphere_truth};
 use crate::format::FormatJob;
 use crate::render::HostScene;
 use crate::stress::check::{MODEL_ERRORS, discriminant, model_error, to_f64, towards};
-use crate::stress::{Case, Outcome, Row};
-use anyhow::{Context, Result};
+use crate::stress::{Case, Row};
+use anyhow::Result;
 use obscura::methods::MethodName;
 use obscura::{Methods, ObjectDesc, Scalar, ShapeDesc, SphereMethod};
 
@@ -42,14 +42,7 @@ impl FormatJob for Job {
                 material: MATTE,
             }];
             let desc = bare(&objects, (DISTANCE * 1.1) as f32);
-            let truth = HostScene::<f64>::build_with(
-                &desc,
-                Methods {
-                    sphere: SphereMethod::Stable,
-                    ..Methods::LECTURE
-                },
-            )
-            .context("the f64 reference builds")?;
+            let truth = sphere_truth(&desc)?;
             let radius = f64::from(radius as f32);
             for &(method, name) in SphereMethod::ALL {
                 let methods = Methods {
@@ -64,30 +57,21 @@ impl FormatJob for Job {
                     }
                 };
                 let band = MODEL_ERRORS * model_error::<S>(&desc, &methods, 0);
-                let (mut misjudged, mut unexcused, mut total) = (0, 0, 0);
+                let mut tally = Tally::default();
                 for i in 0..GRID {
                     for j in 0..GRID {
                         let across = |k: usize| radius * (4.0 * k as f64 / (GRID - 1) as f64 - 2.0);
                         let Some(ray) = towards::<S>([across(i), across(j), DISTANCE]) else {
                             continue;
                         };
-                        total += 1;
-                        let got = scene.first_hit(&ray).is_some();
-                        let want = truth.first_hit(&to_f64(&ray)).is_some();
-                        if got != want {
-                            misjudged += 1;
-                            unexcused +=
-                                usize::from(discriminant(&ray, center, radius).abs() > band);
-                        }
+                        tally.record(
+                            scene.first_hit(&ray).is_some(),
+                            truth.first_hit(&to_f64(&ray)).is_some(),
+                            || discriminant(&ray, center, radius).abs() <= band,
+                        );
                     }
                 }
-                rows.push(Row {
-                    format: S::NAME,
-                    method: name,
-                    x: ratio,
-                    y: Some(100.0 * misjudged as f64 / f64::from(total.max(1))),
-                    outcome: Outcome::bounded(unexcused as f64, 0.0),
-                });
+                rows.push(tally.row(S::NAME, name, ratio));
             }
         }
         Ok(rows)

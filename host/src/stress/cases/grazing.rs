@@ -2,12 +2,12 @@
 //! parameters r·(1 ± δ), all around the silhouette. A ray may be misjudged (hit for miss or
 //! miss for hit) only within a few of the error model's discriminant errors of tangency.
 
-use super::{MATTE, bare, log_sweep, refused};
+use super::{MATTE, Tally, bare, log_sweep, refused, sphere_truth};
 use crate::format::FormatJob;
 use crate::render::HostScene;
 use crate::stress::check::{MODEL_ERRORS, discriminant, model_error, to_f64};
-use crate::stress::{Case, Outcome, Row};
-use anyhow::{Context, Result};
+use crate::stress::{Case, Row};
+use anyhow::Result;
 use obscura::methods::MethodName;
 use obscura::{Methods, ObjectDesc, Ray, Scalar, ShapeDesc, SphereMethod, Vec3};
 
@@ -38,14 +38,7 @@ impl FormatJob for Job {
             material: MATTE,
         }];
         let desc = bare(&objects, 10.0);
-        let truth = HostScene::<f64>::build_with(
-            &desc,
-            Methods {
-                sphere: SphereMethod::Stable,
-                ..Methods::LECTURE
-            },
-        )
-        .context("the f64 reference builds")?;
+        let truth = sphere_truth(&desc)?;
         let deltas = log_sweep(1e-1, 1e-7, 13);
         let mut rows = Vec::new();
         for &(method, name) in SphereMethod::ALL {
@@ -62,7 +55,7 @@ impl FormatJob for Job {
             };
             let band = MODEL_ERRORS * model_error::<S>(&desc, &methods, 0);
             for &delta in &deltas {
-                let (mut misjudged, mut unexcused) = (0, 0);
+                let mut tally = Tally::default();
                 for k in 0..AROUND {
                     let angle = std::f64::consts::TAU * k as f64 / AROUND as f64 + 0.1;
                     for side in [-1.0, 1.0] {
@@ -74,21 +67,14 @@ impl FormatJob for Job {
                             continue;
                         };
                         let ray = Ray::new(origin, dir);
-                        let got = scene.first_hit(&ray).is_some();
-                        let want = truth.first_hit(&to_f64(&ray)).is_some();
-                        if got != want {
-                            misjudged += 1;
-                            unexcused += usize::from(discriminant(&ray, CENTER, 1.0).abs() > band);
-                        }
+                        tally.record(
+                            scene.first_hit(&ray).is_some(),
+                            truth.first_hit(&to_f64(&ray)).is_some(),
+                            || discriminant(&ray, CENTER, 1.0).abs() <= band,
+                        );
                     }
                 }
-                rows.push(Row {
-                    format: S::NAME,
-                    method: name,
-                    x: delta,
-                    y: Some(100.0 * misjudged as f64 / (2 * AROUND) as f64),
-                    outcome: Outcome::bounded(unexcused as f64, 0.0),
-                });
+                rows.push(tally.row(S::NAME, name, delta));
             }
         }
         Ok(rows)

@@ -3,7 +3,7 @@
 //! only the far side, or nothing) are cracks. They must
 //! be none for the watertight test; for the others the count is reported, their known weakness.
 
-use super::{MATTE, bare, log_sweep, refused};
+use super::{MATTE, Tally, bare, log_sweep, refused};
 use crate::format::FormatJob;
 use crate::render::HostScene;
 use crate::stress::{Case, Outcome, Row};
@@ -105,7 +105,7 @@ impl FormatJob for Job {
                         continue;
                     }
                 };
-                let (mut cracks, mut rays) = (0, 0);
+                let mut tally = Tally::default();
                 for &(i, j) in &edges {
                     for u in (0..ALONG).map(|k| k as f64 / ALONG as f64) {
                         // The faces around the point: those with both ends of the edge, or
@@ -140,24 +140,18 @@ impl FormatJob for Job {
                             let entered = scene
                                 .first_hit(&Ray::new(o, d))
                                 .is_some_and(|face| at_target(faces[face]));
-                            cracks += usize::from(!entered);
-                            rays += 1;
+                            tally.record(entered, true, || false);
                         }
                     }
                 }
-                let cracks = cracks as f64;
-                let outcome = if method == TriangleMethod::Watertight {
-                    Outcome::bounded(cracks, 0.0)
-                } else {
-                    Outcome::Reported { value: cracks }
-                };
-                rows.push(Row {
-                    format: S::NAME,
-                    method: name,
-                    x: distance,
-                    y: Some(100.0 * cracks / f64::from(rays.max(1))),
-                    outcome,
-                });
+                let mut row = tally.row(S::NAME, name, distance);
+                // Only the watertight test is bound to let none through.
+                if method != TriangleMethod::Watertight {
+                    row.outcome = Outcome::Reported {
+                        value: f64::from(tally.misjudged),
+                    };
+                }
+                rows.push(row);
             }
         }
         Ok(rows)

@@ -12,6 +12,8 @@ mod sliver;
 
 use super::check::{ImageCheck, image};
 use super::{Case, Outcome, Row};
+use crate::render::HostScene;
+use anyhow::Context as _;
 use obscura::{BackgroundDesc, CameraDesc, MaterialDesc, Methods, Scalar, SceneDesc, SceneError};
 
 /// Every case, in the order they run.
@@ -59,9 +61,58 @@ fn refused(format: &'static str, method: &'static str, x: f64, error: &SceneErro
         x,
         y: None,
         outcome: Outcome::Refused {
+            kind: match error {
+                SceneError::OutOfRange { .. } => "range",
+                SceneError::BelowResolution { .. } => "resolution",
+                SceneError::DegenerateTriangle { .. } => "degenerate",
+                _ => "invalid",
+            },
             reason: error.to_string(),
         },
     }
+}
+
+/// The rays of one measurement: how many were shot, how many the format judged otherwise than
+/// f64, and how many of those the error model does not excuse.
+#[derive(Debug, Default)]
+struct Tally {
+    shot: u32,
+    misjudged: u32,
+    unexcused: u32,
+}
+
+impl Tally {
+    /// Counts a ray the format judged `got` and f64 `want` (a hit, or the right face);
+    /// `excused` says whether a misjudgement lies within the error model's band.
+    fn record(&mut self, got: bool, want: bool, excused: impl FnOnce() -> bool) {
+        self.shot += 1;
+        if got != want {
+            self.misjudged += 1;
+            self.unexcused += u32::from(!excused());
+        }
+    }
+
+    /// The row: the share of rays misjudged, in percent, within its bound when the model
+    /// excuses every one.
+    fn row(&self, format: &'static str, method: &'static str, x: f64) -> Row {
+        Row {
+            format,
+            method,
+            x,
+            y: Some(100.0 * f64::from(self.misjudged) / f64::from(self.shot.max(1))),
+            outcome: Outcome::bounded(f64::from(self.unexcused), 0.0),
+        }
+    }
+}
+
+/// The f64 reference for a sphere's hit or miss: the stable form, whose discriminant does not
+/// cancel.
+fn sphere_truth(desc: &SceneDesc<'_>) -> anyhow::Result<HostScene<f64>> {
+    let stable = Methods {
+        sphere: obscura::SphereMethod::Stable,
+        ..Methods::LECTURE
+    };
+    HostScene::<f64>::build_with(desc, stable).context("the f64 reference builds")
 }
 
 /// The images the cases compare are this many pixels square.

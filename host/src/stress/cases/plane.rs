@@ -3,11 +3,11 @@
 //! 10⁵. A hit beyond the world's edge is a miss; a ray may be misjudged only within a few
 //! errors of that edge, and a world larger than the format holds is refused.
 
-use super::{MATTE, bare, log_sweep, refused};
+use super::{MATTE, Tally, bare, log_sweep, refused};
 use crate::format::FormatJob;
 use crate::render::HostScene;
 use crate::stress::check::{MODEL_ERRORS, to_f64};
-use crate::stress::{Case, Outcome, Row};
+use crate::stress::{Case, Row};
 use anyhow::Result;
 use obscura::{Methods, ObjectDesc, Ray, Scalar, ShapeDesc, Vec3};
 
@@ -46,7 +46,7 @@ impl FormatJob for Job {
                     continue;
                 }
             };
-            let (mut misjudged, mut unexcused, mut total) = (0, 0, 0);
+            let mut tally = Tally::default();
             for t in log_sweep(far / 4.0, far * 4.0, RAYS) {
                 // From one above the plane, a hit t away: down by 1, forward by √(t² − 1).
                 let dir = [0.0, -1.0 / t, (t * t - 1.0).sqrt() / t];
@@ -54,27 +54,21 @@ impl FormatJob for Job {
                     continue;
                 };
                 let ray = Ray::new(Vec3::ZERO, dir);
-                total += 1;
                 let exact = to_f64(&ray);
                 // Where the ray as held meets the plane, and whether that is inside the world.
                 let reach = 1.0 / -exact.dir.y;
-                let want = reach > 0.0 && reach <= far;
-                let got = scene.first_hit(&ray).is_some();
-                if got != want {
-                    misjudged += 1;
-                    // The hit's distance errs by the rounding of the direction, magnified by
-                    // the grazing angle, and by the rounding of the world's radius.
-                    let error = reach * S::resolution(1.0) / -exact.dir.y + S::resolution(far);
-                    unexcused += usize::from((reach - far).abs() > MODEL_ERRORS * error);
-                }
+                tally.record(
+                    scene.first_hit(&ray).is_some(),
+                    reach > 0.0 && reach <= far,
+                    || {
+                        // The hit's distance errs by the rounding of the direction, magnified
+                        // by the grazing angle, and by the rounding of the world's radius.
+                        let error = reach * S::resolution(1.0) / -exact.dir.y + S::resolution(far);
+                        (reach - far).abs() <= MODEL_ERRORS * error
+                    },
+                );
             }
-            rows.push(Row {
-                format: S::NAME,
-                method: "",
-                x: far,
-                y: Some(100.0 * misjudged as f64 / f64::from(total.max(1))),
-                outcome: Outcome::bounded(unexcused as f64, 0.0),
-            });
+            rows.push(tally.row(S::NAME, "", far));
         }
         Ok(rows)
     }

@@ -3,11 +3,11 @@
 //! misjudged only within a few of the error model's errors of an edge; a sliver thinner than
 //! the format resolves is refused.
 
-use super::{MATTE, bare, log_sweep, refused};
+use super::{MATTE, Tally, bare, log_sweep, refused};
 use crate::format::FormatJob;
 use crate::render::HostScene;
 use crate::stress::check::{MODEL_ERRORS, model_error, to_f64, towards};
-use crate::stress::{Case, Outcome, Row};
+use crate::stress::{Case, Row};
 use anyhow::{Context, Result};
 use obscura::methods::MethodName;
 use obscura::{Methods, ObjectDesc, Scalar, ShapeDesc, TriangleMethod};
@@ -66,7 +66,7 @@ impl FormatJob for Job {
                 // The model's error in twice the area, over the longest edge (1): a distance
                 // from the edges.
                 let band = MODEL_ERRORS * model_error::<S>(&desc, &methods, 0);
-                let (mut misjudged, mut unexcused, mut total) = (0, 0, 0);
+                let mut tally = Tally::default();
                 for i in 0..GRID {
                     for j in 0..GRID {
                         let x = -0.6 + 1.2 * i as f64 / (GRID - 1) as f64;
@@ -74,30 +74,24 @@ impl FormatJob for Job {
                         let Some(ray) = towards::<S>([x, y, DEPTH]) else {
                             continue;
                         };
-                        total += 1;
                         let exact = to_f64(&ray);
-                        let got = scene.first_hit(&ray).is_some();
-                        let want = truth.first_hit(&exact).is_some();
-                        if got != want {
-                            misjudged += 1;
-                            // Where the ray as held crosses the triangle's plane, and how far that is
-                            // from the nearest edge.
-                            let reach = DEPTH / exact.dir.z;
-                            let (px, py) = (exact.dir.x * reach, exact.dir.y * reach);
-                            let edge = (0..3)
-                                .map(|k| to_segment(px, py, corners[k], corners[(k + 1) % 3]))
-                                .fold(f64::INFINITY, f64::min);
-                            unexcused += usize::from(edge > band);
-                        }
+                        tally.record(
+                            scene.first_hit(&ray).is_some(),
+                            truth.first_hit(&exact).is_some(),
+                            || {
+                                // Where the ray as held crosses the triangle's plane, and how far
+                                // that is from the nearest edge.
+                                let reach = DEPTH / exact.dir.z;
+                                let (px, py) = (exact.dir.x * reach, exact.dir.y * reach);
+                                let edge = (0..3)
+                                    .map(|k| to_segment(px, py, corners[k], corners[(k + 1) % 3]))
+                                    .fold(f64::INFINITY, f64::min);
+                                edge <= band
+                            },
+                        );
                     }
                 }
-                rows.push(Row {
-                    format: S::NAME,
-                    method: name,
-                    x: height,
-                    y: Some(100.0 * misjudged as f64 / f64::from(total.max(1))),
-                    outcome: Outcome::bounded(unexcused as f64, 0.0),
-                });
+                rows.push(tally.row(S::NAME, name, height));
             }
         }
         Ok(rows)
