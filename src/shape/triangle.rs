@@ -96,10 +96,7 @@ impl<S: Scalar> Triangle<S> {
         match method {
             TriangleMethod::Cramer => self.cramer(ray, span, roots),
             TriangleMethod::MollerTrumbore => self.moller_trumbore(ray, span, roots),
-            TriangleMethod::Watertight => {
-                let shear = *per_ray.shear.get_or_insert_with(|| Shear::of(ray, roots));
-                self.watertight(ray, span, roots, &shear)
-            }
+            TriangleMethod::Watertight => self.watertight(ray, span, roots, per_ray),
         }
     }
 
@@ -167,8 +164,9 @@ impl<S: Scalar> Triangle<S> {
         ray: &Ray<S>,
         span: Span<S>,
         roots: RootMethod,
-        shear: &Shear<S>,
+        per_ray: &mut PerRay<S>,
     ) -> Option<TriangleHit<S>> {
+        let shear = *per_ray.shear.get_or_insert_with(|| Shear::of(ray, roots));
         let [a, b, c] = self.vertices.map(|vertex| shear.apply(vertex - ray.origin));
         let (u_edge, u_sign) = S::diff_of_products(c[0], b[1], c[1], b[0]);
         let (v_edge, v_sign) = S::diff_of_products(a[0], c[1], a[1], c[0]);
