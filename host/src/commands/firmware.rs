@@ -9,6 +9,8 @@ use crate::heatmap::heatmap;
 use crate::owned::OwnedScene;
 use crate::render::{Request, prepare};
 use anyhow::{Context, Result, bail};
+use embedded_graphics::pixelcolor::raw::RawU16;
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use image::RgbImage;
 use obscura::Methods;
 use obscura::scenes::BuiltIn;
@@ -237,13 +239,9 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
 fn to_image(frame: &[u16], width: u32) -> RgbImage {
     let height = u32::try_from(frame.len()).unwrap_or(0) / width.max(1);
     RgbImage::from_fn(width, height, |x, y| {
-        let v = u32::from(frame[(y * width + x) as usize]);
-        let scale = |value: u32, max: u32| ((value * 255 + max / 2) / max) as u8;
-        image::Rgb([
-            scale(v >> 11, 31),
-            scale((v >> 5) & 63, 63),
-            scale(v & 31, 31),
-        ])
+        let raw = RawU16::new(frame[(y * width + x) as usize]);
+        let colour = Rgb888::from(Rgb565::from(raw));
+        image::Rgb([colour.r(), colour.g(), colour.b()])
     })
 }
 
