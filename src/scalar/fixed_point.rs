@@ -12,7 +12,7 @@
 //!   world" in every comparison the tracer makes.
 
 use super::Scalar;
-use super::isqrt::{isqrt_fast_u64, isqrt_u64, rsqrt_fixed, rsqrt_fixed_fast, rsqrt_mantissa};
+use super::isqrt::{isqrt_u64, rsqrt_fixed, rsqrt_mantissa};
 use core::cmp::Ordering;
 use core::fmt;
 use core::ops::{Add, Div, Mul, Neg, Sub};
@@ -81,15 +81,12 @@ pub trait WideBits: Copy + Ord {
     /// Whether the fast roots below are approximations (true for the 32-bit formats).
     const FAST_ROOTS: bool;
     /// ⌊√(self · 2^frac)⌋ for `self` > 0: the square root of a fixed-point number with `frac`
-    /// fraction bits, in raw units (it always fits).
-    fn sqrt_raw(self, frac: u32) -> Self;
+    /// fraction bits, in raw units (it always fits); to about 15 bits when `fast` and the
+    /// format has [`Self::FAST_ROOTS`].
+    fn sqrt_raw(self, frac: u32, fast: bool) -> Self;
     /// 1/√self in raw units of a format with `frac` fraction bits, within one unit, saturated;
-    /// for `self` > 0.
-    fn rsqrt_raw(self, frac: u32) -> Self;
-    /// [`Self::sqrt_raw`] to about 15 bits.
-    fn sqrt_raw_fast(self, frac: u32) -> Self;
-    /// [`Self::rsqrt_raw`] to about 15 bits.
-    fn rsqrt_raw_fast(self, frac: u32) -> Self;
+    /// for `self` > 0; to about 15 bits when `fast` and the format has [`Self::FAST_ROOTS`].
+    fn rsqrt_raw(self, frac: u32, fast: bool) -> Self;
     /// The unit vector along `v` and its length, in raw units of a format with `frac` fraction
     /// bits, given `squared` = |v|² > 0 in raw units.
     fn normalize_raw(v: [Self; 3], squared: Self, frac: u32, fast: bool) -> ([Self; 3], Self);
@@ -99,7 +96,7 @@ pub trait WideBits: Copy + Ord {
 }
 
 macro_rules! wide_bits {
-    ($($bits:ident => $wide:ident, fast: $fast:literal, roots: $sqrt:path, $rsqrt:path, $sqrt_fast:path, $rsqrt_fast:path);*) => {$(
+    ($($bits:ident => $wide:ident, fast: $fast:literal, roots: $sqrt:path, $rsqrt:path);*) => {$(
         impl WideBits for $bits {
             type Wide = $wide;
             const FAST_ROOTS: bool = $fast;
@@ -157,59 +154,42 @@ macro_rules! wide_bits {
                 Self::narrow_saturating(self.wide_mul(r), 93 - 2 * s - frac)
             }
             #[inline]
-            fn sqrt_raw(self, frac: u32) -> Self {
-                $sqrt(self, frac)
+            fn sqrt_raw(self, frac: u32, fast: bool) -> Self {
+                $sqrt(self, frac, fast)
             }
             #[inline]
-            fn rsqrt_raw(self, frac: u32) -> Self {
-                $rsqrt(self, frac)
-            }
-            #[inline]
-            fn sqrt_raw_fast(self, frac: u32) -> Self {
-                $sqrt_fast(self, frac)
-            }
-            #[inline]
-            fn rsqrt_raw_fast(self, frac: u32) -> Self {
-                $rsqrt_fast(self, frac)
+            fn rsqrt_raw(self, frac: u32, fast: bool) -> Self {
+                $rsqrt(self, frac, fast)
             }
         }
     )*};
 }
 wide_bits!(
-    i32 => i64, fast: true, roots: sqrt_raw_32, rsqrt_raw_32, sqrt_raw_32_fast, rsqrt_raw_32_fast;
-    i64 => i128, fast: false, roots: sqrt_raw_64, rsqrt_raw_64, sqrt_raw_64, rsqrt_raw_64
+    i32 => i64, fast: true, roots: sqrt_raw_32, rsqrt_raw_32;
+    i64 => i128, fast: false, roots: sqrt_raw_64, rsqrt_raw_64
 );
 
 /// The 32-bit formats' roots: the division-free routines (x·2^frac < 2⁶² for frac ≤ 30).
 #[inline]
-fn sqrt_raw_32(x: i32, frac: u32) -> i32 {
-    i32::try_from(isqrt_u64(u64::from(x.unsigned_abs()) << frac)).unwrap_or(i32::MAX)
+fn sqrt_raw_32(x: i32, frac: u32, fast: bool) -> i32 {
+    i32::try_from(isqrt_u64(u64::from(x.unsigned_abs()) << frac, fast)).unwrap_or(i32::MAX)
 }
 
 #[inline]
-fn rsqrt_raw_32(x: i32, frac: u32) -> i32 {
-    i32::try_from(rsqrt_fixed(x.unsigned_abs(), frac)).unwrap_or(i32::MAX)
+fn rsqrt_raw_32(x: i32, frac: u32, fast: bool) -> i32 {
+    i32::try_from(rsqrt_fixed(x.unsigned_abs(), frac, fast)).unwrap_or(i32::MAX)
 }
 
+/// The 64-bit formats' roots, exact whether `fast` or not (they have no fast ones): core's
+/// exact integer root on u128, and for the reciprocal one division, as
+/// ⌊√⌊2^(3f)/x⌋⌋ = ⌊2^(3f/2)/√x⌋.
 #[inline]
-fn sqrt_raw_32_fast(x: i32, frac: u32) -> i32 {
-    i32::try_from(isqrt_fast_u64(u64::from(x.unsigned_abs()) << frac)).unwrap_or(i32::MAX)
-}
-
-#[inline]
-fn rsqrt_raw_32_fast(x: i32, frac: u32) -> i32 {
-    i32::try_from(rsqrt_fixed_fast(x.unsigned_abs(), frac)).unwrap_or(i32::MAX)
-}
-
-/// The 64-bit formats' roots: core's exact integer root on u128, and for the reciprocal one
-/// division, as ⌊√⌊2^(3f)/x⌋⌋ = ⌊2^(3f/2)/√x⌋.
-#[inline]
-fn sqrt_raw_64(x: i64, frac: u32) -> i64 {
+fn sqrt_raw_64(x: i64, frac: u32, _fast: bool) -> i64 {
     i64::try_from((u128::from(x.unsigned_abs()) << frac).isqrt()).unwrap_or(i64::MAX)
 }
 
 #[inline]
-fn rsqrt_raw_64(x: i64, frac: u32) -> i64 {
+fn rsqrt_raw_64(x: i64, frac: u32, _fast: bool) -> i64 {
     let quotient = (1_u128 << (3 * frac)) / u128::from(x.unsigned_abs());
     i64::try_from(quotient.isqrt()).unwrap_or(i64::MAX)
 }
@@ -349,7 +329,9 @@ where
         if self.0 <= F::ZERO {
             Self::MAX
         } else {
-            Self(F::from_bits(self.0.to_bits().rsqrt_raw(F::FRAC_NBITS)))
+            Self(F::from_bits(
+                self.0.to_bits().rsqrt_raw(F::FRAC_NBITS, false),
+            ))
         }
     }
 
@@ -360,7 +342,7 @@ where
         if self.0 <= F::ZERO {
             Self::ZERO
         } else {
-            Self(F::from_bits(self.0.to_bits().sqrt_raw_fast(F::FRAC_NBITS)))
+            Self(F::from_bits(self.0.to_bits().sqrt_raw(F::FRAC_NBITS, true)))
         }
     }
 
@@ -369,7 +351,9 @@ where
         if self.0 <= F::ZERO {
             Self::MAX
         } else {
-            Self(F::from_bits(self.0.to_bits().rsqrt_raw_fast(F::FRAC_NBITS)))
+            Self(F::from_bits(
+                self.0.to_bits().rsqrt_raw(F::FRAC_NBITS, true),
+            ))
         }
     }
 
@@ -421,7 +405,9 @@ where
         if self.0 <= F::ZERO {
             Self::ZERO
         } else {
-            Self(F::from_bits(self.0.to_bits().sqrt_raw(F::FRAC_NBITS)))
+            Self(F::from_bits(
+                self.0.to_bits().sqrt_raw(F::FRAC_NBITS, false),
+            ))
         }
     }
 

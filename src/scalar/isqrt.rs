@@ -75,49 +75,48 @@ fn rsqrt_q30(y: u64, steps: u32) -> (u64, u64, u32) {
     (m, z, shift)
 }
 
-/// ⌊√y⌋ for y < 2⁶², exactly.
+/// The Newton steps of the exact routines, or of the `fast` ones.
 #[inline]
-#[must_use]
-pub fn isqrt_u64(y: u64) -> u64 {
-    if y == 0 {
-        return 0;
-    }
-    let (m, z, shift) = rsqrt_q30(y, FULL);
-    let mut root = ((m * z) >> 30) >> (shift / 2);
-    while root * root > y {
-        root -= 1;
-    }
-    while (root + 1) * (root + 1) <= y {
-        root += 1;
-    }
-    root
+const fn steps(fast: bool) -> u32 {
+    if fast { FAST } else { FULL }
 }
 
-/// ⌊√y⌋ to about 15 bits for y < 2⁶²: one Newton step and no final correction.
+/// ⌊√y⌋ for y < 2⁶², exactly; to about 15 bits when `fast` (one Newton step and no final
+/// correction).
 #[inline]
 #[must_use]
-pub fn isqrt_fast_u64(y: u64) -> u64 {
+pub fn isqrt_u64(y: u64, fast: bool) -> u64 {
     if y == 0 {
         return 0;
     }
-    let (m, z, shift) = rsqrt_q30(y, FAST);
-    ((m * z) >> 30) >> (shift / 2)
+    let (m, z, shift) = rsqrt_q30(y, steps(fast));
+    let mut root = ((m * z) >> 30) >> (shift / 2);
+    if !fast {
+        while root * root > y {
+            root -= 1;
+        }
+        while (root + 1) * (root + 1) <= y {
+            root += 1;
+        }
+    }
+    root
 }
 
 /// 2^(3f/2)/√x, for x > 0 and an even f ≤ 16: the reciprocal square root of a fixed-point
 /// number with f fraction bits, in raw units. Within one unit of the exact value, or 2⁻²² of
 /// it where that is more (the large roots of the smallest inputs); at most 2^(3f/2), for x = 1.
+/// To about 15 bits when `fast`.
 #[inline]
 #[must_use]
-pub fn rsqrt_fixed(x: u32, frac: u32) -> u32 {
-    rsqrt_fixed_steps(x, frac, FULL)
-}
-
-/// [`rsqrt_fixed`] to about 15 bits.
-#[inline]
-#[must_use]
-pub fn rsqrt_fixed_fast(x: u32, frac: u32) -> u32 {
-    rsqrt_fixed_steps(x, frac, FAST)
+pub fn rsqrt_fixed(x: u32, frac: u32, fast: bool) -> u32 {
+    if x == 0 {
+        return u32::MAX;
+    }
+    // x = (m/2³²)·2^(64 − 2k), so 2^(3f/2)/√x = z·2^(3f/2 + k − 62) with z in Q2.30; the
+    // exponent is at most 24 + 31 − 62 = −7 for f ≤ 16: always a right shift.
+    let (_, z, shift) = rsqrt_q30(u64::from(x), steps(fast));
+    let right = 62 - 3 * frac / 2 - shift / 2;
+    u32::try_from((z + (1 << (right - 1))) >> right).unwrap_or(u32::MAX)
 }
 
 /// The reciprocal square root of y > 0 as a mantissa and an exponent: (z, s) with
@@ -126,21 +125,9 @@ pub fn rsqrt_fixed_fast(x: u32, frac: u32) -> u32 {
 #[inline]
 #[must_use]
 pub fn rsqrt_mantissa(y: u64, fast: bool) -> (u64, u32) {
-    let (_, z, shift) = rsqrt_q30(y, if fast { FAST } else { FULL });
+    let (_, z, shift) = rsqrt_q30(y, steps(fast));
     // 1/√y = (z/2³⁰)·2^(k − 32) with 2k = shift; z reaches 2³¹ only for m = ¼ exactly.
     (z.min((1 << 31) - 1), shift / 2)
-}
-
-#[inline]
-fn rsqrt_fixed_steps(x: u32, frac: u32, steps: u32) -> u32 {
-    if x == 0 {
-        return u32::MAX;
-    }
-    // x = (m/2³²)·2^(64 − 2k), so 2^(3f/2)/√x = z·2^(3f/2 + k − 62) with z in Q2.30; the
-    // exponent is at most 24 + 31 − 62 = −7 for f ≤ 16: always a right shift.
-    let (_, z, shift) = rsqrt_q30(u64::from(x), steps);
-    let right = 62 - 3 * frac / 2 - shift / 2;
-    u32::try_from((z + (1 << (right - 1))) >> right).unwrap_or(u32::MAX)
 }
 
 #[cfg(test)]
@@ -150,7 +137,7 @@ mod tests {
     #[test]
     fn exact_on_every_small_input() {
         for y in 0..1_u64 << 20 {
-            assert_eq!(isqrt_u64(y), y.isqrt(), "{y}");
+            assert_eq!(isqrt_u64(y, false), y.isqrt(), "{y}");
         }
     }
 
@@ -159,11 +146,11 @@ mod tests {
         for bits in 20..62 {
             let p = 1_u64 << bits;
             for y in [p - 1, p, p + 1] {
-                assert_eq!(isqrt_u64(y), y.isqrt(), "{y}");
+                assert_eq!(isqrt_u64(y, false), y.isqrt(), "{y}");
             }
             let r = p.isqrt();
             for y in [r * r - 1, r * r, r * r + 1, (r + 1) * (r + 1) - 1] {
-                assert_eq!(isqrt_u64(y), y.isqrt(), "{y}");
+                assert_eq!(isqrt_u64(y, false), y.isqrt(), "{y}");
             }
         }
     }
@@ -176,7 +163,7 @@ mod tests {
                 .wrapping_mul(6_364_136_223_846_793_005)
                 .wrapping_add(1_442_695_040_888_963_407);
             let y = state >> (2 + state % 40);
-            assert_eq!(isqrt_u64(y), y.isqrt(), "{y}");
+            assert_eq!(isqrt_u64(y, false), y.isqrt(), "{y}");
         }
     }
 
@@ -186,7 +173,7 @@ mod tests {
             let mut x = 1_u32;
             while x < u32::MAX / 2 {
                 let exact = (1_u64 << (3 * frac / 2)) as f64 / f64::from(x).sqrt();
-                let got = f64::from(rsqrt_fixed(x, frac));
+                let got = f64::from(rsqrt_fixed(x, frac, false));
                 let tolerance = (exact / f64::from(1 << 22)).max(1.0);
                 assert!(
                     (got - exact).abs() <= tolerance,
@@ -202,7 +189,7 @@ mod tests {
         let mut y = 1_u64;
         while y < 1 << 61 {
             let exact = (y as f64).sqrt();
-            let got = isqrt_fast_u64(y) as f64;
+            let got = isqrt_u64(y, true) as f64;
             assert!(
                 (got - exact).abs() <= exact / 16384.0 + 1.0,
                 "{y}: {got} vs {exact}"
@@ -213,7 +200,7 @@ mod tests {
             let mut x = 1_u32;
             while x < u32::MAX / 2 {
                 let exact = (1_u64 << (3 * frac / 2)) as f64 / f64::from(x).sqrt();
-                let got = f64::from(rsqrt_fixed_fast(x, frac));
+                let got = f64::from(rsqrt_fixed(x, frac, true));
                 assert!(
                     (got - exact).abs() <= exact / 16384.0 + 1.0,
                     "frac {frac}, x {x}"
