@@ -12,7 +12,7 @@
 //!   world" in every comparison the tracer makes.
 
 use super::Scalar;
-use super::isqrt::{isqrt_u64, rsqrt_fixed, rsqrt_mantissa};
+use super::isqrt::{MANTISSA_BITS, MANTISSA_SCALE, isqrt_u64, rsqrt_fixed, rsqrt_mantissa};
 use core::cmp::Ordering;
 use core::fmt;
 use core::ops::{Add, Div, Mul, Neg, Sub};
@@ -139,7 +139,7 @@ macro_rules! wide_bits {
                 let (z, s) = rsqrt_mantissa(squared.unsigned_abs().into(), fast);
                 // z < 2³¹ fits every signed raw type here.
                 let z = <$bits>::try_from(z).unwrap_or(<$bits>::MAX);
-                let right = 62 - frac / 2 - s;
+                let right = MANTISSA_SCALE - frac / 2 - s;
                 let scale = |c: Self| Self::narrow_saturating(c.wide_mul(z), right);
                 (v.map(scale), scale(squared))
             }
@@ -150,8 +150,9 @@ macro_rules! wide_bits {
             fn div_raw_fast(self, b: Self, frac: u32) -> Self {
                 let (z, s) = rsqrt_mantissa(b.unsigned_abs().into(), true);
                 // r < 2³¹ fits every signed raw type here.
-                let r = <$bits>::try_from((z * z) >> 31).unwrap_or(<$bits>::MAX);
-                Self::narrow_saturating(self.wide_mul(r), 93 - 2 * s - frac)
+                let r = <$bits>::try_from((z * z) >> MANTISSA_BITS).unwrap_or(<$bits>::MAX);
+                let right = 2 * MANTISSA_SCALE - MANTISSA_BITS - 2 * s - frac;
+                Self::narrow_saturating(self.wide_mul(r), right)
             }
             #[inline]
             fn sqrt_raw(self, frac: u32, fast: bool) -> Self {

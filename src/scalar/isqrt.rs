@@ -119,6 +119,12 @@ pub fn rsqrt_fixed(x: u32, frac: u32, fast: bool) -> u32 {
     u32::try_from((z + (1 << (right - 1))) >> right).unwrap_or(u32::MAX)
 }
 
+/// The exponent of [`rsqrt_mantissa`]'s scale: 1/√y ≈ z·2^(s − `MANTISSA_SCALE`).
+pub const MANTISSA_SCALE: u32 = 62;
+
+/// The bits of [`rsqrt_mantissa`]'s mantissa: z < 2^`MANTISSA_BITS`.
+pub const MANTISSA_BITS: u32 = 31;
+
 /// The reciprocal square root of y > 0 as a mantissa and an exponent: (z, s) with
 /// 1/√y ≈ z·2^(s − 62), z < 2³¹ carrying about 30 correct bits (15 when `fast`) whatever the size
 /// of y — which a fixed-point result alone cannot do for large y.
@@ -127,7 +133,7 @@ pub fn rsqrt_fixed(x: u32, frac: u32, fast: bool) -> u32 {
 pub fn rsqrt_mantissa(y: u64, fast: bool) -> (u64, u32) {
     let (_, z, shift) = rsqrt_q30(y, steps(fast));
     // 1/√y = (z/2³⁰)·2^(k − 32) with 2k = shift; z reaches 2³¹ only for m = ¼ exactly.
-    (z.min((1 << 31) - 1), shift / 2)
+    (z.min((1 << MANTISSA_BITS) - 1), shift / 2)
 }
 
 #[cfg(test)]

@@ -5,7 +5,6 @@ use crate::format::Format;
 use crate::heatmap::heatmap;
 use crate::metrics::{Accuracy, accuracy};
 use crate::render::{Request, all_cores, prepare, prepare_reference};
-use crate::scene_file;
 use crate::timing::interleaved_median_ms;
 use anyhow::{Context, Result};
 use serde::Serialize;
@@ -30,17 +29,14 @@ pub struct Report {
 }
 
 pub fn run(args: &CompareArgs) -> Result<()> {
-    let named = scene_file::load(&args.scene.scene)?;
+    let super::Resolved {
+        name,
+        format,
+        scene,
+        methods,
+    } = super::resolve(&args.scene)?;
     let (width, height) = args.scene.size;
     let reference = Format::F64;
-    let methods = args.scene.methods.methods();
-    let (format, scene) = super::resolve(
-        args.scene.format,
-        &named,
-        methods,
-        args.scene.size,
-        &args.scene.auto,
-    )?;
     let desc = scene.desc();
     let request = Request {
         desc: &desc,
@@ -93,7 +89,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     let report = Report {
         format: format.name(),
         reference: reference.name(),
-        scene: named.name,
+        scene: name,
         width,
         height,
         psnr_db,

@@ -9,10 +9,10 @@ mod render;
 mod stress;
 
 use crate::analysis::{Analysis, Fit};
-use crate::cli::{AutoArgs, Command, FormatChoice};
+use crate::cli::{AutoArgs, Command, FormatChoice, SceneArgs};
 use crate::format::Format;
 use crate::owned::OwnedScene;
-use crate::scene_file::NamedScene;
+use crate::scene_file::{self, NamedScene};
 use anyhow::{Result, bail};
 use obscura::Methods;
 use obscura::scenes::{self, BuiltIn};
@@ -54,10 +54,35 @@ pub fn built_in(name: &str) -> Result<&'static BuiltIn> {
     }
 }
 
-/// The format to render `named` in at `size` by `methods`, and the scene to render: the format
-/// given, or with `auto` the cheapest that holds the scene and is predicted to reach the target
-/// (rescaled about the eye when only that fits), said aloud on standard error.
-pub fn resolve(
+/// A scene from the command line, ready to render.
+pub struct Resolved {
+    /// The scene's name.
+    pub name: String,
+    /// The format to render it in.
+    pub format: Format,
+    /// The scene, rescaled where the format holds it only so.
+    pub scene: OwnedScene,
+    /// The methods.
+    pub methods: Methods,
+}
+
+/// Loads the scene `args` name and picks its format: the format given, or with `auto` the
+/// cheapest that holds the scene and is predicted to reach the target (rescaled about the eye
+/// when only that fits), said aloud on standard error.
+pub fn resolve(args: &SceneArgs) -> Result<Resolved> {
+    let named = scene_file::load(&args.scene)?;
+    let methods = args.methods.methods();
+    let (format, scene) = pick_format(args.format, &named, methods, args.size, &args.auto)?;
+    Ok(Resolved {
+        name: named.name,
+        format,
+        scene,
+        methods,
+    })
+}
+
+/// The format to render `named` in at `size` by `methods`, and the scene to render.
+fn pick_format(
     choice: FormatChoice,
     named: &NamedScene,
     methods: Methods,
