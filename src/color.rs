@@ -48,6 +48,7 @@ impl<S: Scalar> Rgb<S> {
     /// Every channel multiplied by `k`.
     #[inline]
     #[must_use]
+    #[track_caller]
     pub fn scale(self, k: S) -> Self {
         Self::new(self.r * k, self.g * k, self.b * k)
     }
@@ -81,6 +82,7 @@ fn quantize_channel<S: Scalar>(v: S, max: u8) -> u8 {
 impl<S: Scalar> Add for Rgb<S> {
     type Output = Self;
     #[inline]
+    #[track_caller]
     fn add(self, rhs: Self) -> Self {
         Self::new(self.r + rhs.r, self.g + rhs.g, self.b + rhs.b)
     }
@@ -90,6 +92,7 @@ impl<S: Scalar> Add for Rgb<S> {
 impl<S: Scalar> Mul for Rgb<S> {
     type Output = Self;
     #[inline]
+    #[track_caller]
     fn mul(self, rhs: Self) -> Self {
         Self::new(self.r * rhs.r, self.g * rhs.g, self.b * rhs.b)
     }

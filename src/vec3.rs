@@ -45,6 +45,7 @@ impl<S: Scalar> Vec3<S> {
     /// The dot product, rounded once in fixed point (see [`Scalar::dot3`]).
     #[inline]
     #[must_use]
+    #[track_caller]
     pub fn dot(self, rhs: Self) -> S {
         S::dot3([self.x, self.y, self.z], [rhs.x, rhs.y, rhs.z])
     }
@@ -52,6 +53,7 @@ impl<S: Scalar> Vec3<S> {
     /// The cross product.
     #[inline]
     #[must_use]
+    #[track_caller]
     pub fn cross(self, rhs: Self) -> Self {
         Self::new(
             self.y * rhs.z - self.z * rhs.y,
@@ -63,6 +65,7 @@ impl<S: Scalar> Vec3<S> {
     /// The squared length.
     #[inline]
     #[must_use]
+    #[track_caller]
     pub fn length_squared(self) -> S {
         self.dot(self)
     }
@@ -70,6 +73,7 @@ impl<S: Scalar> Vec3<S> {
     /// The length.
     #[inline]
     #[must_use]
+    #[track_caller]
     pub fn length(self) -> S {
         self.length_squared().sqrt()
     }
@@ -78,6 +82,7 @@ impl<S: Scalar> Vec3<S> {
     /// stays zero.
     #[inline]
     #[must_use]
+    #[track_caller]
     pub fn normalized(self, roots: RootMethod) -> Self {
         self.normalized_with_length(roots).0
     }
@@ -86,6 +91,7 @@ impl<S: Scalar> Vec3<S> {
     /// ([`Scalar::normalize3`]). The zero vector gives (zero, zero).
     #[inline(always)]
     #[must_use]
+    #[track_caller]
     pub fn normalized_with_length(self, roots: RootMethod) -> (Self, S) {
         let ([x, y, z], length) =
             S::normalize3([self.x, self.y, self.z], roots == RootMethod::Approx);
@@ -96,6 +102,7 @@ impl<S: Scalar> Vec3<S> {
     /// p − n·(n·p − offset).
     #[inline]
     #[must_use]
+    #[track_caller]
     pub fn onto_plane(self, normal: Self, offset: S) -> Self {
         self.add_scaled(normal, offset - normal.dot(self))
     }
@@ -103,6 +110,7 @@ impl<S: Scalar> Vec3<S> {
     /// `self + d·t`: the point at parameter `t` along a ray.
     #[inline]
     #[must_use]
+    #[track_caller]
     pub fn add_scaled(self, d: Self, t: S) -> Self {
         Self::new(self.x + d.x * t, self.y + d.y * t, self.z + d.z * t)
     }
@@ -134,6 +142,7 @@ impl Vec3<f64> {
 impl<S: Scalar> Add for Vec3<S> {
     type Output = Self;
     #[inline]
+    #[track_caller]
     fn add(self, rhs: Self) -> Self {
         Self::new(self.x + rhs.x, self.y + rhs.y, self.z + rhs.z)
     }
@@ -142,6 +151,7 @@ impl<S: Scalar> Add for Vec3<S> {
 impl<S: Scalar> Sub for Vec3<S> {
     type Output = Self;
     #[inline]
+    #[track_caller]
     fn sub(self, rhs: Self) -> Self {
         Self::new(self.x - rhs.x, self.y - rhs.y, self.z - rhs.z)
     }
@@ -158,6 +168,7 @@ impl<S: Scalar> Neg for Vec3<S> {
 impl<S: Scalar> Mul<S> for Vec3<S> {
     type Output = Self;
     #[inline]
+    #[track_caller]
     fn mul(self, k: S) -> Self {
         Self::new(self.x * k, self.y * k, self.z * k)
     }

@@ -121,7 +121,7 @@ impl Analysis {
             methods,
         })
         .map_err(|error| error.context("no format can hold the scene"))?;
-        let edge_energy = edge_energy(&reference.render(all_cores(), None));
+        let edge_energy = edge_energy(&reference.render(all_cores(), None)?);
         let verdicts = Format::ALL
             .into_iter()
             .map(|format| {
@@ -503,10 +503,10 @@ mod tests {
         );
         let threads = all_cores();
         accuracy(
-            &contender.render(threads, None),
-            &reference.render(threads, None),
-            &contender.object_map(),
-            &reference.object_map(),
+            &contender.render(threads, None).expect("renders"),
+            &reference.render(threads, None).expect("renders"),
+            &contender.object_map().expect("renders"),
+            &reference.object_map().expect("renders"),
         )
         .psnr_db
     }
@@ -596,7 +596,8 @@ mod tests {
                 drop(
                     Prepared::<Peak>::new(&request)
                         .expect("builds")
-                        .render(1, None),
+                        .render(1, None)
+                        .expect("renders"),
                 );
                 let reached = peak::largest();
                 for format in [Format::I16f16, Format::I20f12, Format::I32f32] {
@@ -647,6 +648,7 @@ mod tests {
             prepare(Format::F64, &request)
                 .expect("builds")
                 .render(1, None)
+                .expect("renders")
         };
         let (before, after) = (image(&whitted), image(&tiny.scaled(64.0)));
         let none = vec![None; 64 * 64];

@@ -1,5 +1,7 @@
-//! The number formats the harness can run the core in, chosen at run time.
+//! The number formats the harness can run the core in, chosen at run time. The fixed formats
+//! are the firmware's with checked arithmetic ([`crate::checked`]).
 
+use crate::checked::CheckedFx;
 use clap::ValueEnum;
 use obscura::{Methods, Scalar};
 use std::fmt;
@@ -34,9 +36,9 @@ impl Format {
     /// Runs `job` in this format.
     pub fn run<J: FormatJob>(self, job: J) -> J::Output {
         match self {
-            Self::I16f16 => job.run::<obscura::I16F16>(),
-            Self::I20f12 => job.run::<obscura::I20F12>(),
-            Self::I32f32 => job.run::<obscura::I32F32>(),
+            Self::I16f16 => job.run::<CheckedFx<fixed::types::I16F16>>(),
+            Self::I20f12 => job.run::<CheckedFx<fixed::types::I20F12>>(),
+            Self::I32f32 => job.run::<CheckedFx<fixed::types::I32F32>>(),
             Self::F32Approx => job.run::<obscura::F32Approx>(),
             Self::F32 => job.run::<f32>(),
             Self::F64 => job.run::<f64>(),

@@ -3,6 +3,7 @@
 
 mod analysis;
 mod canvas;
+mod checked;
 mod cli;
 mod commands;
 mod cost;
@@ -26,7 +27,15 @@ use std::process::ExitCode;
 
 fn main() -> ExitCode {
     let cli = cli::Cli::parse();
-    match commands::run(cli.command) {
+    // A command that does not catch an overflow itself (to say at which pixel of which scene)
+    // still ends with it as an error, never with a wrapped number.
+    let outcome = checked::catch(|| commands::run(cli.command)).unwrap_or_else(|overflowed| {
+        Err(anyhow::anyhow!(
+            "{overflowed}: the scene build's range proof missed it (a bug in obscura: please \
+             report it with the scene)"
+        ))
+    });
+    match outcome {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
             eprintln!("error: {error:#}");

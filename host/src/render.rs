@@ -1,19 +1,17 @@
-//! Whole frames on the desktop: the core's scanline renderer run on several threads, row by
-//! row, into an image.
+//! Whole frames on the desktop: the core's scanline renderer run row by row on a thread pool,
+//! into an image, with every fixed-point sum and product checked ([`crate::checked`]).
 
-use crate::canvas::Canvas;
+use crate::checked::{self, Overflowed};
 use crate::format::{Format, FormatJob};
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, anyhow};
 use embedded_graphics::pixelcolor::{IntoStorage, Rgb565, Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
-use embedded_graphics::primitives::Rectangle;
 use image::RgbImage;
-use obscura::{Camera, Methods, RootMethod, Scalar, Scene, SceneDesc, render_rows};
+use indicatif::{ProgressBar, ProgressStyle};
+use obscura::{Camera, Methods, RootMethod, Scalar, Scene, SceneDesc, SceneError, render_rows};
+use rayon::prelude::*;
 use std::convert::Infallible;
-use std::io::Write;
-use std::sync::Mutex;
-use std::sync::atomic::{AtomicU32, Ordering};
-use std::time::{Duration, Instant};
+use std::io::IsTerminal;
 
 /// Every core of this machine: the threads of a render that is not timed.
 pub fn all_cores() -> usize {
@@ -77,94 +75,155 @@ pub struct Prepared<S: Scalar> {
 impl<S: Scalar> Prepared<S> {
     /// Builds the scene in format `S` and its camera.
     pub fn new(request: &Request<'_>) -> Result<Self> {
-        let scene = HostScene::<S>::build_with(request.desc, request.methods)
+        let built = checked::catch(|| {
+            let scene = HostScene::<S>::build_with(request.desc, request.methods)?;
+            let camera = scene.camera(request.width, request.height)?;
+            Ok((scene, camera))
+        })
+        .map_err(|overflowed| {
+            anyhow!(
+                "{overflowed} while building the scene in {}: the scene build's range proof \
+                 missed it (a bug in obscura: please report it with the scene)",
+                S::NAME
+            )
+        })?;
+        let (scene, camera) = built
+            .map_err(|error: SceneError| anyhow::Error::new(error))
             .with_context(|| format!("the scene cannot be built in {}", S::NAME))?;
-        let camera = scene.camera(request.width, request.height)?;
         Ok(Self { scene, camera })
     }
 
-    /// Renders the frame on `threads` threads, each taking the next row not yet taken.
-    pub fn render(&self, threads: usize, progress: Option<&str>) -> RgbImage {
+    /// Renders the frame, its rows shared out over `threads` threads, with a progress bar
+    /// labelled `progress` on a terminal.
+    ///
+    /// # Errors
+    /// When a sum or product leaves the format (a hole in the scene build's range proof): which
+    /// one, where in the core, and at which pixel.
+    pub fn render(&self, threads: usize, progress: Option<&str>) -> Result<RgbImage> {
         let (width, height) = (self.camera.width(), self.camera.height());
-        let image = Mutex::new(RgbImage::new(width, height));
-        let next_row = AtomicU32::new(0);
-        let rows_done = AtomicU32::new(0);
-        std::thread::scope(|scope| {
-            for _ in 0..threads.max(1) {
-                scope.spawn(|| {
-                    let mut line = vec![Rgb888::BLACK; width as usize];
-                    let mut target = SharedImage(&image);
-                    loop {
-                        let y = next_row.fetch_add(1, Ordering::Relaxed);
-                        if y >= height {
-                            break;
-                        }
-                        let rendered = render_rows(
-                            &self.scene,
-                            &self.camera,
-                            y..y + 1,
-                            &mut line,
-                            &mut target,
-                        );
-                        // The camera fits the image, the line holds a row and the target is
-                        // infallible: no error is possible here.
-                        debug_assert!(rendered.is_ok());
-                        rows_done.fetch_add(1, Ordering::Relaxed);
-                    }
-                });
-            }
-            if let Some(label) = progress {
-                report_progress(label, &rows_done, height);
-            }
-        });
-        image
-            .into_inner()
-            .unwrap_or_else(std::sync::PoisonError::into_inner)
+        let row_bytes = 3 * width as usize;
+        let mut pixels = vec![0_u8; row_bytes * height as usize];
+        let bar = progress_bar(progress, height);
+        let render_row = |line: &mut Vec<Rgb888>, (y, row): (usize, &mut [u8])| -> Result<()> {
+            let y = u32::try_from(y).context("an image row beyond u32")?;
+            self.render_row(y, line, &mut RowTarget { y, row })?;
+            bar.inc(1);
+            Ok(())
+        };
+        let new_line = || vec![Rgb888::BLACK; width as usize];
+        if threads <= 1 {
+            let mut line = new_line();
+            pixels
+                .chunks_mut(row_bytes)
+                .enumerate()
+                .try_for_each(|row| render_row(&mut line, row))?;
+        } else {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .context("cannot start the render threads")?
+                .install(|| {
+                    pixels
+                        .par_chunks_mut(row_bytes)
+                        .enumerate()
+                        .try_for_each_init(new_line, render_row)
+                })?;
+        }
+        bar.finish_and_clear();
+        RgbImage::from_raw(width, height, pixels).context("the image buffer has the wrong size")
+    }
+
+    /// Renders row `y` through `line` into `target`, with every sum and product checked.
+    fn render_row<D>(&self, y: u32, line: &mut [D::Color], target: &mut D) -> Result<()>
+    where
+        D: DrawTarget<Error = Infallible>,
+        D::Color: obscura::DisplayColor,
+    {
+        let rendered =
+            checked::catch(|| render_rows(&self.scene, &self.camera, y..y + 1, line, target));
+        match rendered {
+            Ok(drawn) => drawn.map_err(|error| anyhow!("row {y}: {error}")),
+            Err(overflowed) => Err(self.overflow_at(y, overflowed)),
+        }
+    }
+
+    /// The error for an overflow in row `y`, naming the first pixel of the row whose trace
+    /// overflows.
+    fn overflow_at(&self, y: u32, overflowed: Overflowed) -> anyhow::Error {
+        let (first, pixel) = (0..self.camera.width())
+            .zip(self.camera.row(y).rays())
+            .find_map(|(x, ray)| {
+                checked::catch(|| self.scene.trace(ray))
+                    .err()
+                    .map(|o| (o, (x, y)))
+            })
+            .map_or((overflowed, None), |(o, pixel)| (o, Some(pixel)));
+        let place = pixel.map_or_else(|| format!("row {y}"), |(x, y)| format!("pixel ({x}, {y})"));
+        anyhow!(
+            "{} while tracing {place} in {}: the scene build's range proof missed it (a bug in \
+             obscura: please report it with the scene)",
+            first,
+            S::NAME
+        )
     }
 
     /// The frame in RGB565, as a display receives it, rendered on one thread through the same
     /// scanline renderer as the firmware's.
-    pub fn rgb565_frame(&self) -> Vec<u16> {
+    ///
+    /// # Errors
+    /// As [`Self::render`].
+    pub fn rgb565_frame(&self) -> Result<Vec<u16>> {
         let (width, height) = (self.camera.width(), self.camera.height());
         let mut frame = Rgb565Frame {
             width,
             pixels: vec![0; (width * height) as usize],
         };
         let mut line = vec![Rgb565::BLACK; width as usize];
-        let rendered = render_rows(&self.scene, &self.camera, 0..height, &mut line, &mut frame);
-        // The camera fits the frame and the line holds a row: no error is possible here.
-        debug_assert!(rendered.is_ok());
-        frame.pixels
+        for y in 0..height {
+            self.render_row(y, &mut line, &mut frame)?;
+        }
+        Ok(frame.pixels)
     }
 
     /// The index of the object each pixel's primary ray hits first, row by row, the rays made
     /// as the renderer makes them.
-    pub fn object_map(&self) -> Vec<Option<usize>> {
-        (0..self.camera.height())
-            .flat_map(|y| self.camera.row(y).rays())
-            .map(|ray| self.scene.first_hit(&ray))
-            .collect()
+    ///
+    /// # Errors
+    /// As [`Self::render`].
+    pub fn object_map(&self) -> Result<Vec<Option<usize>>> {
+        let mut objects = Vec::new();
+        for y in 0..self.camera.height() {
+            let row = checked::catch(|| {
+                self.camera
+                    .row(y)
+                    .rays()
+                    .map(|ray| self.scene.first_hit(&ray))
+                    .collect::<Vec<_>>()
+            });
+            objects.extend(row.map_err(|overflowed| self.overflow_at(y, overflowed))?);
+        }
+        Ok(objects)
     }
 }
 
 /// A prepared render whose number format was chosen at run time.
-pub trait AnyFormat {
+pub trait AnyFormat: Sync {
     /// See [`Prepared::render`].
-    fn render(&self, threads: usize, progress: Option<&str>) -> RgbImage;
+    fn render(&self, threads: usize, progress: Option<&str>) -> Result<RgbImage>;
     /// See [`Prepared::object_map`].
-    fn object_map(&self) -> Vec<Option<usize>>;
+    fn object_map(&self) -> Result<Vec<Option<usize>>>;
     /// See [`Prepared::rgb565_frame`].
-    fn rgb565_frame(&self) -> Vec<u16>;
+    fn rgb565_frame(&self) -> Result<Vec<u16>>;
 }
 
 impl<S: Scalar> AnyFormat for Prepared<S> {
-    fn render(&self, threads: usize, progress: Option<&str>) -> RgbImage {
+    fn render(&self, threads: usize, progress: Option<&str>) -> Result<RgbImage> {
         Prepared::render(self, threads, progress)
     }
-    fn object_map(&self) -> Vec<Option<usize>> {
+    fn object_map(&self) -> Result<Vec<Option<usize>>> {
         Prepared::object_map(self)
     }
-    fn rgb565_frame(&self) -> Vec<u16> {
+    fn rgb565_frame(&self) -> Result<Vec<u16>> {
         Prepared::rgb565_frame(self)
     }
 }
@@ -181,29 +240,50 @@ pub fn prepare(format: Format, request: &Request<'_>) -> Result<Box<dyn AnyForma
     format.run(Job(request))
 }
 
-/// Prints "label: 42%" on stderr every 100 ms once a second has passed, until every row is
-/// done. It looks every 10 ms, so a short render is not held up waiting for it.
-fn report_progress(label: &str, rows_done: &AtomicU32, height: u32) {
-    let start = Instant::now();
-    let mut last_shown = None;
-    loop {
-        let done = rows_done.load(Ordering::Relaxed);
-        if done >= height {
-            break;
+/// A progress bar of `rows` rows labelled `label`, drawn on standard error when that is a
+/// terminal (hidden otherwise, and when there is no label).
+fn progress_bar(label: Option<&str>, rows: u32) -> ProgressBar {
+    match label {
+        Some(label) if std::io::stderr().is_terminal() => {
+            let bar = ProgressBar::new(u64::from(rows));
+            let style = ProgressStyle::with_template("{msg}: {bar:40} {percent:>3}% {eta}")
+                .unwrap_or_else(|_| ProgressStyle::default_bar());
+            bar.set_style(style);
+            bar.set_message(label.to_owned());
+            bar
         }
-        let due = last_shown.is_none_or(|at: Instant| at.elapsed() >= Duration::from_millis(100));
-        if start.elapsed() > Duration::from_secs(1) && due {
-            eprint!(
-                "\r{label}: {:3}%",
-                u64::from(done) * 100 / u64::from(height)
-            );
-            let _ = std::io::stderr().flush();
-            last_shown = Some(Instant::now());
-        }
-        std::thread::sleep(Duration::from_millis(10));
+        _ => ProgressBar::hidden(),
     }
-    if last_shown.is_some() {
-        eprintln!("\r{label}: 100%");
+}
+
+/// One row of an RGB888 image, as a draw target for the row `y`.
+struct RowTarget<'a> {
+    y: u32,
+    row: &'a mut [u8],
+}
+
+impl OriginDimensions for RowTarget<'_> {
+    fn size(&self) -> Size {
+        Size::new(u32::try_from(self.row.len() / 3).unwrap_or(0), self.y + 1)
+    }
+}
+
+impl DrawTarget for RowTarget<'_> {
+    type Color = Rgb888;
+    type Error = Infallible;
+
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Infallible>
+    where
+        I: IntoIterator<Item = Pixel<Rgb888>>,
+    {
+        for Pixel(point, colour) in pixels {
+            let on_row = u32::try_from(point.y).is_ok_and(|y| y == self.y);
+            let x = usize::try_from(point.x).ok().filter(|_| on_row);
+            if let Some(pixel) = x.and_then(|x| self.row.get_mut(3 * x..3 * x + 3)) {
+                pixel.copy_from_slice(&[colour.r(), colour.g(), colour.b()]);
+            }
+        }
+        Ok(())
     }
 }
 
@@ -240,43 +320,5 @@ impl DrawTarget for Rgb565Frame {
             }
         }
         Ok(())
-    }
-}
-
-/// An image shared by the render threads; each row is written under the lock once.
-struct SharedImage<'a>(&'a Mutex<RgbImage>);
-
-impl SharedImage<'_> {
-    fn canvas<T>(&self, draw: impl FnOnce(&mut Canvas<'_>) -> T) -> T {
-        let mut image = self
-            .0
-            .lock()
-            .unwrap_or_else(std::sync::PoisonError::into_inner);
-        draw(&mut Canvas(&mut image))
-    }
-}
-
-impl OriginDimensions for SharedImage<'_> {
-    fn size(&self) -> Size {
-        self.canvas(|canvas| canvas.size())
-    }
-}
-
-impl DrawTarget for SharedImage<'_> {
-    type Color = Rgb888;
-    type Error = Infallible;
-
-    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Infallible>
-    where
-        I: IntoIterator<Item = Pixel<Rgb888>>,
-    {
-        self.canvas(|canvas| canvas.draw_iter(pixels))
-    }
-
-    fn fill_contiguous<I>(&mut self, area: &Rectangle, colours: I) -> Result<(), Infallible>
-    where
-        I: IntoIterator<Item = Rgb888>,
-    {
-        self.canvas(|canvas| canvas.fill_contiguous(area, colours))
     }
 }

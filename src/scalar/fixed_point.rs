@@ -1,12 +1,16 @@
 //! Fixed-point formats: [`Fx`], one wrapper over any signed type of the `fixed` crate, so that
-//! every format is written once.
+//! every format is written once, with an [`Overflow`] policy that says what becomes of a sum or
+//! product that does not fit.
 //!
 //! How each operation meets the end of the range, chosen by what the mathematics needs:
 //!
-//! - `+`, `−`, `×` and dot products are plain: exact while the result fits, and the scene build
-//!   ([`crate::scene::range`]) proves that every sum and product the tracer forms fits. Debug
-//!   builds check every one and panic on overflow, so a hole in that proof fails the tests;
-//!   release builds pay nothing for the proof they rely on.
+//! - `+`, `−`, `×` and dot products are exact while the result fits, and the scene build
+//!   ([`crate::scene::range`]) proves that every sum and product the tracer forms for a built
+//!   scene fits. Outside that proof the result wraps (two's complement) and the format's
+//!   [`Overflow`] policy hears of it first: [`Proven`], the firmware's, relies on the proof (it
+//!   costs nothing in a release build and panics in a debug build, so that a hole in the proof
+//!   fails the tests); the desktop harness's records the operation and where it happened, and
+//!   stops the render with an error rather than show a wrapped number.
 //! - Division, reciprocals and negation saturate: a quotient grows without bound as its
 //!   divisor shrinks (a ray grazing a plane), and a saturated value reads as "beyond the
 //!   world" in every comparison the tracer makes.
@@ -15,7 +19,10 @@ use super::Scalar;
 use super::isqrt::{MANTISSA_BITS, MANTISSA_SCALE, isqrt_u64, rsqrt_fixed, rsqrt_mantissa};
 use core::cmp::Ordering;
 use core::fmt;
+use core::hash::Hash;
+use core::marker::PhantomData;
 use core::ops::{Add, Div, Mul, Neg, Sub};
+use core::panic::Location;
 use fixed::traits::{Fixed, FixedSigned};
 
 /// Signed 16.16 fixed point on `i32`: range ±32 768, resolution 1/65 536 ≈ 1.5·10⁻⁵.
@@ -27,20 +34,70 @@ pub type I20F12 = Fx<fixed::types::I20F12>;
 /// Signed 32.32 fixed point on `i64`: range ±2.1·10⁹, resolution 2.3·10⁻¹⁰.
 pub type I32F32 = Fx<fixed::types::I32F32>;
 
-/// A fixed-point number (see the module documentation for its overflow rules).
+/// A sum, difference or product whose exact result does not fit its fixed format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Operation {
+    /// `a + b`.
+    Sum,
+    /// `a − b`.
+    Difference,
+    /// `a × b`, rounded to the format.
+    Product,
+    /// `a₀b₀ + a₁b₁ + a₂b₂`, rounded once.
+    DotProduct,
+}
+
+impl fmt::Display for Operation {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::Sum => "a sum",
+            Self::Difference => "a difference",
+            Self::Product => "a product",
+            Self::DotProduct => "a dot product",
+        })
+    }
+}
+
+/// What a fixed format does with a sum, difference or product that does not fit: the result
+/// wraps (two's complement), and [`Overflow::overflowed`] hears of it first.
+pub trait Overflow: Copy + Default + Eq + Ord + Hash + fmt::Debug + Send + Sync + 'static {
+    /// `operation`, written at `at` in the source, overflowed.
+    fn overflowed(operation: Operation, at: &'static Location<'static>);
+}
+
+/// The firmware's policy: the scene build's range proof keeps every sum and product in range,
+/// so a release build checks nothing (and would wrap, had the proof a hole); a debug build
+/// panics, so that a hole fails the tests.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct Proven;
+
+impl Overflow for Proven {
+    #[inline(always)]
+    fn overflowed(operation: Operation, at: &'static Location<'static>) {
+        debug_assert!(
+            false,
+            "fixed-point overflow: {operation} at {at} left the format; the scene's range proof \
+             missed it"
+        );
+    }
+}
+
+/// A fixed-point number (see the module documentation for its overflow rules) whose sums and
+/// products report an overflow to the policy `O`.
 ///
 /// Products are formed exactly in the double-width integer and rounded once to nearest, so a
 /// multiplication is correct to half an LSB.
 #[derive(Clone, Copy, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
 #[repr(transparent)]
-pub struct Fx<F>(F);
+pub struct Fx<F, O = Proven>(F, PhantomData<O>);
 
-impl<F: Fixed> Fx<F> {
+impl<F: Fixed, O> Fx<F, O> {
     /// Wraps a number of the `fixed` crate.
     #[inline]
     #[must_use]
     pub const fn new(value: F) -> Self {
-        Self(value)
+        Self(value, PhantomData)
     }
 
     /// The number of the `fixed` crate inside.
@@ -51,13 +108,13 @@ impl<F: Fixed> Fx<F> {
     }
 }
 
-impl<F: fmt::Debug> fmt::Debug for Fx<F> {
+impl<F: fmt::Debug, O> fmt::Debug for Fx<F, O> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         self.0.fmt(f)
     }
 }
 
-impl<F: fmt::Display> fmt::Display for Fx<F> {
+impl<F: fmt::Display, O> fmt::Display for Fx<F, O> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         self.0.fmt(f)
     }
@@ -70,10 +127,10 @@ pub trait WideBits: Copy + Ord {
     type Wide: Copy;
     /// The exact product. It cannot overflow: |a·b| ≤ 2^(2n−2) for n-bit inputs.
     fn wide_mul(self, rhs: Self) -> Self::Wide;
-    /// The sum of two products; it must fit (checked in debug builds).
-    fn wide_add(a: Self::Wide, b: Self::Wide) -> Self::Wide;
-    /// `wide / 2^frac` rounded to nearest (ties up); it must fit (checked in debug builds).
-    fn narrow(wide: Self::Wide, frac: u32) -> Self;
+    /// The sum of two products, and whether it wrapped.
+    fn wide_add(a: Self::Wide, b: Self::Wide) -> (Self::Wide, bool);
+    /// `wide / 2^frac` rounded to nearest (ties up), and whether it wrapped.
+    fn narrow(wide: Self::Wide, frac: u32) -> (Self, bool);
     /// `wide / 2^frac` rounded to nearest (ties up), saturated to `Self`.
     fn narrow_saturating(wide: Self::Wide, frac: u32) -> Self;
     /// a·b − c·d exactly in the wide integer (it cannot overflow), with its sign.
@@ -105,18 +162,15 @@ macro_rules! wide_bits {
                 <$wide>::from(self) * <$wide>::from(rhs)
             }
             #[inline]
-            fn wide_add(a: $wide, b: $wide) -> $wide {
-                a + b
+            fn wide_add(a: $wide, b: $wide) -> ($wide, bool) {
+                a.overflowing_add(b)
             }
             #[inline]
-            #[allow(clippy::cast_possible_truncation, reason = "the range proof keeps it in range")]
-            fn narrow(wide: $wide, frac: u32) -> Self {
-                let rounded = (wide + (1 << (frac - 1))) >> frac;
-                debug_assert!(
-                    <$bits>::try_from(rounded).is_ok(),
-                    "fixed-point overflow: the scene's range analysis missed a product"
-                );
-                rounded as $bits
+            #[allow(clippy::cast_possible_truncation, reason = "wrapping is the point")]
+            fn narrow(wide: $wide, frac: u32) -> (Self, bool) {
+                let (biased, wrapped) = wide.overflowing_add(1 << (frac - 1));
+                let rounded = biased >> frac;
+                (rounded as $bits, wrapped || <$bits>::try_from(rounded).is_err())
             }
             #[inline]
             fn narrow_saturating(wide: $wide, frac: u32) -> Self {
@@ -195,68 +249,95 @@ fn rsqrt_raw_64(x: i64, frac: u32, _fast: bool) -> i64 {
     i64::try_from(quotient.isqrt()).unwrap_or(i64::MAX)
 }
 
-impl<F> Fx<F>
+impl<F, O> Fx<F, O>
 where
     F: FixedSigned,
     F::Bits: WideBits,
 {
     /// One, which every format used here has (at least two integer bits are required).
     const ONE_VALUE: Self = match F::TRY_ONE {
-        Some(one) => Self(one),
+        Some(one) => Self::new(one),
         None => panic!("a tracing format needs integer bits"),
     };
 
     #[inline]
     fn saturate_towards(sign: Ordering) -> Self {
         match sign {
-            Ordering::Less => Self(F::MIN),
-            Ordering::Equal => Self(F::ZERO),
-            Ordering::Greater => Self(F::MAX),
+            Ordering::Less => Self::new(F::MIN),
+            Ordering::Equal => Self::new(F::ZERO),
+            Ordering::Greater => Self::new(F::MAX),
         }
     }
+
+    #[inline]
+    fn from_raw(bits: F::Bits) -> Self {
+        Self::new(F::from_bits(bits))
+    }
+
+    #[inline]
+    fn raw(self) -> F::Bits {
+        self.get().to_bits()
+    }
 }
 
-impl<F: FixedSigned> Add for Fx<F> {
+impl<F: FixedSigned, O: Overflow> Add for Fx<F, O> {
     type Output = Self;
-    /// Plain: checked in debug builds, proven in range by the scene build.
+    /// Exact while the sum fits (see the module documentation).
     #[inline]
+    #[track_caller]
     fn add(self, rhs: Self) -> Self {
-        Self(self.0 + rhs.0)
+        let (sum, wrapped) = self.0.overflowing_add(rhs.0);
+        if wrapped {
+            O::overflowed(Operation::Sum, Location::caller());
+        }
+        Self::new(sum)
     }
 }
 
-impl<F: FixedSigned> Sub for Fx<F> {
+impl<F: FixedSigned, O: Overflow> Sub for Fx<F, O> {
     type Output = Self;
-    /// Plain: checked in debug builds, proven in range by the scene build.
+    /// Exact while the difference fits (see the module documentation).
     #[inline]
+    #[track_caller]
     fn sub(self, rhs: Self) -> Self {
-        Self(self.0 - rhs.0)
+        let (difference, wrapped) = self.0.overflowing_sub(rhs.0);
+        if wrapped {
+            O::overflowed(Operation::Difference, Location::caller());
+        }
+        Self::new(difference)
     }
 }
 
-impl<F: FixedSigned> Neg for Fx<F> {
+impl<F: FixedSigned, O> Neg for Fx<F, O> {
     type Output = Self;
     /// Saturating: −MIN is the one negation that does not fit.
     #[inline]
     fn neg(self) -> Self {
-        Self(self.0.saturating_neg())
+        Self::new(self.0.saturating_neg())
     }
 }
 
-impl<F> Mul for Fx<F>
+impl<F, O> Mul for Fx<F, O>
 where
     F: FixedSigned,
     F::Bits: WideBits,
+    O: Overflow,
 {
     type Output = Self;
-    /// Plain: checked in debug builds, proven in range by the scene build.
+    /// Rounded to nearest; exact while the product fits (see the module documentation).
     #[inline]
+    #[track_caller]
     fn mul(self, rhs: Self) -> Self {
-        let wide = self.0.to_bits().wide_mul(rhs.0.to_bits());
-        Self(F::from_bits(F::Bits::narrow(wide, F::FRAC_NBITS)))
+        let wide = self.raw().wide_mul(rhs.raw());
+        let (product, wrapped) = F::Bits::narrow(wide, F::FRAC_NBITS);
+        if wrapped {
+            O::overflowed(Operation::Product, Location::caller());
+        }
+        Self::from_raw(product)
     }
 }
-impl<F> Div for Fx<F>
+
+impl<F, O> Div for Fx<F, O>
 where
     F: FixedSigned,
     F::Bits: WideBits,
@@ -267,7 +348,7 @@ where
     #[inline]
     fn div(self, rhs: Self) -> Self {
         match self.0.checked_div(rhs.0) {
-            Some(q) => Self(q),
+            Some(q) => Self::new(q),
             None => {
                 let sign = if rhs.0 == F::ZERO {
                     self.0.cmp(&F::ZERO)
@@ -282,15 +363,16 @@ where
     }
 }
 
-impl<F> Scalar for Fx<F>
+impl<F, O> Scalar for Fx<F, O>
 where
     F: FixedSigned + fmt::Debug + Default + Send + Sync + 'static,
     F::Bits: WideBits,
+    O: Overflow,
 {
     const NAME: &'static str = fixed_name::<F>();
-    const ZERO: Self = Self(F::ZERO);
+    const ZERO: Self = Self::new(F::ZERO);
     const ONE: Self = Self::ONE_VALUE;
-    const MAX: Self = Self(F::MAX);
+    const MAX: Self = Self::new(F::MAX);
     const RANGE: f64 = {
         // MAX = 2^(INT_NBITS − 1) − 2^−FRAC_NBITS, exact in f64 for the formats used here.
         let int = (1_u64 << (F::INT_NBITS - 1)) as f64;
@@ -300,7 +382,7 @@ where
     #[inline]
     fn from_f64(x: f64) -> Option<Self> {
         if x.is_finite() {
-            F::checked_from_num(x).map(Self)
+            F::checked_from_num(x).map(Self::new)
         } else {
             None
         }
@@ -313,7 +395,7 @@ where
 
     #[inline]
     fn from_int(n: i32) -> Self {
-        Self(F::saturating_from_num(n))
+        Self::new(F::saturating_from_num(n))
     }
 
     #[inline]
@@ -330,9 +412,7 @@ where
         if self.0 <= F::ZERO {
             Self::MAX
         } else {
-            Self(F::from_bits(
-                self.0.to_bits().rsqrt_raw(F::FRAC_NBITS, false),
-            ))
+            Self::from_raw(self.raw().rsqrt_raw(F::FRAC_NBITS, false))
         }
     }
 
@@ -343,7 +423,7 @@ where
         if self.0 <= F::ZERO {
             Self::ZERO
         } else {
-            Self(F::from_bits(self.0.to_bits().sqrt_raw(F::FRAC_NBITS, true)))
+            Self::from_raw(self.raw().sqrt_raw(F::FRAC_NBITS, true))
         }
     }
 
@@ -352,25 +432,20 @@ where
         if self.0 <= F::ZERO {
             Self::MAX
         } else {
-            Self(F::from_bits(
-                self.0.to_bits().rsqrt_raw(F::FRAC_NBITS, true),
-            ))
+            Self::from_raw(self.raw().rsqrt_raw(F::FRAC_NBITS, true))
         }
     }
 
     #[inline]
+    #[track_caller]
     fn normalize3(v: [Self; 3], approx: bool) -> ([Self; 3], Self) {
         let squared = Self::dot3(v, v);
         if squared.0 <= F::ZERO {
             return (v, Self::ZERO);
         }
-        let bits = v.map(|c| c.0.to_bits());
-        let (unit, length) =
-            F::Bits::normalize_raw(bits, squared.0.to_bits(), F::FRAC_NBITS, approx);
-        (
-            unit.map(|c| Self(F::from_bits(c))),
-            Self(F::from_bits(length)),
-        )
+        let bits = v.map(Self::raw);
+        let (unit, length) = F::Bits::normalize_raw(bits, squared.raw(), F::FRAC_NBITS, approx);
+        (unit.map(Self::from_raw), Self::from_raw(length))
     }
 
     /// a/b = a·(1/√|b|)²·sign(b), the reciprocal square root a fast mantissa and exponent
@@ -381,22 +456,16 @@ where
         if !F::Bits::FAST_ROOTS || rhs.0 == F::ZERO {
             return self / rhs;
         }
-        let bits = self.0.to_bits();
-        let quotient = Self(F::from_bits(
-            bits.div_raw_fast(rhs.0.to_bits(), F::FRAC_NBITS),
-        ));
+        let quotient = Self::from_raw(self.raw().div_raw_fast(rhs.raw(), F::FRAC_NBITS));
         if rhs.0 < F::ZERO { -quotient } else { quotient }
     }
 
     #[inline]
     fn diff_of_products(a: Self, b: Self, c: Self, d: Self) -> (Self, Ordering) {
-        let [a, b, c, d] = [a, b, c, d].map(|x| x.0.to_bits());
+        let [a, b, c, d] = [a, b, c, d].map(Self::raw);
         let (wide, sign) = F::Bits::wide_diff_of_products(a, b, c, d);
         (
-            Self(F::from_bits(F::Bits::narrow_saturating(
-                wide,
-                F::FRAC_NBITS,
-            ))),
+            Self::from_raw(F::Bits::narrow_saturating(wide, F::FRAC_NBITS)),
             sign,
         )
     }
@@ -406,19 +475,25 @@ where
         if self.0 <= F::ZERO {
             Self::ZERO
         } else {
-            Self(F::from_bits(
-                self.0.to_bits().sqrt_raw(F::FRAC_NBITS, false),
-            ))
+            Self::from_raw(self.raw().sqrt_raw(F::FRAC_NBITS, false))
         }
     }
 
+    /// The three exact products added in the double-width integer and rounded once; exact
+    /// while the sum fits (see the module documentation).
     #[inline]
+    #[track_caller]
     fn dot3(a: [Self; 3], b: [Self; 3]) -> Self {
-        let p0 = a[0].0.to_bits().wide_mul(b[0].0.to_bits());
-        let p1 = a[1].0.to_bits().wide_mul(b[1].0.to_bits());
-        let p2 = a[2].0.to_bits().wide_mul(b[2].0.to_bits());
-        let sum = F::Bits::wide_add(F::Bits::wide_add(p0, p1), p2);
-        Self(F::from_bits(F::Bits::narrow(sum, F::FRAC_NBITS)))
+        let p0 = a[0].raw().wide_mul(b[0].raw());
+        let p1 = a[1].raw().wide_mul(b[1].raw());
+        let p2 = a[2].raw().wide_mul(b[2].raw());
+        let (partial, first) = F::Bits::wide_add(p0, p1);
+        let (sum, second) = F::Bits::wide_add(partial, p2);
+        let (rounded, narrowed) = F::Bits::narrow(sum, F::FRAC_NBITS);
+        if first || second || narrowed {
+            O::overflowed(Operation::DotProduct, Location::caller());
+        }
+        Self::from_raw(rounded)
     }
 }
 
@@ -462,9 +537,67 @@ mod tests {
         }
     }
 
+    /// A policy that keeps what it hears, so that a test can see an overflow reported.
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+    struct Recording;
+
+    std::thread_local! {
+        static HEARD: std::cell::RefCell<Vec<(Operation, u32)>> = const {
+            std::cell::RefCell::new(Vec::new())
+        };
+    }
+
+    impl Overflow for Recording {
+        fn overflowed(operation: Operation, at: &'static Location<'static>) {
+            HEARD.with(|heard| heard.borrow_mut().push((operation, at.line())));
+        }
+    }
+
+    fn heard() -> Vec<(Operation, u32)> {
+        HEARD.with(|heard| heard.take())
+    }
+
+    type Recorded = Fx<fixed::types::I16F16, Recording>;
+
+    #[test]
+    fn an_overflow_wraps_and_the_policy_hears_what_and_where() {
+        let (max, one) = (Recorded::MAX, Recorded::ONE);
+        let min = Recorded::new(fixed::types::I16F16::MIN);
+        let big = Recorded::from_int(30_000);
+        let line = line!();
+        let sum = max + one;
+        let difference = min - one;
+        let product = big * big;
+        let dot = Recorded::dot3([big; 3], [one; 3]);
+        assert_eq!(sum.to_f64(), -32_767.0 - 1.0 / 65_536.0);
+        assert_eq!(difference.to_f64(), 32_767.0);
+        let exact = |x: f64| x.rem_euclid(65_536.0);
+        assert_eq!(exact(product.to_f64()), exact(9e8));
+        assert_eq!(exact(dot.to_f64()), exact(90_000.0));
+        assert_eq!(
+            heard(),
+            [
+                (Operation::Sum, line + 1),
+                (Operation::Difference, line + 2),
+                (Operation::Product, line + 3),
+                (Operation::DotProduct, line + 4),
+            ]
+        );
+        // What fits is exact, and nobody hears of it.
+        assert_eq!(big + one - one, big * one);
+        assert_eq!(heard(), []);
+    }
+
+    #[test]
+    #[cfg(debug_assertions)]
+    #[should_panic(expected = "range proof missed it")]
+    fn the_firmware_policy_panics_on_overflow_in_debug_builds() {
+        let _ = I16F16::MAX + I16F16::ONE;
+    }
+
     #[test]
     fn negation_saturates() {
-        assert_eq!(-Fx(fixed::types::I16F16::MIN), I16F16::MAX);
+        assert_eq!(-I16F16::new(fixed::types::I16F16::MIN), I16F16::MAX);
     }
 
     #[test]
@@ -515,9 +648,15 @@ mod tests {
     #[test]
     fn division_by_zero_saturates_towards_the_numerator() {
         assert_eq!(fx(2.0) / I16F16::ZERO, I16F16::MAX);
-        assert_eq!(fx(-2.0) / I16F16::ZERO, Fx(fixed::types::I16F16::MIN));
+        assert_eq!(
+            fx(-2.0) / I16F16::ZERO,
+            I16F16::new(fixed::types::I16F16::MIN)
+        );
         assert_eq!(I16F16::ZERO / I16F16::ZERO, I16F16::ZERO);
-        assert_eq!(fx(30_000.0) / fx(-0.001), Fx(fixed::types::I16F16::MIN));
+        assert_eq!(
+            fx(30_000.0) / fx(-0.001),
+            I16F16::new(fixed::types::I16F16::MIN)
+        );
         assert_eq!(fx(-30_000.0) / fx(-0.001), I16F16::MAX);
     }
 
@@ -527,8 +666,8 @@ mod tests {
         // raw integers divided by 2^16, rounded half up.
         for a in -300_i32..300 {
             for b in [-70_000_i32, -65_536, -1, 1, 3, 32_768, 65_535, 100_000] {
-                let got = (Fx(fixed::types::I16F16::from_bits(a))
-                    * Fx(fixed::types::I16F16::from_bits(b)))
+                let got = (I16F16::new(fixed::types::I16F16::from_bits(a))
+                    * I16F16::new(fixed::types::I16F16::from_bits(b)))
                 .0
                 .to_bits();
                 let exact = f64::from(a) * f64::from(b) / 65_536.0;
@@ -542,11 +681,11 @@ mod tests {
     fn dot3_rounds_once() {
         // Three products of 0.5 LSB each: rounded separately they give 3 LSB, exactly 1.5 LSB
         // rounds to 2.
-        let half_lsb = Fx(fixed::types::I16F16::from_bits(1 << 8));
+        let half_lsb = I16F16::new(fixed::types::I16F16::from_bits(1 << 8));
         let a = [half_lsb; 3];
-        let b = [Fx(fixed::types::I16F16::from_bits(1 << 7)); 3];
-        assert_eq!(I16F16::dot3(a, b).0.to_bits(), 2);
-        assert_eq!((a[0] * b[0] + a[1] * b[1] + a[2] * b[2]).0.to_bits(), 3);
+        let b = [I16F16::new(fixed::types::I16F16::from_bits(1 << 7)); 3];
+        assert_eq!(I16F16::dot3(a, b).get().to_bits(), 2);
+        assert_eq!((a[0] * b[0] + a[1] * b[1] + a[2] * b[2]).get().to_bits(), 3);
     }
 
     #[test]
@@ -554,7 +693,7 @@ mod tests {
         // sqrt(x)² ≤ x < (sqrt(x) + δ)² for a sweep of raw values.
         let mut raw = 1_i32;
         while raw < i32::MAX / 3 {
-            let x = Fx(fixed::types::I16F16::from_bits(raw));
+            let x = I16F16::new(fixed::types::I16F16::from_bits(raw));
             let r = x.sqrt().to_f64();
             let delta = I16F16::resolution(1.0);
             assert!(r * r <= x.to_f64(), "{raw}");
@@ -591,16 +730,19 @@ mod tests {
             }
         }
         assert_eq!(fx(2.0).div_approx(I16F16::ZERO), I16F16::MAX);
-        assert_eq!(fx(-2.0).div_approx(fx(1e-5)), Fx(fixed::types::I16F16::MIN));
+        assert_eq!(
+            fx(-2.0).div_approx(fx(1e-5)),
+            I16F16::new(fixed::types::I16F16::MIN)
+        );
         const { assert!(I16F16::FAST_ROOTS && !I32F32::FAST_ROOTS) };
     }
 
     #[test]
     fn difference_of_products_has_an_exact_sign() {
-        let lsb = Fx(fixed::types::I16F16::from_bits(1));
+        let lsb = I16F16::new(fixed::types::I16F16::from_bits(1));
         // 3·LSB · LSB − LSB · 2·LSB is 2⁻³² (positive) but rounds to 0 in 16.16.
-        let three = Fx(fixed::types::I16F16::from_bits(3));
-        let two = Fx(fixed::types::I16F16::from_bits(2));
+        let three = I16F16::new(fixed::types::I16F16::from_bits(3));
+        let two = I16F16::new(fixed::types::I16F16::from_bits(2));
         let (value, sign) = I16F16::diff_of_products(three, lsb, lsb, two);
         assert_eq!((value, sign), (I16F16::ZERO, Ordering::Greater));
         let (value, sign) = I16F16::diff_of_products(fx(3.0), fx(2.0), fx(1.5), fx(4.0));

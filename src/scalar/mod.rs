@@ -4,11 +4,12 @@
 //! This module owns how numbers behave at the edges of their range. Every other module calls
 //! only the trait, so swapping the format changes nothing but the numbers. The rules:
 //!
-//! - Arithmetic never wraps. The scene build ([`crate::Scene::build`]) proves that every sum
-//!   and product the tracer forms for that scene fits the format (see [`crate::scene::range`]);
-//!   quotients, which no bound can hold, saturate in fixed point and reach infinity in floats,
-//!   and the tracer reads either as "beyond anything in the world". See [`Fx`] for how the
-//!   fixed formats check the proof in debug builds.
+//! - Sums and products are exact while they fit, and the scene build ([`crate::Scene::build`])
+//!   proves that every sum and product the tracer forms for that scene fits the format (see
+//!   [`crate::scene::range`]). A fixed format's [`Overflow`] policy says what becomes of one
+//!   outside that proof (see [`Fx`]): the firmware relies on the proof, the desktop harness
+//!   checks every operation. Quotients, which no bound can hold, saturate in fixed point and
+//!   reach infinity in floats, and the tracer reads either as "beyond anything in the world".
 //! - Nothing panics on a proven scene: the square root of a negative number is zero, a
 //!   fixed-point division by zero saturates towards the sign of the numerator.
 //! - Every tolerance is derived from the format through [`Scalar::resolution`], never typed in.
@@ -19,7 +20,7 @@ mod float;
 mod isqrt;
 
 pub use approx::F32Approx;
-pub use fixed_point::{Fx, I16F16, I20F12, I32F32, WideBits};
+pub use fixed_point::{Fx, I16F16, I20F12, I32F32, Operation, Overflow, Proven, WideBits};
 
 use core::cmp::Ordering;
 use core::fmt::Debug;
@@ -27,7 +28,11 @@ use core::ops::{Add, Div, Mul, Neg, Sub};
 
 /// A real number format the tracer can compute in.
 ///
-/// The operators are total: they never panic and never wrap (see the module documentation).
+/// `/` and `−x` are total: a quotient or negation that does not fit saturates (a float's
+/// reaches infinity). `+`, `−` and `×` are exact (a float's correctly rounded) while the result
+/// fits the format; beyond it, a float's reaches infinity and a fixed format's wraps, telling
+/// its [`Overflow`] policy first. The scene build proves that no sum or product the tracer forms
+/// for a built scene leaves the format (see the module documentation).
 pub trait Scalar:
     Copy
     + Default
@@ -95,6 +100,7 @@ pub trait Scalar:
     /// gives itself and zero. Fixed formats override it to keep the unit vector to within a few
     /// steps of their resolution however long `v` is.
     #[must_use]
+    #[track_caller]
     fn normalize3(v: [Self; 3], approx: bool) -> ([Self; 3], Self) {
         let squared = Self::dot3(v, v);
         if squared == Self::ZERO {
@@ -138,6 +144,7 @@ pub trait Scalar:
     /// `a₀b₀ + a₁b₁ + a₂b₂`. Fixed formats override it to add the exact products and round
     /// once, which is both faster and more precise than three rounded products.
     #[must_use]
+    #[track_caller]
     fn dot3(a: [Self; 3], b: [Self; 3]) -> Self {
         a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
     }
@@ -174,6 +181,7 @@ pub trait Scalar:
 
     /// `self` raised to a non-negative integer power, by repeated squaring.
     #[must_use]
+    #[track_caller]
     fn powi(self, exponent: u16) -> Self {
         let mut result = Self::ONE;
         let mut base = self;

@@ -140,13 +140,21 @@ pub fn run(args: &ChartArgs) -> Result<()> {
             }
         };
         let reference = prepare_reference(&request)?;
-        let image = contender.render(threads, None);
-        let truth = reference.render(threads, None);
+        let label = || {
+            format!(
+                "{} in {} by {}",
+                variant.scene.name,
+                variant.format,
+                variant::label(&variant.methods)
+            )
+        };
+        let image = contender.render(threads, None).with_context(label)?;
+        let truth = reference.render(threads, None).with_context(label)?;
         accuracies.push(accuracy(
             &image,
             &truth,
-            &contender.object_map(),
-            &reference.object_map(),
+            &contender.object_map().with_context(label)?,
+            &reference.object_map().with_context(label)?,
         ));
         prepared.push(contender);
         measured.push(variant);

@@ -47,10 +47,13 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     let contender = prepare(format, &request)?;
     let baseline = prepare_reference(&request)?;
     let threads = all_cores();
-    let (image, truth) = (
-        contender.render(threads, None),
-        baseline.render(threads, None),
-    );
+    let rendering = |format: Format| format!("rendering {name} in {format}");
+    let image = contender
+        .render(threads, None)
+        .with_context(|| rendering(format))?;
+    let truth = baseline
+        .render(threads, None)
+        .with_context(|| rendering(reference))?;
     eprintln!(
         "timing {format} and {reference} on 1 thread, {} interleaved runs each",
         args.runs
@@ -83,8 +86,8 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     } = accuracy(
         &image,
         &truth,
-        &contender.object_map(),
-        &baseline.object_map(),
+        &contender.object_map()?,
+        &baseline.object_map()?,
     );
     let report = Report {
         format: format.name(),

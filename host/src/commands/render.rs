@@ -2,7 +2,7 @@
 
 use crate::cli::RenderArgs;
 use crate::render::{Request, prepare};
-use anyhow::Result;
+use anyhow::{Context, Result};
 use std::time::Instant;
 
 pub fn run(args: &RenderArgs) -> Result<()> {
@@ -23,7 +23,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let prepared = prepare(format, &request)?;
     let label = format!("rendering {} in {format}", name);
     let start = Instant::now();
-    let image = prepared.render(usize::from(args.threads), Some(&label));
+    let image = prepared
+        .render(usize::from(args.threads), Some(&label))
+        .with_context(|| format!("rendering {name} in {format}"))?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
     super::save(&image, &args.output)?;
     println!(
