@@ -228,7 +228,10 @@ impl<S: Scalar> Tracer<'_, S> {
             let mut reflected = surface.scale(material.diffuse * lambert);
             let highlight = mirror.dot(l);
             if material.specular > S::ZERO && highlight > S::ZERO {
-                let phong = material.specular * highlight.powi(material.shininess);
+                // The cosine of two unit vectors, which rounding can lift a few steps above 1,
+                // where the power would multiply the excess by the exponent: clamped, it loses
+                // nothing and stays within 1 whatever the exponent.
+                let phong = material.specular * highlight.min(S::ONE).powi(material.shininess);
                 reflected = reflected + Rgb::new(phong, phong, phong);
             }
             local = local + light.colour.scale(shadow) * reflected;
@@ -239,18 +242,23 @@ impl<S: Scalar> Tracer<'_, S> {
             let mut reflection = material.reflection;
             if material.transmission > S::ZERO {
                 if solid {
-                    // Snell: η = n₁/n₂; k = 1 − η²(1 − cos²θᵢ) is cos²θₜ, negative beyond the
-                    // critical angle, where all the light is reflected instead.
+                    // Snell, with η = n₁/n₂: the incident direction's part along the surface,
+                    // t = d + cos θᵢ·n (|t| = sin θᵢ), is scaled by η, and the refracted ray is
+                    // η·t − cos θₜ·n with cos² θₜ = k = 1 − |η·t|², negative beyond the critical
+                    // angle, where all the light is reflected instead. Its length is 1 whatever
+                    // the rounding of d, where the textbook's 1 − η²(1 − cos² θᵢ) would
+                    // multiply the rounding of cos θᵢ by η².
                     let eta = if entering {
                         material.inv_ior
                     } else {
                         material.ior
                     };
-                    let k = S::ONE - eta * eta * (S::ONE - cos_in * cos_in);
+                    let bent = d.add_scaled(facing, cos_in) * eta;
+                    let k = S::ONE - bent.length_squared();
                     if k < S::ZERO {
                         reflection = reflection + material.transmission;
                     } else {
-                        let dir = (d * eta).add_scaled(facing, eta * cos_in - roots.sqrt(k));
+                        let dir = bent.add_scaled(facing, -roots.sqrt(k));
                         let ray = Ray::new(below, dir);
                         self.spawn(stack, ray, other_side, task, material.transmission, depth);
                     }

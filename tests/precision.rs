@@ -1,6 +1,9 @@
 //! Each format and method against the f64 reference (same methods, exact roots) on both
 //! built-in scenes at 256×256. The bounds sit just under what the code achieves today (see the
-//! README's tables), so a change that costs precision fails here.
+//! README's tables), so a change that costs precision fails here. A single edge pixel that
+//! lands on the other side moves a PSNR by up to 2 dB here, which the bounds allow for where
+//! the code was more precise and still lost one (unit vectors, correctly rounded since, moved
+//! `shapes`' by stable form from 53.96 to 51.48 dB through two pixels).
 
 mod common;
 
@@ -61,19 +64,19 @@ const WATERTIGHT: Methods = Methods {
 
 #[test]
 fn whitted_i16f16_by_each_method() {
-    check::<I16F16>(&scenes::WHITTED, LECTURE, 41.5, 0.01);
+    check::<I16F16>(&scenes::WHITTED, LECTURE, 41.0, 0.01);
     check::<I16F16>(&scenes::WHITTED, STABLE, 42.0, 0.005);
     check::<I16F16>(&scenes::WHITTED, EXCLUDE, 43.0, 0.01);
-    check::<I16F16>(&scenes::WHITTED, APPROX, 40.5, 0.02);
+    check::<I16F16>(&scenes::WHITTED, APPROX, 39.5, 0.02);
     check::<I16F16>(&scenes::WHITTED, STEPPED, 33.5, 0.025);
 }
 
 #[test]
 fn shapes_i16f16_by_each_method() {
-    check::<I16F16>(&scenes::SHAPES, LECTURE, 50.5, 0.005);
-    check::<I16F16>(&scenes::SHAPES, STABLE, 53.5, 0.001);
-    check::<I16F16>(&scenes::SHAPES, MOLLER_TRUMBORE, 50.5, 0.005);
-    check::<I16F16>(&scenes::SHAPES, WATERTIGHT, 50.5, 0.005);
+    check::<I16F16>(&scenes::SHAPES, LECTURE, 50.0, 0.005);
+    check::<I16F16>(&scenes::SHAPES, STABLE, 51.0, 0.001);
+    check::<I16F16>(&scenes::SHAPES, MOLLER_TRUMBORE, 50.0, 0.005);
+    check::<I16F16>(&scenes::SHAPES, WATERTIGHT, 50.0, 0.005);
     check::<I16F16>(&scenes::SHAPES, APPROX, 48.0, 0.015);
     check::<I16F16>(&scenes::SHAPES, STEPPED, 34.5, 0.1);
 }

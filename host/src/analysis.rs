@@ -105,6 +105,9 @@ pub struct Verdict {
     pub fit: Fit,
     /// The PSNR it is predicted to reach against f64, where it holds the scene.
     pub predicted_psnr: Option<f64>,
+    /// The share of pixels, in percent, whose primary ray it is predicted to see hit another
+    /// object than f64's, where it holds the scene.
+    pub predicted_mismatch_pct: Option<f64>,
 }
 
 impl Analysis {
@@ -121,11 +124,20 @@ impl Analysis {
             methods,
         })
         .map_err(|error| error.context("no format can hold the scene"))?;
-        let edge_energy = edge_energy(&reference.render(all_cores(), None)?);
+        let image = reference.render(all_cores(), None)?;
+        Ok(Self::with_reference(scene, methods, &image))
+    }
+
+    /// [`Self::of`] for the f64 reference `image` of the scene, already rendered at the size
+    /// to analyse.
+    pub fn with_reference(scene: &OwnedScene, methods: Methods, image: &RgbImage) -> Self {
+        let desc = scene.desc();
+        let (width, height) = image.dimensions();
+        let edge_energy = edge_energy(image);
         let verdicts = Format::ALL
             .into_iter()
             .map(|format| {
-                let fit = fit(format, scene, methods);
+                let fit = fit(format, scene, methods, (width, height));
                 // A rescaled scene is predicted as it will be rendered: the same image, but the
                 // nearest surface at another distance.
                 let predicted_psnr = match fit {
@@ -151,16 +163,17 @@ impl Analysis {
                     format,
                     fit,
                     predicted_psnr,
+                    predicted_mismatch_pct: None,
                 }
             })
             .collect();
-        Ok(Self {
+        Self {
             extents: extents(&desc),
             bits: bits(&desc, methods),
             verdicts,
             edge_energy,
             has_triangles: desc.has_triangles(),
-        })
+        }
     }
 
     /// What `format` by `methods` costs per pixel on `machine` in this scene, by the chart.
@@ -188,10 +201,10 @@ impl Analysis {
     }
 }
 
-/// Whether `format` holds `scene` for `methods`: as it is, or rescaled about the eye by the
-/// power of two nearest 1 that makes it fit, or not at all.
-pub fn fit(format: Format, scene: &OwnedScene, methods: Methods) -> Fit {
-    let reason = match builds(format, &scene.desc(), methods) {
+/// Whether `format` holds `scene` for `methods` at `size`: as it is, or rescaled about the eye
+/// by the power of two nearest 1 that makes it fit, or not at all.
+pub fn fit(format: Format, scene: &OwnedScene, methods: Methods, size: (u32, u32)) -> Fit {
+    let reason = match builds(format, &scene.desc(), methods, size) {
         Ok(()) => return Fit::Holds,
         Err(error) => error,
     };
@@ -204,23 +217,30 @@ pub fn fit(format: Format, scene: &OwnedScene, methods: Methods) -> Fit {
     (1..=MAX_RESCALE_POWER)
         .flat_map(|power| [power, -power])
         .map(|power| 2.0_f64.powi(power))
-        .find(|&factor| builds(format, &scene.scaled(factor as f32).desc(), methods).is_ok())
+        .find(|&factor| builds(format, &scene.scaled(factor as f32).desc(), methods, size).is_ok())
         .map_or_else(
             || Fit::Refused(format!("{reason}; no rescaling helps")),
             Fit::Rescaled,
         )
 }
 
-/// Whether format `format` builds `desc` for `methods`.
-fn builds(format: Format, desc: &SceneDesc<'_>, methods: Methods) -> Result<(), SceneError> {
-    struct Build<'a>(&'a SceneDesc<'a>, Methods);
+/// Whether format `format` builds `desc` for `methods` and places its camera for an image of
+/// `size`: what `render` needs.
+fn builds(
+    format: Format,
+    desc: &SceneDesc<'_>,
+    methods: Methods,
+    (width, height): (u32, u32),
+) -> Result<(), SceneError> {
+    struct Build<'a>(&'a SceneDesc<'a>, Methods, u32, u32);
     impl FormatJob for Build<'_> {
         type Output = Result<(), SceneError>;
         fn run<S: Scalar>(self) -> Self::Output {
-            HostScene::<S>::build_with(self.0, self.1).map(drop)
+            HostScene::<S>::build_with(self.0, self.1)?.camera(self.2, self.3)?;
+            Ok(())
         }
     }
-    format.run(Build(desc, methods))
+    format.run(Build(desc, methods, width, height))
 }
 
 /// The resolution of `format` at 1: one step of a unit vector's coordinate.
@@ -602,7 +622,7 @@ mod tests {
                 let reached = peak::largest();
                 for format in [Format::I16f16, Format::I20f12, Format::I32f32] {
                     let range = format.run(Range);
-                    match builds(format, &desc, Methods::LECTURE) {
+                    match builds(format, &desc, Methods::LECTURE, (96, 96)) {
                         Err(SceneError::OutOfRange { .. }) => {
                             refused += 1;
                             assert!(
@@ -628,12 +648,12 @@ mod tests {
         let whitted = OwnedScene::from_desc(&scenes::WHITTED);
         let tiny = whitted.scaled(1.0 / 1024.0);
         assert!(matches!(
-            builds(Format::I16f16, &tiny.desc(), Methods::LECTURE),
+            builds(Format::I16f16, &tiny.desc(), Methods::LECTURE, (64, 64)),
             Err(SceneError::BelowResolution { .. })
         ));
         // The smallest rescaling that fits: whitted at a sixteenth of its size is fine.
         assert_eq!(
-            fit(Format::I16f16, &tiny, Methods::LECTURE),
+            fit(Format::I16f16, &tiny, Methods::LECTURE, (64, 64)),
             Fit::Rescaled(64.0)
         );
         // Rescaling about the eye leaves the image as it was.
@@ -680,7 +700,7 @@ mod tests {
         );
         for format in Format::ALL {
             assert!(matches!(
-                fit(format, &speck, Methods::LECTURE),
+                fit(format, &speck, Methods::LECTURE, (32, 32)),
                 Fit::Refused(_)
             ));
         }

@@ -52,6 +52,26 @@ pub fn catch<T>(work: impl FnOnce() -> T) -> Result<T, Overflowed> {
     }
 }
 
+/// Runs `work`, and returns what stopped it if anything did: an overflow, or any other panic,
+/// as its message.
+pub fn catch_any<T>(work: impl FnOnce() -> T) -> Result<T, String> {
+    quiet_overflows();
+    match panic::catch_unwind(AssertUnwindSafe(work)) {
+        Ok(value) => Ok(value),
+        Err(payload) => Err(
+            if let Some(overflowed) = payload.downcast_ref::<Overflowed>() {
+                overflowed.to_string()
+            } else if let Some(text) = payload.downcast_ref::<&str>() {
+                (*text).to_owned()
+            } else if let Some(text) = payload.downcast_ref::<String>() {
+                text.clone()
+            } else {
+                "a panic without a message".to_owned()
+            },
+        ),
+    }
+}
+
 /// Keeps the panic hook from printing an overflow as a crash: it is reported as an error by
 /// whoever catches it (or by `main`).
 fn quiet_overflows() {

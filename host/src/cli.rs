@@ -41,6 +41,9 @@ pub enum Command {
     Chart(ChartArgs),
     /// Run the stress cases where methods fail, each ending in a verdict.
     Stress(StressArgs),
+    /// Try random scenes in every format and method: overflows, panics, analyze against the
+    /// build, predictions against measurements; each failure written as a scene file.
+    Fuzz(FuzzArgs),
 }
 
 /// The numerical methods, one choice each (see `obscura::methods` and the README).
@@ -74,6 +77,26 @@ impl MethodArgs {
             bias: self.bias,
         }
     }
+}
+
+/// The command-line flags that choose `methods`.
+pub fn method_flags(methods: &Methods) -> String {
+    format!(
+        "--sphere {} --triangle {} --sqrt {} --rays {} --bias {}",
+        methods.sphere.name(),
+        methods.triangle.name(),
+        methods.roots.name(),
+        methods.rays.name(),
+        methods.bias.name()
+    )
+}
+
+/// Serializes a value by its `Display`.
+pub fn serialize_display<T: std::fmt::Display, S: serde::Serializer>(
+    value: &T,
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
+    serializer.collect_str(value)
 }
 
 /// A parser for one method's names.
@@ -280,6 +303,29 @@ pub struct StressArgs {
     /// Also write every measurement and verdict as JSON to this file.
     #[arg(long)]
     pub json: Option<PathBuf>,
+}
+
+/// `obscura fuzz`.
+#[derive(Debug, Args)]
+pub struct FuzzArgs {
+    /// Stop starting new scenes after this many seconds.
+    #[arg(long, default_value_t = 60)]
+    pub seconds: u64,
+    /// Stop after this many scenes (sooner if the seconds run out).
+    #[arg(long)]
+    pub scenes: Option<u64>,
+    /// The run's seed: the same seed tries the same scenes.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Where to write a scene file for each failure.
+    #[arg(long, default_value = "out/fuzz")]
+    pub out_dir: PathBuf,
+    /// Also write the tally and every failure as JSON to this file.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+    /// Threads to try scenes on.
+    #[arg(long, default_value_t = default_threads(), value_parser = clap::value_parser!(u16).range(1..=1024))]
+    pub threads: u16,
 }
 
 fn default_threads() -> u16 {

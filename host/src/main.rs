@@ -9,6 +9,7 @@ mod commands;
 mod cost;
 mod firmware;
 mod format;
+mod fuzz;
 mod heatmap;
 mod metrics;
 mod owned;

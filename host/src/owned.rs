@@ -3,11 +3,11 @@
 //! the core.
 
 use obscura::{BackgroundDesc, CameraDesc, LightDesc, ObjectDesc, SceneDesc, ShapeDesc};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// A scene description with owned lists; what a scene file holds (lights, ambient light,
 /// background and depth may be left out).
-#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct OwnedScene {
     /// See [`SceneDesc::camera`].

@@ -16,7 +16,10 @@
 //!   world" in every comparison the tracer makes.
 
 use super::Scalar;
-use super::isqrt::{MANTISSA_BITS, MANTISSA_SCALE, isqrt_u64, rsqrt_fixed, rsqrt_mantissa};
+use super::isqrt::{
+    MANTISSA_BITS, MANTISSA_SCALE, ROOT_SCALE, RootPair, isqrt_u64, root_pair, rsqrt_fixed,
+    rsqrt_mantissa,
+};
 use core::cmp::Ordering;
 use core::fmt;
 use core::hash::Hash;
@@ -144,16 +147,18 @@ pub trait WideBits: Copy + Ord {
     /// 1/√self in raw units of a format with `frac` fraction bits, within one unit, saturated;
     /// for `self` > 0; to about 15 bits when `fast` and the format has [`Self::FAST_ROOTS`].
     fn rsqrt_raw(self, frac: u32, fast: bool) -> Self;
-    /// The unit vector along `v` and its length, in raw units of a format with `frac` fraction
-    /// bits, given `squared` = |v|² > 0 in raw units.
-    fn normalize_raw(v: [Self; 3], squared: Self, frac: u32, fast: bool) -> ([Self; 3], Self);
+    /// The unit vector along `v` and its length (saturated), in raw units of a format with
+    /// `frac` fraction bits; `None` for the zero vector. |v|² is summed exactly in the wide
+    /// integer, so a short vector normalises as precisely as a long one, and no |v|² need fit
+    /// the format.
+    fn normalize_raw(v: [Self; 3], frac: u32, fast: bool) -> Option<([Self; 3], Self)>;
     /// self/b for b > 0, in raw units with `frac` fraction bits ≤ 16, from the fast reciprocal
     /// square root as a mantissa and an exponent: about 14 correct bits whatever the size of b.
     fn div_raw_fast(self, b: Self, frac: u32) -> Self;
 }
 
 macro_rules! wide_bits {
-    ($($bits:ident => $wide:ident, fast: $fast:literal, roots: $sqrt:path, $rsqrt:path);*) => {$(
+    ($($bits:ident => $wide:ident, fast: $fast:literal, roots: $sqrt:path, $rsqrt:path, $normalize:path);*) => {$(
         impl WideBits for $bits {
             type Wide = $wide;
             const FAST_ROOTS: bool = $fast;
@@ -174,7 +179,7 @@ macro_rules! wide_bits {
             }
             #[inline]
             fn narrow_saturating(wide: $wide, frac: u32) -> Self {
-                let rounded = wide.saturating_add(1 << (frac - 1)) >> frac;
+                let rounded = wide.saturating_add((1 << frac) >> 1) >> frac;
                 <$bits>::try_from(rounded)
                     .unwrap_or(if rounded < 0 { <$bits>::MIN } else { <$bits>::MAX })
             }
@@ -184,18 +189,9 @@ macro_rules! wide_bits {
                 let difference = a.wide_mul(b) - c.wide_mul(d);
                 (difference, difference.cmp(&0))
             }
-            /// With X = `squared` and 1/√X = z·2^(s − 62) (`rsqrt_mantissa`): the unit vector's
-            /// raw coordinates are vᵢ·2^(f/2)/√X = vᵢ·z >> (62 − f/2 − s), and the length's
-            /// √X·2^(f/2) = X·z >> the same, both from one exact wide product each. The shift is
-            /// at least 62 − 16 − 31 = 15, so it is always to the right.
             #[inline]
-            fn normalize_raw(v: [Self; 3], squared: Self, frac: u32, fast: bool) -> ([Self; 3], Self) {
-                let (z, s) = rsqrt_mantissa(squared.unsigned_abs().into(), fast);
-                // z < 2³¹ fits every signed raw type here.
-                let z = <$bits>::try_from(z).unwrap_or(<$bits>::MAX);
-                let right = MANTISSA_SCALE - frac / 2 - s;
-                let scale = |c: Self| Self::narrow_saturating(c.wide_mul(z), right);
-                (v.map(scale), scale(squared))
+            fn normalize_raw(v: [Self; 3], frac: u32, fast: bool) -> Option<([Self; 3], Self)> {
+                $normalize(v, frac, fast)
             }
             /// With 1/√b = z·2^(s − 62) (`rsqrt_mantissa`), 1/b = z²·2^(2s − 124); keeping the
             /// top 31 bits of z² as r, the raw quotient self·2^f/b is self·r >> (93 − 2s − f).
@@ -220,9 +216,59 @@ macro_rules! wide_bits {
     )*};
 }
 wide_bits!(
-    i32 => i64, fast: true, roots: sqrt_raw_32, rsqrt_raw_32;
-    i64 => i128, fast: false, roots: sqrt_raw_64, rsqrt_raw_64
+    i32 => i64, fast: true, roots: sqrt_raw_32, rsqrt_raw_32, normalize_raw_32;
+    i64 => i128, fast: false, roots: sqrt_raw_64, rsqrt_raw_64, normalize_raw_64
 );
+
+/// The 32-bit formats' unit vectors. With y = Σvᵢ² exact in u64 (each below 2⁶², three below
+/// 2⁶⁴) and its [`RootPair`] (1/√y = z·2^(s − 62), √y = r·2^−(30 + s)): the unit vector's raw
+/// coordinates are vᵢ·2^f/√y = vᵢ·z >> (62 − s − f), the shift at least 62 − 31 − 30 = 1, and
+/// the length's raw value √y = r >> (30 + s), rounded.
+#[inline]
+fn normalize_raw_32(v: [i32; 3], frac: u32, fast: bool) -> Option<([i32; 3], i32)> {
+    let y: u64 = v
+        .iter()
+        .map(|&c| u64::from(c.unsigned_abs()) * u64::from(c.unsigned_abs()))
+        .sum();
+    if y == 0 {
+        return None;
+    }
+    let RootPair { inverse, root, s } = root_pair(y, fast);
+    // inverse < 2³¹.
+    let z = i64::try_from(inverse).unwrap_or(i64::MAX);
+    let right = MANTISSA_SCALE - s - frac;
+    let unit = v.map(|c| i32::narrow_saturating(i64::from(c) * z, right));
+    // root < 2⁶³ and the shift at least 30: the rounding bias cannot carry out of u64.
+    let length = (root + (1 << (ROOT_SCALE + s - 1))) >> (ROOT_SCALE + s);
+    let length = i32::try_from(length).unwrap_or(i32::MAX);
+    Some((unit, length))
+}
+
+/// The 64-bit formats' unit vectors, as [`normalize_raw_32`] with y = Σvᵢ² exact in u128 and
+/// brought below 2⁶² by an even shift 2j (dropping bits far below the 30 the roots keep):
+/// 1/√y = z·2^(s − j − 62), so the raw coordinates are 2·vᵢ·z >> (63 + j − s − f) (doubled
+/// first, as the shift would be −1 for f = 32 and s = 31), and √y = r·2^(j − 30 − s).
+#[inline]
+fn normalize_raw_64(v: [i64; 3], frac: u32, fast: bool) -> Option<([i64; 3], i64)> {
+    let y: u128 = v
+        .iter()
+        .map(|&c| u128::from(c.unsigned_abs()) * u128::from(c.unsigned_abs()))
+        .sum();
+    if y == 0 {
+        return None;
+    }
+    let j = (u128::BITS - y.leading_zeros())
+        .saturating_sub(62)
+        .div_ceil(2);
+    let RootPair { inverse, root, s } = root_pair(u64::try_from(y >> (2 * j)).ok()?, fast);
+    let z = i128::from(inverse);
+    let right = MANTISSA_SCALE + 1 + j - s - frac;
+    let unit = v.map(|c| i64::narrow_saturating(2 * i128::from(c) * z, right));
+    let shift = ROOT_SCALE + s;
+    let length = ((u128::from(root) << j) + (1 << (shift - 1))) >> shift;
+    let length = i64::try_from(length).unwrap_or(i64::MAX);
+    Some((unit, length))
+}
 
 /// The 32-bit formats' roots: the division-free routines (x·2^frac < 2⁶² for frac ≤ 30).
 #[inline]
@@ -439,13 +485,10 @@ where
     #[inline]
     #[track_caller]
     fn normalize3(v: [Self; 3], approx: bool) -> ([Self; 3], Self) {
-        let squared = Self::dot3(v, v);
-        if squared.0 <= F::ZERO {
-            return (v, Self::ZERO);
+        match F::Bits::normalize_raw(v.map(Self::raw), F::FRAC_NBITS, approx) {
+            Some((unit, length)) => (unit.map(Self::from_raw), Self::from_raw(length)),
+            None => (v, Self::ZERO),
         }
-        let bits = v.map(Self::raw);
-        let (unit, length) = F::Bits::normalize_raw(bits, squared.raw(), F::FRAC_NBITS, approx);
-        (unit.map(Self::from_raw), Self::from_raw(length))
     }
 
     /// a/b = a·(1/√|b|)²·sign(b), the reciprocal square root a fast mantissa and exponent
@@ -593,6 +636,48 @@ mod tests {
     #[should_panic(expected = "range proof missed it")]
     fn the_firmware_policy_panics_on_overflow_in_debug_builds() {
         let _ = I16F16::MAX + I16F16::ONE;
+    }
+
+    #[test]
+    fn short_vectors_normalise_to_the_last_bit_too() {
+        // |v|² of a vector a few LSB long rounds to nothing in the format; summed in the wide
+        // integer it is exact, and so is the direction: within two LSB, or the 30 bits of the
+        // roots where the format has more.
+        fn check<S: Scalar>(raw: [i64; 3], from_raw: impl Fn(i64) -> S) {
+            let v = raw.map(&from_raw);
+            let (unit, length) = S::normalize3(v, false);
+            let exact = raw.map(|c| c as f64);
+            let norm = exact.iter().map(|c| c * c).sum::<f64>().sqrt();
+            let lsb = S::resolution(1.0);
+            let tolerance = (2.0 * lsb).max(2f64.powi(-29));
+            for (c, e) in unit.iter().zip(exact) {
+                assert!(
+                    (c.to_f64() - e / norm).abs() <= tolerance,
+                    "{}: {raw:?}",
+                    S::NAME
+                );
+            }
+            // A length beyond the format saturates.
+            let want = (norm * lsb).min(S::RANGE);
+            let length_tolerance = tolerance * want + lsb;
+            assert!(
+                (length.to_f64() - want).abs() <= length_tolerance,
+                "{}: {raw:?}",
+                S::NAME
+            );
+        }
+        for raw in [[3, 4, 0], [1, 1, 1], [-7, 2, 5], [1, 0, 0], [40_000, -1, 3]] {
+            check::<I16F16>(raw, |c| {
+                I16F16::new(fixed::types::I16F16::from_bits(c as i32))
+            });
+            check::<I32F32>(raw, |c| I32F32::new(fixed::types::I32F32::from_bits(c)));
+        }
+        let huge = [i32::MAX, i32::MAX, i32::MIN + 1].map(i64::from);
+        check::<I16F16>(huge, |c| {
+            I16F16::new(fixed::types::I16F16::from_bits(c as i32))
+        });
+        let huge = [i64::MAX, -i64::MAX, i64::MAX];
+        check::<I32F32>(huge, |c| I32F32::new(fixed::types::I32F32::from_bits(c)));
     }
 
     #[test]

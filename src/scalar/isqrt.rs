@@ -136,6 +136,36 @@ pub fn rsqrt_mantissa(y: u64, fast: bool) -> (u64, u32) {
     (z.min((1 << MANTISSA_BITS) - 1), shift / 2)
 }
 
+/// The bits of [`RootPair::root`] below the binary point of its exponent: √y ≈ root·2^−(30 + s).
+pub const ROOT_SCALE: u32 = 30;
+
+/// 1/√y and √y of one y > 0, from one normalisation and one seed: what a unit vector and its
+/// length need.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RootPair {
+    /// z < 2^[`MANTISSA_BITS`] with 1/√y ≈ z·2^(s − [`MANTISSA_SCALE`]): about 30 correct bits
+    /// (15 when fast).
+    pub inverse: u64,
+    /// m·z < 2⁶³ with √y ≈ (m·z)·2^−([`ROOT_SCALE`] + s), m the top 32 bits of y.
+    pub root: u64,
+    /// The exponent s, at most 31.
+    pub s: u32,
+}
+
+/// [`RootPair`] of y > 0 (any u64): to about 30 bits, or 15 when `fast`.
+#[inline]
+#[must_use]
+pub fn root_pair(y: u64, fast: bool) -> RootPair {
+    let (m, z, shift) = rsqrt_q30(y, steps(fast));
+    let inverse = z.min((1 << MANTISSA_BITS) - 1);
+    RootPair {
+        inverse,
+        // m < 2³² and z < 2³¹.
+        root: m * inverse,
+        s: shift / 2,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -213,6 +243,22 @@ mod tests {
                 );
                 x = x + x / 97 + 1;
             }
+        }
+    }
+
+    #[test]
+    fn a_root_pair_holds_thirty_bits_of_both_roots() {
+        let mut y = 1_u64;
+        while y < u64::MAX / 3 {
+            for y in [y, y / 2 * 3 + 7, u64::MAX - y] {
+                let RootPair { inverse, root, s } = root_pair(y, false);
+                let exact = (y as f64).sqrt();
+                let inverse = inverse as f64 * 2f64.powi(s as i32 - MANTISSA_SCALE as i32);
+                let root = root as f64 * 2f64.powi(-((ROOT_SCALE + s) as i32));
+                assert!((inverse * exact - 1.0).abs() < 2e-9, "1/√{y}");
+                assert!((root / exact - 1.0).abs() < 2e-9, "√{y}");
+            }
+            y += y / 4 + 1;
         }
     }
 

@@ -5,6 +5,7 @@ mod bench;
 mod chart;
 mod compare;
 mod firmware;
+mod fuzz;
 mod render;
 mod stress;
 
@@ -36,6 +37,7 @@ pub fn run(command: Command) -> Result<()> {
         Command::Firmware(args) => firmware::run(&args),
         Command::Chart(args) => chart::run(&args),
         Command::Stress(args) => stress::run(&args),
+        Command::Fuzz(args) => fuzz::run(&args),
     }
 }
 

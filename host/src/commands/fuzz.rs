@@ -1,0 +1,88 @@
+//! `obscura fuzz`: random scenes against every promise the harness makes (see
+//! [`crate::fuzz`]), for a time budget or a number of scenes.
+
+use crate::cli::FuzzArgs;
+use crate::fuzz::{self, Tally};
+use anyhow::{Context, Result, bail};
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use std::io::IsTerminal;
+use std::time::{Duration, Instant};
+
+/// Scenes tried between two looks at the clock.
+const BATCH: u64 = 64;
+
+pub fn run(args: &FuzzArgs) -> Result<()> {
+    let budget = Duration::from_secs(args.seconds);
+    let start = Instant::now();
+    let bar = if std::io::stderr().is_terminal() {
+        let bar = ProgressBar::new_spinner();
+        bar.set_style(ProgressStyle::with_template("{spinner} {elapsed} {msg}")?);
+        bar.enable_steady_tick(Duration::from_millis(200));
+        bar
+    } else {
+        ProgressBar::hidden()
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(usize::from(args.threads))
+        .build()
+        .context("cannot start the fuzzer's threads")?;
+    let mut tally = Tally::default();
+    let mut next = 0_u64;
+    while start.elapsed() < budget && args.scenes.is_none_or(|n| next < n) {
+        let end = args.scenes.map_or(next + BATCH, |n| (next + BATCH).min(n));
+        let batch = pool.install(|| {
+            (next..end)
+                .into_par_iter()
+                .map(|index| {
+                    fuzz::try_scene(fuzz::scene_seed(args.seed, index), Some(&args.out_dir))
+                })
+                .reduce(Tally::default, |mut a, b| {
+                    a.add(b);
+                    a
+                })
+        });
+        tally.add(batch);
+        next = end;
+        bar.set_message(format!(
+            "{} scenes, {} builds, {} failures",
+            tally.scenes,
+            tally.builds,
+            tally.findings.len()
+        ));
+    }
+    bar.finish_and_clear();
+    for finding in &tally.findings {
+        println!(
+            "scene {} in {} by {} at {}x{}: {}{}",
+            finding.seed,
+            finding.format,
+            finding.methods,
+            finding.width,
+            finding.height,
+            finding.failure,
+            finding
+                .file
+                .as_ref()
+                .map_or(String::new(), |f| format!(" (see {})", f.display()))
+        );
+    }
+    println!(
+        "fuzz seed {} in {:.0} s: {tally}",
+        args.seed,
+        start.elapsed().as_secs_f64()
+    );
+    if let Some(path) = &args.json {
+        let text = serde_json::to_string_pretty(&tally)?;
+        std::fs::write(path, text + "\n")
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    if !tally.clean() {
+        bail!(
+            "the fuzzer found {} failures; each scene is in {}",
+            tally.findings.len(),
+            args.out_dir.display()
+        );
+    }
+    Ok(())
+}

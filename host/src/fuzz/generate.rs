@@ -1,0 +1,390 @@
+//! Random scene descriptions for the fuzzer: over every range a scene file accepts (sizes and
+//! distances from 10⁻⁶ to 10⁶, near-degenerate geometry, grazing and narrow cameras, lights on
+//! surfaces, extreme materials), with enough plausible ones among them that every format builds
+//! some. A scene is a function of its seed alone.
+
+use crate::owned::OwnedScene;
+use obscura::{
+    BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, ObjectDesc, ShapeDesc,
+};
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64;
+
+/// The most objects a generated scene has (the host holds 64).
+const MAX_OBJECTS: usize = 8;
+/// The most lights (the host holds 16).
+const MAX_LIGHTS: usize = 4;
+/// The deepest ray tree (the host's stack holds 15 levels).
+const MAX_DEPTH: u8 = 8;
+
+/// A generated scene and the image size to render it at.
+#[derive(Clone, Debug)]
+pub struct Generated {
+    /// The scene.
+    pub scene: OwnedScene,
+    /// Width and height in pixels: at most [`MAX_PIXELS`], now and then one of them very long.
+    pub size: (u32, u32),
+}
+
+/// The most pixels a generated image has: enough to see edges, few enough to try many scenes.
+pub const MAX_PIXELS: u32 = 1024;
+
+/// The scene of `seed`.
+pub fn scene(seed: u64) -> Generated {
+    let mut g = Generator(Pcg64::seed_from_u64(seed));
+    g.scene()
+}
+
+/// The random source, with the distributions scenes are drawn from.
+struct Generator(Pcg64);
+
+impl Generator {
+    /// Uniform in [lo, hi).
+    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.0.random::<f64>()
+    }
+
+    /// Log-uniform in [lo, hi): every decade as likely.
+    fn log_uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        (self.uniform(lo.ln(), hi.ln())).exp()
+    }
+
+    /// True with probability `p`.
+    fn chance(&mut self, p: f64) -> bool {
+        self.0.random::<f64>() < p
+    }
+
+    /// A whole number in `0..n`.
+    fn below(&mut self, n: usize) -> usize {
+        self.0.random_range(0..n.max(1))
+    }
+
+    /// A weight in [0, 1], now and then exactly 0 or 1.
+    fn weight(&mut self) -> f64 {
+        match self.below(10) {
+            0 => 0.0,
+            1 => 1.0,
+            _ => self.uniform(0.0, 1.0),
+        }
+    }
+
+    /// A unit vector, uniform on the sphere.
+    fn direction(&mut self) -> [f64; 3] {
+        loop {
+            let v = [0; 3].map(|_| self.uniform(-1.0, 1.0));
+            let length = norm(v);
+            if length > 1e-3 && length <= 1.0 {
+                return v.map(|c| c / length);
+            }
+        }
+    }
+
+    /// A unit vector within about `spread` radians of `axis`.
+    fn near(&mut self, axis: [f64; 3], spread: f64) -> [f64; 3] {
+        let offset = self.direction();
+        let v = add(axis, scale(offset, spread.min(2.0)));
+        let length = norm(v);
+        if length < 1e-9 {
+            axis
+        } else {
+            scale(v, 1.0 / length)
+        }
+    }
+
+    /// A colour with channels in [0, 1].
+    fn colour(&mut self) -> [f32; 3] {
+        [0; 3].map(|_| self.weight() as f32)
+    }
+
+    fn scene(&mut self) -> Generated {
+        // Most scenes are of a size every format could hold; some are of any size at all.
+        let unit = if self.chance(0.7) {
+            self.log_uniform(0.1, 100.0)
+        } else {
+            self.log_uniform(1e-6, 1e6)
+        };
+        let eye = [0; 3].map(|_| self.uniform(-unit, unit));
+        let forward = self.direction();
+        let vfov = match self.below(10) {
+            0 => self.log_uniform(1e-3, 1.0),
+            1 => self.uniform(120.0, 179.999),
+            _ => self.uniform(20.0, 100.0),
+        };
+        let up = if self.chance(0.05) {
+            self.near(forward, 1e-3)
+        } else if self.chance(0.5) {
+            [0.0, 1.0, 0.0]
+        } else {
+            self.direction()
+        };
+        let mut reach = 0.0_f64;
+        let mut objects = Vec::new();
+        for _ in 0..self.below(MAX_OBJECTS + 1) {
+            let (object, extent) = self.object(eye, forward, vfov, unit);
+            reach = reach.max(extent);
+            objects.push(object);
+        }
+        let mut lights = Vec::new();
+        for _ in 0..self.below(MAX_LIGHTS + 1) {
+            let (light, extent) = self.light(eye, &objects, unit);
+            reach = reach.max(extent);
+            lights.push(light);
+        }
+        let far = if reach == 0.0 {
+            unit
+        } else if self.chance(0.1) {
+            reach * (1.0 + 1e-6)
+        } else {
+            reach * self.uniform(1.01, 3.0)
+        };
+        let look_at = add(eye, scale(forward, unit));
+        let background = if self.chance(0.5) {
+            BackgroundDesc::Solid(self.bright())
+        } else {
+            BackgroundDesc::Gradient {
+                horizon: self.bright(),
+                zenith: self.bright(),
+            }
+        };
+        let scene = OwnedScene {
+            camera: CameraDesc {
+                eye: f32s(eye),
+                look_at: f32s(look_at),
+                up: f32s(up),
+                vfov_degrees: vfov as f32,
+            },
+            objects,
+            lights,
+            ambient: self.bright().map(|c| c * 0.3),
+            background,
+            far: far as f32,
+            max_depth: self.0.random_range(0..=MAX_DEPTH),
+        };
+        let size = self.size();
+        Generated { scene, size }
+    }
+
+    /// Mostly a colour in [0, 1], now and then far brighter.
+    fn bright(&mut self) -> [f32; 3] {
+        let gain = if self.chance(0.1) {
+            self.log_uniform(1.0, 1e3)
+        } else {
+            1.0
+        };
+        self.colour().map(|c| c * gain as f32)
+    }
+
+    /// An image size of at most [`MAX_PIXELS`], now and then a single long row or column.
+    fn size(&mut self) -> (u32, u32) {
+        if self.chance(0.05) {
+            let long = self.0.random_range(1..=obscura::MAX_IMAGE_SIDE);
+            return if self.chance(0.5) {
+                (long, 1)
+            } else {
+                (1, long)
+            };
+        }
+        let width = self.0.random_range(1..=48_u32);
+        let height = self.0.random_range(1..=(MAX_PIXELS / width).min(48));
+        (width, height)
+    }
+
+    /// An object somewhere in view (most of the time), and how far from the eye it reaches.
+    fn object(
+        &mut self,
+        eye: [f64; 3],
+        forward: [f64; 3],
+        vfov: f64,
+        unit: f64,
+    ) -> (ObjectDesc, f64) {
+        let spread = (vfov.to_radians() / 2.0).min(1.5) * self.uniform(0.0, 1.5);
+        let distance = unit * self.log_uniform(1e-3, 10.0);
+        let centre = add(eye, scale(self.near(forward, spread), distance));
+        let (shape, extent) = match self.below(3) {
+            0 => {
+                let radius = distance * self.log_uniform(1e-5, 0.95);
+                let shape = ShapeDesc::Sphere {
+                    center: f32s(centre),
+                    radius: radius as f32,
+                };
+                (shape, distance + radius)
+            }
+            1 => {
+                let normal = match self.below(4) {
+                    // Nearly containing the view direction: seen at a grazing angle.
+                    0 => cross(forward, self.direction()),
+                    1 => [0.0, 1.0, 0.0],
+                    _ => self.direction(),
+                };
+                let checker = self.chance(0.5).then(|| CheckerDesc {
+                    colour: self.colour(),
+                    size: (unit * self.log_uniform(1e-5, 1e5)) as f32,
+                });
+                let shape = ShapeDesc::Plane {
+                    point: f32s(centre),
+                    normal: f32s(normal),
+                    checker,
+                };
+                (shape, 0.0)
+            }
+            _ => {
+                let size = distance * self.log_uniform(1e-4, 3.0);
+                let a = add(centre, scale(self.direction(), size));
+                let b = add(centre, scale(self.direction(), size));
+                let c = match self.below(10) {
+                    // A sliver: the third corner nearly on the line through the others.
+                    0 => {
+                        let along = add(a, scale(sub(b, a), self.uniform(-1.0, 2.0)));
+                        add(
+                            along,
+                            scale(self.direction(), size * self.log_uniform(1e-8, 1e-1)),
+                        )
+                    }
+                    // The eye on the triangle's plane, or on an edge.
+                    1 => add(eye, scale(sub(eye, a), self.uniform(0.0, 1.0))),
+                    _ => add(centre, scale(self.direction(), size)),
+                };
+                let vertices = [a, b, c];
+                let extent = vertices
+                    .iter()
+                    .map(|&v| norm(sub(v, eye)))
+                    .fold(0.0, f64::max);
+                let shape = ShapeDesc::Triangle {
+                    vertices: vertices.map(f32s),
+                };
+                (shape, extent)
+            }
+        };
+        let material = self.material();
+        (ObjectDesc { shape, material }, extent)
+    }
+
+    fn material(&mut self) -> MaterialDesc {
+        let reflection = self.weight();
+        let transmission = if self.chance(0.3) {
+            self.uniform(0.0, 1.0 - reflection)
+        } else {
+            0.0
+        };
+        MaterialDesc {
+            colour: self.colour(),
+            diffuse: self.weight() as f32,
+            specular: self.weight() as f32,
+            shininess: self.log_uniform(1.0, 65_535.0) as u16,
+            reflection: reflection as f32,
+            transmission: transmission as f32,
+            ior: if self.chance(0.7) {
+                self.uniform(1.0, 2.5)
+            } else {
+                self.log_uniform(1.0, 1e6)
+            } as f32,
+        }
+    }
+
+    /// A light, now and then just off an object's surface, and how far from the eye it is.
+    fn light(&mut self, eye: [f64; 3], objects: &[ObjectDesc], unit: f64) -> (LightDesc, f64) {
+        let anchor = match objects.get(self.below(objects.len() * 2)) {
+            Some(object) => match object.shape {
+                ShapeDesc::Sphere { center, radius } => {
+                    let out = self.direction();
+                    let gap = f64::from(radius) * self.log_uniform(1e-7, 2.0);
+                    add(f64s(center), scale(out, f64::from(radius) + gap))
+                }
+                ShapeDesc::Plane { point, normal, .. } => {
+                    let n = f64s(normal);
+                    let n = scale(n, 1.0 / norm(n).max(1e-30));
+                    let gap = unit * self.log_uniform(1e-7, 1.0);
+                    let along = scale(self.direction(), unit * self.uniform(0.0, 2.0));
+                    add(add(f64s(point), along), scale(n, gap))
+                }
+                ShapeDesc::Triangle { vertices } => {
+                    let [a, b, c] = vertices.map(f64s);
+                    let (u, v) = (self.uniform(0.0, 0.5), self.uniform(0.0, 0.5));
+                    let on = add(a, add(scale(sub(b, a), u), scale(sub(c, a), v)));
+                    let n = cross(sub(b, a), sub(c, a));
+                    let n = scale(n, 1.0 / norm(n).max(1e-30));
+                    add(on, scale(n, unit * self.log_uniform(1e-7, 1.0)))
+                }
+            },
+            None => add(
+                eye,
+                scale(self.direction(), unit * self.log_uniform(1e-2, 10.0)),
+            ),
+        };
+        let intensity = if self.chance(0.1) {
+            self.log_uniform(1e-3, 1e3)
+        } else {
+            1.0
+        };
+        let light = LightDesc {
+            position: f32s(anchor),
+            colour: self.colour().map(|c| c * intensity as f32),
+        };
+        (light, norm(sub(anchor, eye)))
+    }
+}
+
+#[allow(clippy::cast_possible_truncation, reason = "a description is in f32")]
+fn f32s(v: [f64; 3]) -> [f32; 3] {
+    v.map(|c| c as f32)
+}
+
+fn f64s(v: [f32; 3]) -> [f64; 3] {
+    v.map(f64::from)
+}
+
+fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn scale(a: [f64; 3], k: f64) -> [f64; 3] {
+    a.map(|c| c * k)
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn norm(a: [f64; 3]) -> f64 {
+    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_scene_is_a_function_of_its_seed() {
+        let (a, b) = (scene(7), scene(7));
+        assert_eq!(a.scene, b.scene);
+        assert_eq!(a.size, b.size);
+        assert_ne!(scene(8).scene, a.scene);
+    }
+
+    #[test]
+    fn sizes_stay_small_and_scenes_vary() {
+        let scenes: Vec<Generated> = (0..500).map(scene).collect();
+        for g in &scenes {
+            let (w, h) = g.size;
+            assert!(w * h <= obscura::MAX_IMAGE_SIDE.max(MAX_PIXELS), "{w}x{h}");
+        }
+        let kinds = |f: fn(&ShapeDesc) -> bool| {
+            scenes
+                .iter()
+                .flat_map(|g| &g.scene.objects)
+                .filter(|o| f(&o.shape))
+                .count()
+        };
+        assert!(kinds(|s| matches!(s, ShapeDesc::Sphere { .. })) > 100);
+        assert!(kinds(|s| matches!(s, ShapeDesc::Plane { .. })) > 100);
+        assert!(kinds(|s| matches!(s, ShapeDesc::Triangle { .. })) > 100);
+    }
+}

@@ -1,0 +1,447 @@
+//! `obscura fuzz`: random scenes ([`generate`]) built in every firmware format by the lecture's
+//! methods and random mixes of the others, each rendered small with checked arithmetic and
+//! measured against f64, so that every promise the harness makes is tried against scenes
+//! nobody wrote by hand:
+//!
+//! - no sum or product leaves its format in a scene the build accepts (an **overflow**);
+//! - the core never panics on any description (a **panic**);
+//! - `analyze`'s verdict and the build agree (a **disagreement**: analyze says a format holds
+//!   the scene at this size and the build refuses it, or the reverse), and the format
+//!   `--format auto` picks builds;
+//! - where the f64 image is stable (nudging the eye by one ulp of f32 changes it by less than
+//!   [`STABLE_PSNR_DB`]), the measured PSNR is no worse than the prediction by more than
+//!   [`PSNR_MARGIN_DB`], and the object mismatch no worse than predicted by more than
+//!   [`MISMATCH_MARGIN_PCT`] (a **false accept**).
+//!
+//! Every failure is written as a scene file whose header says what failed and the command that
+//! shows it.
+
+pub mod generate;
+
+use crate::analysis::{Analysis, Fit};
+use crate::checked;
+use crate::cost::Machine;
+use crate::format::Format;
+use crate::metrics::{Accuracy, accuracy};
+use crate::owned::OwnedScene;
+use crate::render::{Request, prepare, prepare_reference};
+use crate::variant;
+use anyhow::{Context, Result};
+use image::RgbImage;
+use obscura::methods::MethodName;
+use obscura::{BiasMethod, Methods, RayMethod, RootMethod, SphereMethod, TriangleMethod};
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64;
+use serde::Serialize;
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// How far below its prediction a measured PSNR may fall before it is a false accept, in dB.
+pub const PSNR_MARGIN_DB: f64 = 3.0;
+
+/// How far above its prediction a measured object mismatch may rise before it is a false
+/// accept, in percentage points.
+pub const MISMATCH_MARGIN_PCT: f64 = 1.0;
+
+/// An f64 image is stable when nudging the eye by one ulp keeps it at least this close, in dB:
+/// where it is not, f64 itself cannot say what the picture is, and no format is held to it.
+pub const STABLE_PSNR_DB: f64 = 60.0;
+
+/// The formats every scene is built in (f64 is the reference).
+const FORMATS: [Format; 5] = Format::FIRMWARE;
+
+/// Random method mixes tried per scene, besides the lecture's.
+const MIXES: usize = 2;
+
+/// What went wrong with one build.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Failure {
+    /// A sum or product left the format in a scene the build accepted.
+    Overflow {
+        /// The operation, its source line and the pixel.
+        message: String,
+    },
+    /// The core panicked.
+    Panic {
+        /// The panic's message.
+        message: String,
+    },
+    /// `analyze` and the build disagree on whether the format holds the scene.
+    Disagreement {
+        /// What each said.
+        message: String,
+    },
+    /// The measurement fell short of the prediction by more than the margin.
+    FalseAccept {
+        /// The predicted PSNR, in dB.
+        predicted_psnr_db: f64,
+        /// The measured PSNR, in dB.
+        measured_psnr_db: f64,
+        /// The predicted object mismatch, in percent.
+        predicted_mismatch_pct: f64,
+        /// The measured object mismatch, in percent.
+        measured_mismatch_pct: f64,
+    },
+}
+
+impl fmt::Display for Failure {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Overflow { message } => write!(f, "overflow: {message}"),
+            Self::Panic { message } => write!(f, "panic: {message}"),
+            Self::Disagreement { message } => write!(f, "disagreement: {message}"),
+            Self::FalseAccept {
+                predicted_psnr_db,
+                measured_psnr_db,
+                predicted_mismatch_pct,
+                measured_mismatch_pct,
+            } => write!(
+                f,
+                "false accept: predicted {predicted_psnr_db:.1} dB and {predicted_mismatch_pct:.3} % \
+                 object mismatch, measured {measured_psnr_db:.1} dB and \
+                 {measured_mismatch_pct:.3} %"
+            ),
+        }
+    }
+}
+
+/// One failed build, with what reproduces it.
+#[derive(Clone, Debug, Serialize)]
+pub struct Finding {
+    /// The scene's seed.
+    pub seed: u64,
+    /// The format.
+    pub format: &'static str,
+    /// The methods.
+    #[serde(serialize_with = "crate::cli::serialize_display")]
+    pub methods: Methods,
+    /// The image size.
+    pub width: u32,
+    /// The image size.
+    pub height: u32,
+    /// What went wrong.
+    pub failure: Failure,
+    /// The scene file written for it.
+    pub file: Option<PathBuf>,
+}
+
+/// What a run found.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Tally {
+    /// Scenes generated.
+    pub scenes: u64,
+    /// Scene × format × methods builds tried.
+    pub builds: u64,
+    /// Of those, the ones the build accepted (and that were rendered and measured).
+    pub accepted: u64,
+    /// Of those, the ones whose f64 image was stable, held to their prediction.
+    pub held_to_prediction: u64,
+    /// Builds that overflowed.
+    pub overflows: u64,
+    /// Builds that panicked.
+    pub panics: u64,
+    /// Builds where analyze and the build disagreed.
+    pub disagreements: u64,
+    /// Builds measured worse than predicted, beyond the margins.
+    pub false_accepts: u64,
+    /// The failures, each once.
+    pub findings: Vec<Finding>,
+}
+
+impl Tally {
+    /// Adds what another run found.
+    pub fn add(&mut self, other: Self) {
+        self.scenes += other.scenes;
+        self.builds += other.builds;
+        self.accepted += other.accepted;
+        self.held_to_prediction += other.held_to_prediction;
+        self.overflows += other.overflows;
+        self.panics += other.panics;
+        self.disagreements += other.disagreements;
+        self.false_accepts += other.false_accepts;
+        self.findings.extend(other.findings);
+    }
+
+    fn record(&mut self, finding: Finding) {
+        match finding.failure {
+            Failure::Overflow { .. } => self.overflows += 1,
+            Failure::Panic { .. } => self.panics += 1,
+            Failure::Disagreement { .. } => self.disagreements += 1,
+            Failure::FalseAccept { .. } => self.false_accepts += 1,
+        }
+        self.findings.push(finding);
+    }
+
+    /// Whether nothing failed.
+    pub fn clean(&self) -> bool {
+        self.findings.is_empty()
+    }
+}
+
+impl fmt::Display for Tally {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} scenes, {} scene × format × method builds ({} accepted and rendered, {} of them \
+             held to their prediction): {} overflows, {} panics, {} disagreements with analyze, \
+             {} false accepts",
+            self.scenes,
+            self.builds,
+            self.accepted,
+            self.held_to_prediction,
+            self.overflows,
+            self.panics,
+            self.disagreements,
+            self.false_accepts
+        )
+    }
+}
+
+/// The seed of scene `index` of a run seeded `seed`.
+pub fn scene_seed(seed: u64, index: u64) -> u64 {
+    seed.wrapping_mul(0x9E37_79B9_7F4A_7C15).wrapping_add(index)
+}
+
+/// The method sets scene `seed` is built by: the lecture's, and [`MIXES`] random mixes.
+pub fn method_sets(seed: u64) -> Vec<Methods> {
+    let mut rng = Pcg64::seed_from_u64(seed ^ 0x5EED);
+    let mut pick = |n: usize| rng.random_range(0..n);
+    let mut sets = vec![Methods::LECTURE];
+    for _ in 0..MIXES {
+        let methods = Methods {
+            sphere: SphereMethod::ALL[pick(SphereMethod::ALL.len())].0,
+            triangle: TriangleMethod::ALL[pick(TriangleMethod::ALL.len())].0,
+            roots: RootMethod::ALL[pick(RootMethod::ALL.len())].0,
+            rays: RayMethod::ALL[pick(RayMethod::ALL.len())].0,
+            bias: BiasMethod::ALL[pick(BiasMethod::ALL.len())].0,
+        };
+        if !sets.contains(&methods) {
+            sets.push(methods);
+        }
+    }
+    sets
+}
+
+/// Generates the scene of `seed` and tries it in every format by every method set, writing a
+/// reproducer for each failure into `out_dir` (when given).
+pub fn try_scene(seed: u64, out_dir: Option<&Path>) -> Tally {
+    let generated = generate::scene(seed);
+    let mut tally = Tally {
+        scenes: 1,
+        ..Tally::default()
+    };
+    for methods in method_sets(seed) {
+        let outcome = checked::catch_any(|| {
+            try_methods(&generated.scene, methods, generated.size, &mut tally)
+        });
+        if let Err(message) = outcome {
+            tally.record(Finding {
+                seed,
+                format: "f64",
+                methods,
+                width: generated.size.0,
+                height: generated.size.1,
+                failure: Failure::Panic { message },
+                file: None,
+            });
+        }
+    }
+    for finding in &mut tally.findings {
+        finding.seed = seed;
+        if let Some(dir) = out_dir {
+            finding.file = write_reproducer(dir, &generated.scene, finding).ok();
+        }
+    }
+    tally
+}
+
+/// Tries one scene by one method set in every format.
+fn try_methods(
+    scene: &OwnedScene,
+    methods: Methods,
+    (width, height): (u32, u32),
+    tally: &mut Tally,
+) {
+    let desc = scene.desc();
+    let request = Request {
+        desc: &desc,
+        width,
+        height,
+        methods,
+    };
+    let finding = |format: Format, failure| Finding {
+        seed: 0,
+        format: format.name(),
+        methods,
+        width,
+        height,
+        failure,
+        file: None,
+    };
+    // A scene f64 refuses, every format refuses: validation is the same code for all.
+    let Some((reference, objects)) = render_f64(&request) else {
+        for format in FORMATS {
+            tally.builds += 1;
+            if prepare(format, &request).is_ok() {
+                tally.record(finding(
+                    format,
+                    Failure::Disagreement {
+                        message: "builds, although f64 refuses the scene".to_owned(),
+                    },
+                ));
+            }
+        }
+        return;
+    };
+    let stable = stable(scene, &request, &reference);
+    let analysis = Analysis::with_reference(scene, methods, &reference);
+    for format in FORMATS {
+        tally.builds += 1;
+        let verdict = analysis.verdicts.iter().find(|v| v.format == format);
+        let predicted_holds = verdict.is_some_and(|v| v.fit == Fit::Holds);
+        let prepared = match prepare(format, &request) {
+            Ok(prepared) => prepared,
+            Err(error) => {
+                let message = format!("{error:#}");
+                if message.contains("overflowed") {
+                    tally.record(finding(format, Failure::Overflow { message }));
+                } else if predicted_holds {
+                    tally.record(finding(
+                        format,
+                        Failure::Disagreement {
+                            message: format!("analyze says it holds; the build: {message}"),
+                        },
+                    ));
+                }
+                continue;
+            }
+        };
+        if !predicted_holds {
+            tally.record(finding(
+                format,
+                Failure::Disagreement {
+                    message: "the build accepts what analyze refuses".to_owned(),
+                },
+            ));
+            continue;
+        }
+        tally.accepted += 1;
+        let measured = prepared
+            .render(1, None)
+            .and_then(|image| Ok((image, prepared.object_map()?)));
+        let (image, format_objects) = match measured {
+            Ok(measured) => measured,
+            Err(error) => {
+                let message = format!("{error:#}");
+                tally.record(finding(format, Failure::Overflow { message }));
+                continue;
+            }
+        };
+        let Some(verdict) = verdict else { continue };
+        if !stable {
+            continue;
+        }
+        tally.held_to_prediction += 1;
+        let Accuracy {
+            psnr_db,
+            object_mismatch_pct,
+            ..
+        } = accuracy(&image, &reference, &format_objects, &objects);
+        let predicted_psnr_db = verdict.predicted_psnr.unwrap_or(f64::INFINITY);
+        let predicted_mismatch_pct = verdict.predicted_mismatch_pct.unwrap_or(0.0);
+        if psnr_db < predicted_psnr_db - PSNR_MARGIN_DB
+            || object_mismatch_pct > predicted_mismatch_pct + MISMATCH_MARGIN_PCT
+        {
+            tally.record(finding(
+                format,
+                Failure::FalseAccept {
+                    predicted_psnr_db,
+                    measured_psnr_db: psnr_db,
+                    predicted_mismatch_pct,
+                    measured_mismatch_pct: object_mismatch_pct,
+                },
+            ));
+        }
+    }
+    // What `--format auto` picks on each machine must build.
+    for machine in Machine::ALL {
+        let Some(chosen) = analysis.cheapest(machine, 40.0, &methods) else {
+            continue;
+        };
+        let scene = match chosen.fit {
+            Fit::Rescaled(factor) => scene.scaled(factor as f32),
+            Fit::Holds | Fit::Refused(_) => scene.clone(),
+        };
+        let desc = scene.desc();
+        if let Err(error) = prepare(
+            chosen.format,
+            &Request {
+                desc: &desc,
+                ..request
+            },
+        ) {
+            tally.record(finding(
+                chosen.format,
+                Failure::Disagreement {
+                    message: format!("--format auto picks it for {machine}, and then: {error:#}"),
+                },
+            ));
+        }
+    }
+}
+
+/// The f64 reference image and object map, or `None` when f64 refuses the scene.
+fn render_f64(request: &Request<'_>) -> Option<(RgbImage, Vec<Option<usize>>)> {
+    let reference = prepare_reference(request).ok()?;
+    Some((
+        reference.render(1, None).ok()?,
+        reference.object_map().ok()?,
+    ))
+}
+
+/// Whether the f64 image stays within [`STABLE_PSNR_DB`] when the eye moves by one ulp.
+fn stable(scene: &OwnedScene, request: &Request<'_>, reference: &RgbImage) -> bool {
+    let mut nudged = scene.clone();
+    nudged.camera.eye = nudged.camera.eye.map(f32::next_up);
+    let desc = nudged.desc();
+    let Some((image, _)) = render_f64(&Request {
+        desc: &desc,
+        ..*request
+    }) else {
+        return false;
+    };
+    let none = vec![None; (request.width * request.height) as usize];
+    accuracy(&image, reference, &none, &none).psnr_db >= STABLE_PSNR_DB
+}
+
+/// Writes the scene of a finding as a scene file whose header says what failed and how to
+/// see it again.
+fn write_reproducer(dir: &Path, scene: &OwnedScene, finding: &Finding) -> Result<PathBuf> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let name = format!(
+        "fuzz-{}-{}-{}.toml",
+        finding.seed,
+        finding.format,
+        variant::label(&finding.methods).replace([',', '='], "-")
+    );
+    let path = dir.join(name);
+    let body = toml::to_string(scene).context("the scene cannot be written as TOML")?;
+    let header = format!(
+        "# obscura fuzz: scene {} in {} by {} at {}x{}\n# {}\n# obscura compare {} --format {} --size {}x{} {}\n\n",
+        finding.seed,
+        finding.format,
+        finding.methods,
+        finding.width,
+        finding.height,
+        finding.failure,
+        path.display(),
+        finding.format,
+        finding.width,
+        finding.height,
+        crate::cli::method_flags(&finding.methods),
+    );
+    std::fs::write(&path, header + &body)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    Ok(path)
+}
