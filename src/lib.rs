@@ -57,6 +57,6 @@ pub use methods::{BiasMethod, Methods, RayMethod, RootMethod, SphereMethod, Tria
 pub use ray::Ray;
 pub use render::{RenderError, render_rows};
 pub use scalar::{F32Approx, I16F16, I20F12, I32F32, Scalar};
-pub use scene::{Item, Scene, SceneError};
+pub use scene::{Item, Remedy, Scene, SceneError};
 pub use shade::Sample;
 pub use vec3::Vec3;

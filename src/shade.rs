@@ -9,7 +9,7 @@ use crate::methods::BiasMethod;
 use crate::ray::{Ray, Span};
 use crate::scalar::Scalar;
 use crate::scene::{Object, Scene, Settings};
-use crate::shape::PerRay;
+use crate::shape::{Intersection, PerRay};
 use crate::vec3::Vec3;
 use heapless::{Vec, VecView};
 
@@ -47,7 +47,7 @@ struct Leaving<S> {
 struct Hit<'a, S> {
     object: &'a Object<S>,
     index: usize,
-    t: S,
+    at: Intersection<S>,
 }
 
 impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
@@ -148,7 +148,7 @@ impl<S: Scalar> Tracer<'_, S> {
         object: &Object<S>,
         from: Option<Leaving<S>>,
         per_ray: &mut PerRay<S>,
-    ) -> Option<S> {
+    ) -> Option<Intersection<S>> {
         match from {
             Some(leaving)
                 if leaving.object == index && self.settings.methods.bias == BiasMethod::Exclude =>
@@ -170,9 +170,9 @@ impl<S: Scalar> Tracer<'_, S> {
         let mut nearest = None;
         let mut per_ray = PerRay::new();
         for (index, object) in self.objects.iter().enumerate() {
-            if let Some(t) = self.meet(ray, span, index, object, from, &mut per_ray) {
-                span.max = t;
-                nearest = Some(Hit { object, index, t });
+            if let Some(at) = self.meet(ray, span, index, object, from, &mut per_ray) {
+                span.max = at.t;
+                nearest = Some(Hit { object, index, at });
             }
         }
         nearest
@@ -184,7 +184,7 @@ impl<S: Scalar> Tracer<'_, S> {
         let shape = &hit.object.shape;
         let roots = self.settings.methods.roots;
         let d = task.ray.dir;
-        let (point, normal) = shape.surface(task.ray.at(hit.t), roots);
+        let (point, normal) = shape.surface(&task.ray, &hit.at, roots);
         // Shade the side the ray arrived on: for a sphere hit from inside, that is the inside.
         let cos_in = -d.dot(normal);
         let entering = cos_in >= S::ZERO;

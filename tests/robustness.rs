@@ -121,6 +121,7 @@ const SCENES: u64 = 2000;
 #[test]
 fn random_scenes_build_or_are_refused_and_render_without_panicking() {
     let mut built = [0_u32; 6];
+    let mut only_the_wider_range = 0;
     for seed in 0..SCENES {
         let mut r = Random(seed);
         let extent = [2.0, 10.0, 40.0, 150.0][(r.next() * 4.0) as usize];
@@ -162,10 +163,11 @@ fn random_scenes_build_or_are_refused_and_render_without_panicking() {
         for (count, ok) in built.iter_mut().zip(results) {
             *count += u32::from(ok);
         }
+        only_the_wider_range += u32::from(results[4] && !results[0]);
     }
-    // The generator must exercise both outcomes, and the narrow format must refuse some scenes
-    // that a wider one with the same methods holds (i20f12: the fast roots are the 32-bit
-    // formats' alone).
+    // The generator must exercise both outcomes, and the format of the narrower range must
+    // refuse some scenes that the wider one holds by the same methods (i20f12 against i16f16:
+    // both have the fast roots).
     assert!(
         built
             .iter()
@@ -173,7 +175,7 @@ fn random_scenes_build_or_are_refused_and_render_without_panicking() {
         "{built:?}"
     );
     assert!(
-        built[0] < built[4],
-        "i16f16 holds fewer than i20f12: {built:?}"
+        only_the_wider_range > 0,
+        "no scene holds in i20f12 and not in i16f16: {built:?}"
     );
 }

@@ -1,9 +1,10 @@
 //! Every way a scene description can be refused, asserted by variant, with messages that say
 //! what is wrong and how to fix it.
 
+use obscura::scalar::FormatSet;
 use obscura::{
     BackgroundDesc, CameraDesc, CheckerDesc, I16F16, Item, LightDesc, MaterialDesc, ObjectDesc,
-    Scene, SceneDesc, SceneError, ShapeDesc,
+    Remedy, Scene, SceneDesc, SceneError, ShapeDesc,
 };
 
 type Small<S> = Scene<S, 4, 2, 4>;
@@ -362,7 +363,7 @@ fn a_world_too_large_for_the_format_names_the_value_and_the_formats_that_fit() {
     desc.far = 200.0;
     let error = build(&desc).unwrap_err();
     assert!(
-        matches!(error, SceneError::OutOfRange { format: "i16f16", quantity, .. } if quantity.contains("|o − c|²")),
+        matches!(error, SceneError::OutOfRange { format: "i16f16", quantity, .. } if quantity.contains("b² − c")),
         "{error:?}"
     );
     let message = error.to_string();
@@ -450,9 +451,12 @@ fn every_message_says_what_to_do() {
             value: 1e-4,
             format: "i16f16",
             minimum: 2e-4,
+            remedy: Remedy::LargerSphere,
+            holds: FormatSet::default(),
+            method: None,
         },
     ];
-    let advice = ["give", "move", "choose", "raise", "lower", "use"];
+    let advice = ["give", "move", "choose", "raise", "lower", "model", "make"];
     for error in errors {
         let message = error.to_string();
         assert!(
@@ -489,6 +493,8 @@ fn messages_without_figures_keep_the_words_and_drop_the_numbers() {
                 value: 4.5e9,
                 format: "i16f16",
                 range: 32768.0,
+                remedy: Remedy::ShrinkWorld,
+                holds: FormatSet::of(|f| f.range > 4.5e9),
             },
             "4.500000e9",
         ),
@@ -499,6 +505,9 @@ fn messages_without_figures_keep_the_words_and_drop_the_numbers() {
                 value: 1.25e-4,
                 format: "i16f16",
                 minimum: 2e-4,
+                remedy: Remedy::LargerSphere,
+                holds: FormatSet::of(|f| f.name == "f64"),
+                method: Some(("sphere", "stable")),
             },
             "1.250e-4",
         ),

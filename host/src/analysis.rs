@@ -366,7 +366,7 @@ pub fn extents(desc: &SceneDesc<'_>) -> Extents {
     let nearest = desc
         .objects
         .iter()
-        .map(|object| range::clearance(desc, object))
+        .map(|object| range::clearance(object, eye))
         .fold(f64::INFINITY, f64::min);
     Extents {
         objects: desc.objects.len(),
@@ -400,7 +400,9 @@ fn bits(desc: &SceneDesc<'_>, methods: Methods) -> Vec<Bits> {
     };
     let mut rows = Vec::new();
     let mut row = |computation: String, methods: Methods, of: &dyn Fn(Item) -> bool| {
-        let largest = range::magnitudes(desc, &methods)
+        // The bounds as a format that rounds as finely as f64 would need them.
+        let slack = range::origin_slack(desc, &methods, f64::resolution, false);
+        let largest = range::magnitudes(desc, &methods, slack)
             .filter(|m| of(m.item))
             .max_by(|a, b| a.value.total_cmp(&b.value));
         let finest = range::features(desc, &methods)

@@ -200,12 +200,14 @@ pub trait Scalar:
 }
 
 /// What an error message needs to know of a format it cannot name by type.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub struct FormatInfo {
     /// [`Scalar::NAME`].
     pub name: &'static str,
     /// [`Scalar::RANGE`].
     pub range: f64,
+    /// [`Scalar::resolution`].
+    pub resolution: fn(f64) -> f64,
 }
 
 impl FormatInfo {
@@ -215,7 +217,40 @@ impl FormatInfo {
         Self {
             name: S::NAME,
             range: S::RANGE,
+            resolution: S::resolution,
         }
+    }
+}
+
+/// A set of [`FORMATS`], by their places in that list.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FormatSet(u32);
+
+impl FormatSet {
+    /// The formats of [`FORMATS`] for which `holds` is true.
+    #[must_use]
+    pub fn of(holds: impl Fn(&FormatInfo) -> bool) -> Self {
+        let bits = FORMATS
+            .iter()
+            .enumerate()
+            .filter(|(_, format)| holds(format))
+            .fold(0, |bits, (i, _)| bits | 1 << i);
+        Self(bits)
+    }
+
+    /// The formats in the set, in the order of [`FORMATS`].
+    pub fn iter(self) -> impl Iterator<Item = &'static FormatInfo> {
+        FORMATS
+            .iter()
+            .enumerate()
+            .filter(move |(i, _)| self.0 & 1 << i != 0)
+            .map(|(_, format)| format)
+    }
+
+    /// Whether the set is empty.
+    #[must_use]
+    pub const fn is_empty(self) -> bool {
+        self.0 == 0
     }
 }
 
@@ -276,6 +311,15 @@ mod tests {
         check_basics::<f32>(0.0);
         check_basics::<f64>(0.0);
         check_basics::<F32Approx>(0.07);
+    }
+
+    #[test]
+    fn a_format_set_lists_its_formats_in_order() {
+        let wide = FormatSet::of(|f| f.range > 1e6);
+        let names: Vec<_> = wide.iter().map(|f| f.name).collect();
+        assert_eq!(names, ["i32f32", "f32-approx", "f32", "f64"]);
+        assert!(FormatSet::of(|_| false).is_empty());
+        assert_eq!((FORMATS[0].resolution)(1.0), I16F16::resolution(1.0));
     }
 
     #[test]

@@ -1,6 +1,6 @@
 //! [`SceneError`]: why a scene description cannot be built, and how to fix it.
 
-use crate::scalar::FORMATS;
+use crate::scalar::FormatSet;
 use core::fmt;
 
 /// The part of a scene description an error is about.
@@ -25,6 +25,60 @@ impl fmt::Display for Item {
             Self::Light(i) => write!(f, "light {i}"),
             Self::Scene => f.write_str("the scene"),
         }
+    }
+}
+
+/// What to change in a scene so that a value fits a format, or a feature shows in it: the
+/// advice of a refusal, which follows from what the value grows with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Remedy {
+    /// The value grows with the world: a smaller `far`, objects nearer the eye.
+    ShrinkWorld,
+    /// The light a pixel adds up: dimmer lights, ambient light or background, a lower
+    /// `max_depth`.
+    LessLight,
+    /// A refractive index.
+    LowerIor,
+    /// The image plane: a narrower field of view, a less elongated image.
+    NarrowerView,
+    /// Neighbouring pixels closer than the format can aim: a wider field of view, fewer
+    /// pixels.
+    WiderView,
+    /// A checkerboard's squares, against the world they cover.
+    LargerSquares,
+    /// A sphere too small or too far away for its test.
+    LargerSphere,
+    /// A triangle too thin to have an area at the format's resolution.
+    FatterTriangle,
+    /// A triangle too large for Möller–Trumbore's reciprocal of its determinant.
+    SmallerTriangle,
+    /// The eye too near a surface.
+    MoveEye,
+    /// A light too near a surface.
+    MoveLight,
+    /// A light too bright for a format's steps.
+    DimLight,
+}
+
+impl fmt::Display for Remedy {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::ShrinkWorld => "shrink the scene (a smaller far, objects nearer the eye)",
+            Self::LessLight => {
+                "dim the lights, the ambient light or the background, or lower max_depth"
+            }
+            Self::LowerIor => "lower the ior",
+            Self::NarrowerView => "narrow the field of view or make the image less elongated",
+            Self::WiderView => "widen the field of view or render fewer pixels",
+            Self::LargerSquares => "make the checker's squares larger",
+            Self::LargerSphere => "make the sphere larger or bring it nearer the eye",
+            Self::FatterTriangle => "move a corner away from the line through the other two",
+            Self::SmallerTriangle => "split the triangle into smaller ones",
+            Self::MoveEye => "move the eye away from the surface",
+            Self::MoveLight => "move the light away from the surface",
+            Self::DimLight => "dim the light",
+        })
     }
 }
 
@@ -67,8 +121,8 @@ pub enum SceneError {
     /// The camera's up vector is parallel to its view direction, so "up" on the image is
     /// undefined. Choose an up vector that is not along the line from eye to target.
     UpParallelToView,
-    /// More objects or lights than the scene type has room for. Raise the capacity (the const
-    /// generic of [`crate::Scene`]) or model fewer.
+    /// More objects or lights than this build holds (the capacities of [`crate::Scene`]).
+    /// Model fewer, or, building the library yourself, raise the capacity.
     TooMany {
         /// "objects" or "lights".
         what: &'static str,
@@ -77,8 +131,8 @@ pub enum SceneError {
         /// How many fit.
         capacity: usize,
     },
-    /// `max_depth` needs a deeper ray stack than the scene type has. Lower `max_depth` or
-    /// raise the stack capacity (it must be at least `max_depth + 1`).
+    /// `max_depth` needs a deeper ray stack than this build has. Lower `max_depth` (or,
+    /// building the library yourself, raise the stack capacity to `max_depth + 1`).
     DepthExceedsStack {
         /// The requested depth.
         max_depth: u8,
@@ -96,8 +150,8 @@ pub enum SceneError {
         far: f32,
     },
     /// A value the tracer computes for this scene would leave the format's range. Use a
-    /// format with a wider range (the message lists those that fit), or shrink the scene:
-    /// a smaller `far`, objects closer to the eye.
+    /// format with a wider range (the message lists those that hold it), or change the scene
+    /// as the [`Remedy`] says.
     OutOfRange {
         /// Whose computation.
         item: Item,
@@ -109,10 +163,14 @@ pub enum SceneError {
         format: &'static str,
         /// The format's largest magnitude.
         range: f64,
+        /// What to change in the scene.
+        remedy: Remedy,
+        /// The formats whose range holds it.
+        holds: FormatSet,
     },
-    /// A feature of the scene is too small for the format to resolve at this world size: its
-    /// shape would be lost to rounding. Use a finer format, enlarge the feature, or shrink
-    /// `far` (a float's resolution grows with the world).
+    /// A feature of the scene is too small for the format to resolve: its shape would be lost
+    /// to rounding. Use a finer format or a steadier method (the message names those that
+    /// resolve it), or change the scene as the [`Remedy`] says.
     BelowResolution {
         /// Whose feature.
         item: Item,
@@ -124,6 +182,13 @@ pub enum SceneError {
         format: &'static str,
         /// The smallest size the format resolves here.
         minimum: f64,
+        /// What to change in the scene.
+        remedy: Remedy,
+        /// The formats that resolve it by the same methods.
+        holds: FormatSet,
+        /// A method that resolves it in this format, if one does, as (question, name): e.g.
+        /// `("sphere", "stable")`.
+        method: Option<(&'static str, &'static str)>,
     },
     /// The format has no such method (the fast roots are the 32-bit fixed formats'). Choose
     /// another method, or another format (for floats with approximate roots, `f32-approx`).
@@ -161,6 +226,17 @@ impl SceneError {
 /// formatting is linked).
 struct Message<'a, const FIGURES: bool>(&'a SceneError);
 
+/// "; formats that hold it: a b c", when there are any.
+fn formats(f: &mut fmt::Formatter<'_>, holds: FormatSet, verb: &str) -> fmt::Result {
+    if !holds.is_empty() {
+        write!(f, "; formats that {verb} it:")?;
+        for format in holds.iter() {
+            write!(f, " {}", format.name)?;
+        }
+    }
+    Ok(())
+}
+
 impl<const FIGURES: bool> fmt::Display for Message<'_, FIGURES> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self.0 {
@@ -188,17 +264,18 @@ impl<const FIGURES: bool> fmt::Display for Message<'_, FIGURES> {
                 capacity,
             } => write!(
                 f,
-                "the scene has {count} {what}, but the scene type holds at most {capacity}; \
-                 raise the capacity or model fewer {what}"
+                "the scene has {count} {what}, more than the {capacity} this build holds; \
+                 model fewer {what}"
             ),
             SceneError::DepthExceedsStack {
                 max_depth,
                 capacity,
             } => write!(
                 f,
-                "max_depth {max_depth} needs a ray stack of {}, but it holds {capacity}; \
-                 lower max_depth or raise the stack capacity",
-                usize::from(max_depth) + 1
+                "max_depth {max_depth} needs a ray stack of {}, but this build holds {capacity}; \
+                 lower max_depth to {}",
+                usize::from(max_depth) + 1,
+                capacity.saturating_sub(1)
             ),
             SceneError::MethodUnavailable { method, format } => write!(
                 f,
@@ -244,6 +321,8 @@ impl<const FIGURES: bool> fmt::Display for Message<'_, FIGURES> {
                 value,
                 format,
                 range,
+                remedy,
+                holds,
             } => {
                 write!(f, "{item}: {quantity} reaches ")?;
                 if FIGURES {
@@ -251,14 +330,8 @@ impl<const FIGURES: bool> fmt::Display for Message<'_, FIGURES> {
                 } else {
                     write!(f, "beyond {format}'s range")?;
                 }
-                let mut fits = FORMATS.iter().filter(|fmt| fmt.range >= value).peekable();
-                if fits.peek().is_some() {
-                    f.write_str("; formats that hold it:")?;
-                    for fmt in fits {
-                        write!(f, " {}", fmt.name)?;
-                    }
-                }
-                f.write_str("; or shrink the scene (a smaller far, objects nearer the eye)")
+                formats(f, holds, "hold")?;
+                write!(f, "; or {remedy}")
             }
             SceneError::BelowResolution {
                 item,
@@ -266,6 +339,9 @@ impl<const FIGURES: bool> fmt::Display for Message<'_, FIGURES> {
                 value,
                 format,
                 minimum,
+                remedy,
+                holds,
+                method,
             } => {
                 write!(f, "{item}: {quantity} is ")?;
                 if FIGURES {
@@ -276,10 +352,11 @@ impl<const FIGURES: bool> fmt::Display for Message<'_, FIGURES> {
                 } else {
                     write!(f, "below what {format} resolves")?;
                 }
-                f.write_str(
-                    " in a world of this size; use a finer format or a steadier method \
-                     (`obscura analyze` compares them), enlarge it, or shrink far",
-                )
+                formats(f, holds, "resolve")?;
+                if let Some((question, name)) = method {
+                    write!(f, "; {question}={name} resolves it in {format}")?;
+                }
+                write!(f, "; or {remedy}")
             }
         }
     }

@@ -5,7 +5,7 @@ mod error;
 pub mod range;
 mod validate;
 
-pub use error::{Item, SceneError};
+pub use error::{Item, Remedy, SceneError};
 
 use crate::camera::{Camera, Frame, MAX_IMAGE_SIDE};
 use crate::color::Rgb;
@@ -13,7 +13,7 @@ use crate::desc::{BackgroundDesc, CheckerDesc, MaterialDesc, SceneDesc, ShapeDes
 use crate::light::{Background, Light};
 use crate::material::Material;
 use crate::methods::{Methods, RootMethod};
-use crate::scalar::Scalar;
+use crate::scalar::{FormatSet, Scalar};
 use crate::shape::{Checker, Plane, Shape, Sphere, Triangle};
 use crate::vec3::Vec3;
 use core::marker::PhantomData;
@@ -113,6 +113,7 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
         Converter::<S> {
             eye,
             world: f64::from(desc.far),
+            slack: range::origin_slack(desc, &methods, S::resolution, S::FAST_ROOTS),
             _format: PhantomData,
         }
         .scene(desc, frame, methods)
@@ -121,27 +122,28 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
     /// The camera for an image of `width × height` pixels.
     ///
     /// # Errors
-    /// [`SceneError::ImageSize`] when a side is 0 or larger than [`MAX_IMAGE_SIDE`].
+    /// [`SceneError::ImageSize`] when a side is 0 or larger than [`MAX_IMAGE_SIDE`]; when the
+    /// image plane leaves the format, or its pixels are closer than the format can aim rays
+    /// ([`range::camera`]), why.
     pub fn camera(&self, width: u32, height: u32) -> Result<Camera<S>, SceneError> {
         let valid = 1..=MAX_IMAGE_SIDE;
         if !valid.contains(&width) || !valid.contains(&height) {
             return Err(SceneError::ImageSize { width, height });
         }
-        // A pixel's point on the image plane, one unit ahead, is at most this far from the eye.
         let half_width = self.frame.half_width(width, height);
-        let corner_squared =
-            1.0 + half_width * half_width + self.frame.half_height * self.frame.half_height;
-        let out_of_range = SceneError::OutOfRange {
-            item: Item::Camera,
-            quantity: "|s|² of an image corner (a wide field of view or image)",
-            value: corner_squared,
-            format: S::NAME,
-            range: S::RANGE,
-        };
-        if corner_squared * range::RANGE_HEADROOM > S::RANGE {
-            return Err(out_of_range);
-        }
-        Camera::new(&self.frame, width, height, &self.settings.methods).ok_or(out_of_range)
+        range::check_camera::<S>(half_width, self.frame.half_height, width, height)?;
+        let (corner, _) = range::camera(half_width, self.frame.half_height, width, height);
+        Camera::new(&self.frame, width, height, &self.settings.methods).ok_or(
+            SceneError::OutOfRange {
+                item: Item::Camera,
+                quantity: corner.quantity,
+                value: corner.value,
+                format: S::NAME,
+                range: S::RANGE,
+                remedy: corner.remedy,
+                holds: FormatSet::of(|f| range::fits(corner.value, f.range)),
+            },
+        )
     }
 
     /// The objects, in the order of the description.
@@ -173,6 +175,8 @@ fn capacity(what: &'static str, count: usize, capacity: usize) -> Result<(), Sce
 struct Converter<S> {
     eye: Vec3<f64>,
     world: f64,
+    /// How far beyond the world a ray can start ([`range::origin_slack`]).
+    slack: f64,
     _format: PhantomData<S>,
 }
 
@@ -303,7 +307,8 @@ impl<S: Scalar> Converter<S> {
                 ];
                 // Möller–Trumbore's smallest determinant: below it a numerator over it would
                 // leave the format.
-                let numerators = range::triangle_numerators(self.world, self.eye, [a64, b64, c64]);
+                let origin = self.world + self.slack;
+                let numerators = range::triangle_numerators(origin, self.eye, [a64, b64, c64]);
                 let min_det = numerators * range::RANGE_HEADROOM / S::RANGE;
                 Shape::Triangle(Triangle::new(
                     corners,
@@ -312,7 +317,12 @@ impl<S: Scalar> Converter<S> {
                 ))
             }
         };
-        let ior = f64::from(m.ior);
+        // Only a transmissive surface refracts: another's index of refraction is never read.
+        let ior = if m.transmission > 0.0 {
+            f64::from(m.ior)
+        } else {
+            1.0
+        };
         let material = Material {
             colour: self.colour(item, "material colour", m.colour)?,
             diffuse: self.scalar(item, "diffuse", f64::from(m.diffuse))?,
@@ -320,7 +330,9 @@ impl<S: Scalar> Converter<S> {
             shininess: m.shininess,
             reflection: self.scalar(item, "reflection", f64::from(m.reflection))?,
             transmission: self.scalar(item, "transmission", f64::from(m.transmission))?,
-            ior: self.scalar(item, "ior", ior)?,
+            ior: self
+                .scalar(item, "ior", ior)
+                .map_err(|error| with_remedy(error, Remedy::LowerIor))?,
             inv_ior: self.scalar(item, "1 / ior", 1.0 / ior)?,
         };
         Ok(Object {
@@ -403,13 +415,16 @@ impl<S: Scalar> Converter<S> {
         quantity: &'static str,
         c: Vec3<f64>,
     ) -> Result<Rgb<S>, SceneError> {
-        Rgb::from_f64(c.to_f64()).ok_or_else(|| self.out_of_range(item, quantity, c))
+        Rgb::from_f64(c.to_f64())
+            .ok_or_else(|| with_remedy(self.out_of_range(item, quantity, c), Remedy::LessLight))
     }
 
     fn scalar(&self, item: Item, quantity: &'static str, x: f64) -> Result<S, SceneError> {
         S::from_f64(x).ok_or_else(|| self.out_of_range(item, quantity, Vec3::new(x, x, x)))
     }
 
+    /// A value that does not fit: the range proof has ruled out all but positions too far
+    /// for the format, which a smaller world brings in.
     fn out_of_range(&self, item: Item, quantity: &'static str, v: Vec3<f64>) -> SceneError {
         let value = v.x.abs().max(v.y.abs()).max(v.z.abs());
         SceneError::OutOfRange {
@@ -418,6 +433,32 @@ impl<S: Scalar> Converter<S> {
             value,
             format: S::NAME,
             range: S::RANGE,
+            remedy: Remedy::ShrinkWorld,
+            holds: FormatSet::of(|format| range::fits(value, format.range)),
         }
+    }
+}
+
+/// `error` with another remedy, where it is an [`SceneError::OutOfRange`].
+fn with_remedy(error: SceneError, remedy: Remedy) -> SceneError {
+    match error {
+        SceneError::OutOfRange {
+            item,
+            quantity,
+            value,
+            format,
+            range,
+            holds,
+            ..
+        } => SceneError::OutOfRange {
+            item,
+            quantity,
+            value,
+            format,
+            range,
+            remedy,
+            holds,
+        },
+        other => other,
     }
 }

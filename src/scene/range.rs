@@ -1,16 +1,55 @@
-//! Range analysis: the largest magnitude each computation of the tracer reaches in a scene,
-//! and the smallest feature each must resolve, for the chosen [`Methods`]. A format holds a
-//! scene when every magnitude fits its range and every feature spans enough of its steps.
+//! The range proof: a bound on the magnitude of every value the tracer forms for a scene, by
+//! the chosen [`Methods`], and the smallest feature each computation must resolve. A format
+//! holds a scene when every bound fits its range and every feature spans enough of its steps.
 //!
-//! All positions are relative to the eye and lie within the world radius R = `far`, so a ray
-//! origin o satisfies |o| ≤ R and a ray is never longer than the world's diameter 2R.
+//! # What the bounds rest on
+//!
+//! Positions are relative to the eye. Validation puts every sphere (centre plus radius),
+//! triangle corner and light within the world radius R = `far`, and every plane within R of
+//! the eye; the tracer then keeps every value within these:
+//!
+//! - **Ray origins** are the eye or points on surfaces, moved off them by the surface
+//!   tolerance τ. A sphere's surface point is c + r·n, within |c| + r ≤ R; a triangle's is
+//!   a + u·e1 + v·e2 with u, v, u + v in [0, 1], a convex combination of its corners; a plane's
+//!   is a hit that passed the world test (|p| ≤ R) projected onto the plane, which moves it by
+//!   the rounding of its t. So |o| ≤ O = R + s, the slack s ([`origin_slack`]) being τ and the
+//!   rounding of a surface point.
+//! - **Directions** are unit vectors to within a few steps (unit vectors are correctly
+//!   rounded; a mirror direction keeps the length of the incoming one; a refracted direction
+//!   has unit length by construction), and hits lie within t < T = 2R, the world's diameter.
+//!   So a point along a ray, o + t·d, is within P = O + T.
+//! - **Weights** (diffuse, specular, reflection, transmission) are in [0, 1] with reflection +
+//!   transmission ≤ 1, so each level of a ray tree carries at most weight 1 in all.
+//!
+//! # Every operation, and the bound that holds it
+//!
+//! | where | what | bound |
+//! |---|---|---|
+//! | camera | image-plane points, their normalisation | \|s\|² of an image corner ([`crate::Scene::camera`]) |
+//! | every shape | o + t·d, o − (corner or centre) and their sums | [`magnitudes`]: a point along a ray, P |
+//! | plane | n·d·t for t in the span, offset − n·o | a ray's length T, and P |
+//! | plane | the world test | coordinates tested against R first, then scaled within 1 |
+//! | plane | checker coordinates (p − corner)·axis/size | a checker coordinate |
+//! | sphere, quadratic | o − c, b = d·(o − c), \|o − c\|², b², b² − c | b² − c: (\|o\| + \|c\|)² + r² |
+//! | sphere, stable | f = o − c, \|f\|², f + b·d, \|f + b·d\|², r² − that | \|f\|² ≤ (\|o\| + \|c\|)² |
+//! | sphere | −b ± √Δ, b ± √Δ | the sphere's roots, \|b\| + √(b² + r²) |
+//! | sphere | p − c for the normal; c + r·n | a hit point less the centre, P + \|c\| |
+//! | triangle, Cramer | e1 × e2, det[−d s e2], det[−d e1 s], s·(e1 × e2) | Cramer's determinants |
+//! | triangle, Möller–Trumbore | d × e2, s × e1, their dot products; each times 1/det | its numerators; 1/det is cut off where a numerator over it would leave the format |
+//! | triangle, watertight | sheared corners, edge functions, their sum | the watertight edge functions |
+//! | triangle | a + u·e1 + v·e2 | a convex combination of the corners: O |
+//! | shading | cosines, mirror direction d + 2(cos)·n, Phong's power of a cosine clamped to 1 | at most 3: a direction's reflection |
+//! | shading | the light's direction and distance | normalised from \|L − o\| ≤ R + O in the wide integer: no square forms |
+//! | refraction | (d + cos·n)·η, its squared length | η² in Snell's law |
+//! | colour | each level's ambient, Lambert, Phong times the light, times its weight; the sum | a pixel's sum of colours over its ray tree |
+//! | quotients, roots | every division and root | total: they saturate (fixed point) or reach infinity (floats) |
 
 use super::SURFACE_TOLERANCE_STEPS;
-use super::error::{Item, SceneError};
+use super::error::{Item, Remedy, SceneError};
 use super::validate::distance;
 use crate::desc::{BackgroundDesc, ObjectDesc, SceneDesc, ShapeDesc};
-use crate::methods::{Methods, SphereMethod, TriangleMethod};
-use crate::scalar::Scalar;
+use crate::methods::{MethodName, Methods, RootMethod, SphereMethod, TriangleMethod};
+use crate::scalar::{FormatSet, Scalar};
 use crate::vec3::Vec3;
 
 /// A feature must span this many steps of the error its computation makes, or rounding would
@@ -19,6 +58,14 @@ pub const MIN_FEATURE_STEPS: f64 = 16.0;
 
 /// Extra room every magnitude must leave in the format's range, for rounding.
 pub const RANGE_HEADROOM: f64 = 1.01;
+
+/// The relative error of the 32-bit fixed formats' fast roots and quotients (14 bits, and a
+/// bit to spare).
+pub const FAST_ROOT_ERROR: f64 = 1.0 / 8192.0;
+
+/// The steps between neighbouring pixels' rays a format must resolve: at fewer, neighbouring
+/// pixels would see along one ray.
+pub const MIN_PIXEL_STEPS: f64 = 2.0;
 
 /// The largest magnitude one computation reaches.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -29,6 +76,8 @@ pub struct Magnitude {
     pub quantity: &'static str,
     /// Its largest magnitude in this scene.
     pub value: f64,
+    /// What to change to make it smaller.
+    pub remedy: Remedy,
 }
 
 /// A small quantity a computation must resolve against the rounding error it makes.
@@ -48,6 +97,8 @@ pub struct Feature {
     pub terms: Terms,
     /// How many errors the feature must span.
     pub steps: f64,
+    /// What to change to make it resolvable.
+    pub remedy: Remedy,
 }
 
 impl Feature {
@@ -60,7 +111,13 @@ impl Feature {
     /// The smallest value format `S` resolves here: `steps` of its errors.
     #[must_use]
     pub fn minimum<S: Scalar>(&self) -> f64 {
-        self.steps * self.error::<S>()
+        self.minimum_with(S::resolution)
+    }
+
+    /// The smallest value a format of this `resolution` resolves here.
+    #[must_use]
+    pub fn minimum_with(&self, resolution: fn(f64) -> f64) -> f64 {
+        self.steps * error_with(&self.terms, resolution)
     }
 }
 
@@ -71,9 +128,15 @@ pub type Terms = [(f64, f64); 4];
 /// The size of the error `terms` describe in format `S`.
 #[must_use]
 pub fn error<S: Scalar>(terms: &[(f64, f64)]) -> f64 {
+    error_with(terms, S::resolution)
+}
+
+/// The size of the error `terms` describe in a format of this `resolution`.
+#[must_use]
+pub fn error_with(terms: &[(f64, f64)], resolution: fn(f64) -> f64) -> f64 {
     terms
         .iter()
-        .map(|&(coefficient, magnitude)| coefficient * S::resolution(magnitude))
+        .map(|&(coefficient, magnitude)| coefficient * resolution(magnitude))
         .sum()
 }
 
@@ -107,30 +170,81 @@ const DIRECTION_LENGTH: f64 = 2.0;
 /// One 8-bit level of a display channel: the least change of colour that can show.
 const LEVEL: f64 = 1.0 / 255.0;
 
-/// Every magnitude of the scene's computations by `methods` (the description must have passed
-/// validation).
-///
-/// With R = `far`, every position lies within R of the eye, every ray origin too (up to the
-/// surface tolerance), every direction is a unit vector and every material weight and colour
-/// is in [0, 1] with reflection + transmission ≤ 1. The bounds below follow from that, one per
-/// computation that could grow largest; [`RANGE_HEADROOM`] covers rounding.
+/// The largest component of a mirror direction d + 2(cos θ)·n of unit d and n.
+const MIRROR: f64 = 3.0;
+
+/// How far beyond the world's radius a ray can start, in a format of this `resolution`
+/// (see the module documentation): the largest surface tolerance, the rounding of a surface
+/// point, and with fast roots the error of the quotient that places a plane's hit.
+#[must_use]
+pub fn origin_slack(
+    desc: &SceneDesc<'_>,
+    methods: &Methods,
+    resolution: fn(f64) -> f64,
+    fast_roots: bool,
+) -> f64 {
+    let world = f64::from(desc.far);
+    let smallest_radius = desc
+        .objects
+        .iter()
+        .filter_map(|object| match object.shape {
+            ShapeDesc::Sphere { radius, .. } => Some(f64::from(radius)),
+            _ => None,
+        })
+        .fold(None, |smallest: Option<f64>, r| {
+            Some(smallest.map_or(r, |s| s.min(r)))
+        });
+    // The own tolerance is largest for the smallest sphere, its rounding for the largest; both
+    // terms are bounded by taking each at its worst.
+    let tolerance = error_with(&tolerance_terms(world, None), resolution)
+        + smallest_radius.map_or(0.0, |r| {
+            error_with(&own_tolerance_terms(r), resolution)
+                + SURFACE_TOLERANCE_STEPS * world * resolution(1.0)
+        });
+    let rounding = SURFACE_TOLERANCE_STEPS * resolution(3.0 * world);
+    let quotient = if fast_roots && methods.roots == RootMethod::Approx {
+        2.0 * world * FAST_ROOT_ERROR
+    } else {
+        0.0
+    };
+    tolerance + rounding + quotient
+}
+
+/// Every magnitude of the scene's computations by `methods`, for rays that start within
+/// `slack` beyond the world ([`origin_slack`]); the description must have passed validation.
+/// See the module documentation for what each bounds.
 pub fn magnitudes<'a>(
     desc: &'a SceneDesc<'a>,
     methods: &'a Methods,
+    slack: f64,
 ) -> impl Iterator<Item = Magnitude> + 'a {
     let world = f64::from(desc.far);
     let eye = desc.camera.eye;
-    let scene = |quantity, value| Magnitude {
+    let origin = world + slack;
+    let length = 2.0 * world;
+    let along = origin + length;
+    let scene = |quantity, value, remedy| Magnitude {
         item: Item::Scene,
         quantity,
         value,
+        remedy,
     };
     let global = [
-        scene("a ray's length (the world's diameter)", 2.0 * world),
-        scene("a point along a ray, o + t·d", 3.0 * world),
+        scene(
+            "a ray's length (the world's diameter)",
+            length,
+            Remedy::ShrinkWorld,
+        ),
+        scene("a point along a ray, o + t·d", along, Remedy::ShrinkWorld),
+        scene(
+            "a direction's reflection, d + 2(cos θ)·n",
+            MIRROR,
+            Remedy::ShrinkWorld,
+        ),
         scene(
             "a pixel's sum of colours over its ray tree",
             colour_sum(desc),
+            Remedy::LessLight,
         ),
     ];
     let objects = desc
@@ -139,86 +253,95 @@ pub fn magnitudes<'a>(
         .enumerate()
         .flat_map(move |(i, object)| {
             let item = Item::Object(i);
-            let shape: [Option<(&'static str, f64)>; 2] = match object.shape {
-                ShapeDesc::Sphere { center, .. } => {
-                    // Both forms square |o − c| (the quadratic also squares b = d·(o − c), no larger).
-                    let oc = world + distance(center, eye);
-                    let quantity = match methods.sphere {
-                        SphereMethod::Quadratic => "|o − c|² in the quadratic",
-                        SphereMethod::Stable => "|o − c|² in the stable form",
+            let shape: [Option<(&'static str, f64, Remedy)>; 3] = match object.shape {
+                ShapeDesc::Sphere { center, radius } => {
+                    let (c, r) = (distance(center, eye), f64::from(radius));
+                    let f = origin + c;
+                    let square = match methods.sphere {
+                        SphereMethod::Quadratic => ("b² − c in the quadratic", f * f + r * r),
+                        SphereMethod::Stable => ("|o − c|² in the stable form", f * f),
                     };
-                    [Some((quantity, oc * oc)), None]
+                    [
+                        Some((square.0, square.1, Remedy::ShrinkWorld)),
+                        Some((
+                            "the sphere's roots, |b| + √(b² + r²)",
+                            f + (f * f + r * r).sqrt(),
+                            Remedy::ShrinkWorld,
+                        )),
+                        Some((
+                            "a hit point less the sphere's centre",
+                            along + c,
+                            Remedy::ShrinkWorld,
+                        )),
+                    ]
                 }
-                ShapeDesc::Plane { checker, .. } => {
-                    let checker = checker.map(|checker| {
-                        // The checker origin is a grid corner within a square's diagonal of the
-                        // plane's point nearest the eye, which is inside the world.
+                ShapeDesc::Plane { checker, .. } => [
+                    checker.map(|checker| {
                         let size = f64::from(checker.size);
-                        ("a checker coordinate", (2.0 * world + 2.0 * size) / size)
-                    });
-                    // The world test squares a point only scaled to within 1 on every axis.
-                    [checker, None]
-                }
+                        (
+                            "a checker coordinate",
+                            checker_reach(origin, world, size) / size,
+                            Remedy::LargerSquares,
+                        )
+                    }),
+                    None,
+                    None,
+                ],
                 ShapeDesc::Triangle { vertices } => {
                     let corners = vertices.map(Vec3::from_f32);
-                    [
-                        Some(triangle_magnitude(
-                            methods.triangle,
-                            world,
-                            Vec3::from_f32(eye),
-                            corners,
-                        )),
-                        None,
-                    ]
+                    let (quantity, value) =
+                        triangle_magnitude(methods.triangle, origin, Vec3::from_f32(eye), corners);
+                    [Some((quantity, value, Remedy::ShrinkWorld)), None, None]
                 }
             };
             let refraction = (object.material.transmission > 0.0).then(|| {
                 let ior = f64::from(object.material.ior);
-                ("η² + 1 in Snell's law", ior * ior + 1.0)
+                ("η² in Snell's law", ior * ior + 1.0, Remedy::LowerIor)
             });
             shape
                 .into_iter()
                 .chain([refraction])
                 .flatten()
-                .map(move |(quantity, value)| Magnitude {
+                .map(move |(quantity, value, remedy)| Magnitude {
                     item,
                     quantity,
                     value,
+                    remedy,
                 })
         });
-    let lights = desc.lights.iter().enumerate().map(move |(i, light)| {
-        let reach = world + distance(light.position, eye);
-        Magnitude {
-            item: Item::Light(i),
-            quantity: "|light − p|²",
-            value: reach * reach,
-        }
-    });
-    global.into_iter().chain(objects).chain(lights)
+    global.into_iter().chain(objects)
 }
 
-/// The largest numerator of Cramer's rule and of Möller–Trumbore, with |s| = |o − a| ≤ R + |a|:
-/// det[s e1 e2] ≤ |s||e1||e2| and the cross products with s, ≤ |s|·|e|.
-pub(crate) fn triangle_numerators(world: f64, eye: Vec3<f64>, [a, b, c]: [Vec3<f64>; 3]) -> f64 {
+/// The farthest a point of a plane's surface is from its checkerboard's origin: the point
+/// within `origin` of the eye, the grid corner within a square's diagonal of the plane's
+/// point nearest the eye, which is within the world.
+fn checker_reach(origin: f64, world: f64, size: f64) -> f64 {
+    origin + world + core::f64::consts::SQRT_2 * size
+}
+
+/// The largest numerator of Cramer's rule and of Möller–Trumbore, with |s| = |o − a| at most
+/// `origin` + |a|: det[s e1 e2] ≤ |s||e1||e2|, the cross products with s at most |s|·|e|, and
+/// e1 × e2 at most |e1||e2|.
+pub(crate) fn triangle_numerators(origin: f64, eye: Vec3<f64>, [a, b, c]: [Vec3<f64>; 3]) -> f64 {
     let (e1, e2) = ((b - a).length(), (c - a).length());
-    let s = world + (a - eye).length();
+    let s = origin + (a - eye).length();
     (s * e1 * e2).max(s * e1.max(e2)).max(e1 * e2)
 }
 
 fn triangle_magnitude(
     method: TriangleMethod,
-    world: f64,
+    origin: f64,
     eye: Vec3<f64>,
     corners: [Vec3<f64>; 3],
 ) -> (&'static str, f64) {
     match method {
         TriangleMethod::Cramer => (
             "Cramer's determinants",
-            triangle_numerators(world, eye, corners),
+            triangle_numerators(origin, eye, corners),
         ),
         TriangleMethod::MollerTrumbore => (
             "Möller–Trumbore's numerators",
-            triangle_numerators(world, eye, corners),
+            triangle_numerators(origin, eye, corners),
         ),
         TriangleMethod::Watertight => {
             // Sheared corners are at most √2·M from the origin (|Sx|, |Sy| ≤ 1), with M the
@@ -226,7 +349,7 @@ fn triangle_magnitude(
             // products of them, and the determinant the sum of three.
             let far = corners
                 .iter()
-                .map(|&p| world + (p - eye).length())
+                .map(|&p| origin + (p - eye).length())
                 .fold(0.0, f64::max);
             (
                 "the watertight edge functions and their sum",
@@ -272,21 +395,24 @@ pub fn features<'a>(
         .enumerate()
         .flat_map(move |(i, object)| {
             let item = Item::Object(i);
-            let feature = |quantity, value, terms| Feature {
+            let feature = |quantity, value, terms, remedy| Feature {
                 item,
                 quantity,
                 value,
                 terms,
                 steps: MIN_FEATURE_STEPS,
+                remedy,
             };
             // The surface tolerance is a dead zone in front of every surface: the eye must stand
-            // well clear of it, or the tolerance bends every ray it sends there.
-            let gap = clearance(desc, object);
+            // well clear of it, or the tolerance bends every ray it sends there. The surface's
+            // own coordinates, rounded at their size, place it only so precisely.
+            let gap = clearance(object, Vec3::from_f32(eye));
             let clearance = |value, reach, radius| {
                 feature(
                     "the eye's distance from its surface, against the surface tolerance",
                     value,
                     tolerance_terms(reach, radius),
+                    Remedy::MoveEye,
                 )
             };
             match object.shape {
@@ -301,6 +427,7 @@ pub fn features<'a>(
                             "radius² seen from across the world",
                             r * r,
                             discriminant_error(methods.sphere, r, world + from_eye),
+                            Remedy::LargerSphere,
                         )
                     };
                     [
@@ -308,29 +435,50 @@ pub fn features<'a>(
                             "radius² seen from the eye",
                             r * r,
                             discriminant_error(methods.sphere, r, from_eye),
+                            Remedy::LargerSphere,
                         )),
                         Some(across_world),
                         Some(feature(
                             "radius, against the surface tolerance",
                             r,
                             tolerance_terms(from_eye + r, Some(r)),
+                            Remedy::LargerSphere,
                         )),
                         Some(clearance(gap, from_eye + r, Some(r))),
                     ]
                 }
-                ShapeDesc::Plane { checker, .. } => [
-                    checker.map(|checker| {
+                ShapeDesc::Plane { checker, point, .. } => {
+                    let reach = gap.max(distance(point, eye));
+                    let checker = checker.map(|checker| {
                         let size = f64::from(checker.size);
-                        feature(
-                            "checker square size",
-                            size,
-                            [(1.0, world), (1.0, size), (0.0, 0.0), (0.0, 0.0)],
-                        )
-                    }),
-                    Some(clearance(gap, gap, None)),
-                    None,
-                    None,
-                ],
+                        // Counted in squares, a coordinate errs by the rounding of the axes
+                        // (each 1/size, rounded at its own size) over the checker's reach, and
+                        // by its own rounding: that must stay within a sixteenth of a square.
+                        let squares = checker_reach(world, world, size);
+                        [
+                            feature(
+                                "checker square size",
+                                size,
+                                [(1.0, world), (1.0, size), (0.0, 0.0), (0.0, 0.0)],
+                                Remedy::LargerSquares,
+                            ),
+                            feature(
+                                "one checker square, against the rounding of 1/size over the world",
+                                1.0,
+                                [
+                                    (3.0_f64.sqrt() * squares, 1.0 / size),
+                                    (1.0, squares / size),
+                                    (0.0, 0.0),
+                                    (0.0, 0.0),
+                                ],
+                                Remedy::LargerSquares,
+                            ),
+                        ]
+                    });
+                    let [square, reciprocal] =
+                        checker.map_or([None, None], |[a, b]| [Some(a), Some(b)]);
+                    [square, reciprocal, Some(clearance(gap, reach, None)), None]
+                }
                 ShapeDesc::Triangle { vertices } => {
                     // The tests' determinants are twice the area seen along the ray; their
                     // numerators err by the rounding of the unit direction times |s|·|e|, with s the
@@ -340,14 +488,31 @@ pub fn features<'a>(
                     let s = world + distance(vertices[0], eye);
                     let longest = e1.length().max(e2.length());
                     let area = e1.cross(e2).length();
+                    let reach = vertices
+                        .iter()
+                        .map(|&v| distance(v, eye))
+                        .fold(gap, f64::max);
+                    // Möller–Trumbore multiplies by 1/det, rounded at its size: the barycentric
+                    // coordinates err by its relative rounding, which must stay within a
+                    // sixteenth of the triangle.
+                    let reciprocal =
+                        (methods.triangle == TriangleMethod::MollerTrumbore).then(|| {
+                            feature(
+                                "Möller–Trumbore's 1/det, against its rounding",
+                                1.0 / area,
+                                [(1.0, 1.0 / area), (0.0, 0.0), (0.0, 0.0), (0.0, 0.0)],
+                                Remedy::SmallerTriangle,
+                            )
+                        });
                     [
                         Some(feature(
                             "twice the triangle's area",
                             area,
                             [(s * longest, 1.0), (1.0, area), (0.0, 0.0), (0.0, 0.0)],
+                            Remedy::FatterTriangle,
                         )),
-                        Some(clearance(gap, gap, None)),
-                        None,
+                        reciprocal,
+                        Some(clearance(gap, reach, None)),
                         None,
                     ]
                 }
@@ -355,12 +520,13 @@ pub fn features<'a>(
             .into_iter()
             .flatten()
         });
-    // A light multiplies the rounding of a cosine (Lambert's, a highlight's) by its intensity:
-    // that must stay below one level of a display channel.
-    let lights = desc.lights.iter().enumerate().map(move |(i, light)| {
+    let lights = desc.lights.iter().enumerate().flat_map(move |(i, light)| {
+        let item = Item::Light(i);
         let intensity = light.colour.iter().copied().fold(0.0_f32, f32::max);
-        Feature {
-            item: Item::Light(i),
+        // A light multiplies the rounding of a cosine (Lambert's, a highlight's) by its
+        // intensity: that must stay below one level of a display channel.
+        let level = Feature {
+            item,
             quantity: "one display level against the light's intensity times a rounded cosine",
             value: LEVEL,
             terms: [
@@ -370,7 +536,27 @@ pub fn features<'a>(
                 (0.0, 0.0),
             ],
             steps: 1.0,
-        }
+            remedy: Remedy::DimLight,
+        };
+        // A shadow ray starts a tolerance off its surface and looks for occluders between
+        // there and the light: a light within the tolerance of a surface is on the wrong side
+        // of where its rays start.
+        let position = Vec3::from_f32(light.position);
+        let nearest = desc
+            .objects
+            .iter()
+            .map(|object| clearance(object, position))
+            .fold(f64::INFINITY, f64::min);
+        let reach = distance(light.position, eye);
+        let clear = nearest.is_finite().then(|| Feature {
+            item,
+            quantity: "its distance from the nearest surface, against the surface tolerance",
+            value: nearest,
+            terms: tolerance_terms(reach, None),
+            steps: MIN_FEATURE_STEPS,
+            remedy: Remedy::MoveLight,
+        });
+        [Some(level), clear].into_iter().flatten()
     });
     objects.chain(lights)
 }
@@ -398,41 +584,139 @@ fn discriminant_error(method: SphereMethod, r: f64, f: f64) -> Terms {
     }
 }
 
-/// Proves that format `S` holds the scene for `methods`, or says which value does not fit.
-pub(super) fn check<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods) -> Result<(), SceneError> {
-    if let Some(m) = magnitudes(desc, methods).find(|m| m.value * RANGE_HEADROOM > S::RANGE) {
-        return Err(SceneError::OutOfRange {
-            item: m.item,
-            quantity: m.quantity,
-            value: m.value,
-            format: S::NAME,
-            range: S::RANGE,
-        });
+/// The camera's bound and feature for an image of `width × height` pixels whose image plane,
+/// one unit ahead, reaches `half_width` and `half_height` from its centre: the corner of the
+/// image plane, and the angle between neighbouring pixels there, where the plane is seen most
+/// obliquely (the pitch over |s|²), against the rounding of a direction (its unit vector, and
+/// the image-plane point rounded at its size).
+#[must_use]
+pub fn camera(half_width: f64, half_height: f64, width: u32, height: u32) -> (Magnitude, Feature) {
+    let corner = (1.0 + half_width * half_width + half_height * half_height).sqrt();
+    let pitch = (2.0 * half_width / f64::from(width)).min(2.0 * half_height / f64::from(height));
+    // A field of view so wide that its corner is more than twice as far as its centre crams
+    // the corner's pixels together; otherwise the pixels are simply too many or too narrow.
+    let remedy = if corner > 2.0 {
+        Remedy::NarrowerView
+    } else {
+        Remedy::WiderView
+    };
+    let magnitude = Magnitude {
+        item: Item::Camera,
+        quantity: "a corner of the image plane, one unit ahead",
+        value: corner,
+        remedy: Remedy::NarrowerView,
+    };
+    let feature = Feature {
+        item: Item::Camera,
+        quantity: "the angle between neighbouring pixels at the image's corner",
+        value: pitch / (corner * corner),
+        terms: [(1.0, 1.0), (1.0 / corner, corner), (0.0, 0.0), (0.0, 0.0)],
+        steps: MIN_PIXEL_STEPS,
+        remedy,
+    };
+    (magnitude, feature)
+}
+
+/// Proves that format `S` aims the rays of an image of `width × height` pixels (see
+/// [`camera`]), or says why not.
+pub(super) fn check_camera<S: Scalar>(
+    half_width: f64,
+    half_height: f64,
+    width: u32,
+    height: u32,
+) -> Result<(), SceneError> {
+    let (m, f) = camera(half_width, half_height, width, height);
+    if !fits(m.value, S::RANGE) {
+        return Err(out_of_range::<S>(&m));
     }
-    if let Some(f) = features(desc, methods).find(|f| f.value < f.minimum::<S>()) {
-        return Err(SceneError::BelowResolution {
-            item: f.item,
-            quantity: f.quantity,
-            value: f.value,
-            format: S::NAME,
-            minimum: f.minimum::<S>(),
-        });
+    if f.value < f.minimum::<S>() {
+        return Err(below_resolution::<S>(&f, None));
     }
     Ok(())
 }
 
-/// How far the eye is from the nearest point of `object`'s surface.
+/// The refusal of magnitude `m` in format `S`.
+fn out_of_range<S: Scalar>(m: &Magnitude) -> SceneError {
+    SceneError::OutOfRange {
+        item: m.item,
+        quantity: m.quantity,
+        value: m.value,
+        format: S::NAME,
+        range: S::RANGE,
+        remedy: m.remedy,
+        holds: FormatSet::of(|format| fits(m.value, format.range)),
+    }
+}
+
+/// The refusal of feature `f` in format `S`, naming a `method` that resolves it if one does.
+fn below_resolution<S: Scalar>(
+    f: &Feature,
+    method: Option<(&'static str, &'static str)>,
+) -> SceneError {
+    SceneError::BelowResolution {
+        item: f.item,
+        quantity: f.quantity,
+        value: f.value,
+        format: S::NAME,
+        minimum: f.minimum::<S>(),
+        remedy: f.remedy,
+        holds: FormatSet::of(|format| f.value >= f.minimum_with(format.resolution)),
+        method,
+    }
+}
+
+/// Proves that format `S` holds the scene for `methods`, or says which value does not fit, the
+/// formats that would hold it, and a method that would where one does.
+pub(super) fn check<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods) -> Result<(), SceneError> {
+    let slack = origin_slack(desc, methods, S::resolution, S::FAST_ROOTS);
+    if let Some(m) = magnitudes(desc, methods, slack).find(|m| !fits(m.value, S::RANGE)) {
+        return Err(out_of_range::<S>(&m));
+    }
+    if let Some(f) = unresolved::<S>(desc, methods) {
+        let method = methods
+            .variants()
+            .into_iter()
+            .filter(|other| other != methods)
+            .find(|other| {
+                check_magnitudes::<S>(desc, other) && unresolved::<S>(desc, other).is_none()
+            })
+            .and_then(|other| other.changed_from(methods));
+        return Err(below_resolution::<S>(&f, method));
+    }
+    Ok(())
+}
+
+/// Whether every magnitude fits format `S` by `methods`.
+fn check_magnitudes<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods) -> bool {
+    let slack = origin_slack(desc, methods, S::resolution, S::FAST_ROOTS);
+    magnitudes(desc, methods, slack).all(|m| fits(m.value, S::RANGE))
+}
+
+/// The first feature format `S` cannot resolve by `methods`.
+fn unresolved<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods) -> Option<Feature> {
+    features(desc, methods).find(|f| f.value < f.minimum::<S>())
+}
+
+/// Whether `value`, with [`RANGE_HEADROOM`], fits a format of this `range`.
+pub(super) fn fits(value: f64, range: f64) -> bool {
+    value * RANGE_HEADROOM <= range
+}
+
+/// How far `point` is from the nearest point of `object`'s surface.
 #[must_use]
-pub fn clearance(desc: &SceneDesc<'_>, object: &ObjectDesc) -> f64 {
-    let eye = Vec3::from_f32(desc.camera.eye);
+pub fn clearance(object: &ObjectDesc, point: Vec3<f64>) -> f64 {
     match object.shape {
         ShapeDesc::Sphere { center, radius } => {
-            ((Vec3::from_f32(center) - eye).length() - f64::from(radius)).abs()
+            ((Vec3::from_f32(center) - point).length() - f64::from(radius)).abs()
         }
-        ShapeDesc::Plane { point, normal, .. } => Vec3::from_f32(normal)
+        ShapeDesc::Plane {
+            point: on, normal, ..
+        } => Vec3::from_f32(normal)
             .direction()
-            .map_or(0.0, |n| n.dot(eye - Vec3::from_f32(point)).abs()),
-        ShapeDesc::Triangle { vertices } => distance_to_triangle(eye, vertices.map(Vec3::from_f32)),
+            .map_or(0.0, |n| n.dot(point - Vec3::from_f32(on)).abs()),
+        ShapeDesc::Triangle { vertices } => {
+            distance_to_triangle(point, vertices.map(Vec3::from_f32))
+        }
     }
 }
 
@@ -463,6 +747,24 @@ fn distance_to_triangle(p: Vec3<f64>, [a, b, c]: [Vec3<f64>; 3]) -> f64 {
     (p - nearest).length()
 }
 
+impl Methods {
+    /// The one method in which `self` differs from `base`, as (question, name), e.g.
+    /// `("sphere", "stable")`; `None` when they differ in none or in more than one.
+    #[must_use]
+    pub fn changed_from(&self, base: &Self) -> Option<(&'static str, &'static str)> {
+        let changes = [
+            (self.sphere != base.sphere).then(|| ("sphere", self.sphere.name())),
+            (self.triangle != base.triangle).then(|| ("triangle", self.triangle.name())),
+            (self.roots != base.roots).then(|| ("sqrt", self.roots.name())),
+            (self.rays != base.rays).then(|| ("rays", self.rays.name())),
+            (self.bias != base.bias).then(|| ("bias", self.bias.name())),
+        ];
+        let mut changed = changes.into_iter().flatten();
+        let first = changed.next()?;
+        changed.next().is_none().then_some(first)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -486,5 +788,23 @@ mod tests {
             let got = distance_to_triangle(p, corners);
             assert!((got - want).abs() < 1e-12, "{p:?}: {got} ≠ {want}");
         }
+    }
+
+    #[test]
+    fn a_change_of_one_method_is_named() {
+        let stable = Methods {
+            sphere: SphereMethod::Stable,
+            ..Methods::LECTURE
+        };
+        assert_eq!(
+            stable.changed_from(&Methods::LECTURE),
+            Some(("sphere", "stable"))
+        );
+        assert_eq!(Methods::LECTURE.changed_from(&Methods::LECTURE), None);
+        let two = Methods {
+            triangle: TriangleMethod::Watertight,
+            ..stable
+        };
+        assert_eq!(two.changed_from(&Methods::LECTURE), None);
     }
 }

@@ -7,13 +7,38 @@ mod triangle;
 
 pub use plane::{Checker, Plane};
 pub use sphere::Sphere;
-pub use triangle::{PerRay, Triangle, TriangleHit};
+pub use triangle::{PerRay, Triangle};
 
 use crate::color::Rgb;
 use crate::methods::{Methods, RootMethod};
 use crate::ray::{Ray, Span};
 use crate::scalar::Scalar;
 use crate::vec3::Vec3;
+
+/// Where a ray meets a shape: the distance along it, and on a triangle the barycentric
+/// coordinates of the point, a + u·e1 + v·e2 = (1 − u − v)·a + u·b + v·c (zero on the others).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Intersection<S> {
+    /// The distance along the ray.
+    pub t: S,
+    /// The weight of a triangle's second vertex.
+    pub u: S,
+    /// The weight of a triangle's third vertex.
+    pub v: S,
+}
+
+impl<S: Scalar> Intersection<S> {
+    /// A hit at distance `t` on a sphere or a plane.
+    #[inline]
+    #[must_use]
+    pub const fn at(t: S) -> Self {
+        Self {
+            t,
+            u: S::ZERO,
+            v: S::ZERO,
+        }
+    }
+}
 
 /// Any primitive.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -27,8 +52,8 @@ pub enum Shape<S> {
 }
 
 impl<S: Scalar> Shape<S> {
-    /// The nearest distance in `span` at which `ray` meets the shape; `per_ray` carries what
-    /// the tests of this ray against several shapes share.
+    /// The nearest point in `span` at which `ray` meets the shape; `per_ray` carries what the
+    /// tests of this ray against several shapes share.
     #[inline(always)]
     #[must_use]
     pub fn intersect(
@@ -37,13 +62,17 @@ impl<S: Scalar> Shape<S> {
         span: Span<S>,
         methods: &Methods,
         per_ray: &mut PerRay<S>,
-    ) -> Option<S> {
+    ) -> Option<Intersection<S>> {
         match self {
-            Self::Sphere(sphere) => sphere.intersect(ray, span, methods.sphere, methods.roots),
-            Self::Plane(plane) => plane.intersect(ray, span, methods.roots),
-            Self::Triangle(triangle) => triangle
-                .intersect_sharing(ray, span, methods.triangle, methods.roots, per_ray)
-                .map(|hit| hit.t),
+            Self::Sphere(sphere) => sphere
+                .intersect(ray, span, methods.sphere, methods.roots)
+                .map(Intersection::at),
+            Self::Plane(plane) => plane
+                .intersect(ray, span, methods.roots)
+                .map(Intersection::at),
+            Self::Triangle(triangle) => {
+                triangle.intersect_sharing(ray, span, methods.triangle, methods.roots, per_ray)
+            }
         }
     }
 
@@ -58,23 +87,31 @@ impl<S: Scalar> Shape<S> {
         span: Span<S>,
         methods: &Methods,
         into: bool,
-    ) -> Option<S> {
+    ) -> Option<Intersection<S>> {
         match self {
-            Self::Sphere(sphere) if into => sphere.exit(ray, span, methods.sphere, methods.roots),
+            Self::Sphere(sphere) if into => sphere
+                .exit(ray, span, methods.sphere, methods.roots)
+                .map(Intersection::at),
             Self::Sphere(_) | Self::Plane(_) | Self::Triangle(_) => None,
         }
     }
 
-    /// The surface point nearest a computed hit point, and the unit normal there (outward for
-    /// a sphere). Secondary rays start from the surface itself, not from wherever the rounding
-    /// of o + t·d put the hit.
+    /// The surface point of a hit of `ray`, and the unit normal there (outward for a sphere).
+    /// Secondary rays start from the surface itself, not from wherever the rounding of o + t·d
+    /// put the hit: on a sphere the point nearest it, on a plane its projection, on a triangle
+    /// the point of its barycentric coordinates.
     #[inline]
     #[must_use]
-    pub fn surface(&self, point: Vec3<S>, roots: RootMethod) -> (Vec3<S>, Vec3<S>) {
+    pub fn surface(
+        &self,
+        ray: &Ray<S>,
+        hit: &Intersection<S>,
+        roots: RootMethod,
+    ) -> (Vec3<S>, Vec3<S>) {
         match self {
-            Self::Sphere(sphere) => sphere.surface(point, roots),
-            Self::Plane(plane) => (plane.project(point), plane.normal()),
-            Self::Triangle(triangle) => (triangle.project(point), triangle.normal()),
+            Self::Sphere(sphere) => sphere.surface(ray.at(hit.t), roots),
+            Self::Plane(plane) => (plane.project(ray.at(hit.t)), plane.normal()),
+            Self::Triangle(triangle) => (triangle.at(hit.u, hit.v), triangle.normal()),
         }
     }
 

@@ -1,6 +1,7 @@
 //! Ray–triangle intersection: Cramer's rule as in the lecture, Möller–Trumbore, or the
 //! watertight test of Woop, Benthin and Wald.
 
+use super::Intersection;
 use crate::methods::{RootMethod, TriangleMethod};
 use crate::ray::{Ray, Span};
 use crate::scalar::Scalar;
@@ -23,18 +24,6 @@ pub struct Triangle<S> {
     /// Möller–Trumbore treats a smaller |det| as parallel: below it, the products with
     /// 1/det would leave the format (the scene build derives it; for floats it is tiny).
     min_det: S,
-}
-
-/// Where a ray meets a triangle: the distance and the barycentric coordinates, so that the
-/// point is a + u·e1 + v·e2 = (1 − u − v)·a + u·b + v·c.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TriangleHit<S> {
-    /// The distance along the ray.
-    pub t: S,
-    /// The weight of the second vertex.
-    pub u: S,
-    /// The weight of the third vertex.
-    pub v: S,
 }
 
 /// det[a b c] = a · (b × c), the scalar triple product.
@@ -77,7 +66,7 @@ impl<S: Scalar> Triangle<S> {
         span: Span<S>,
         method: TriangleMethod,
         roots: RootMethod,
-    ) -> Option<TriangleHit<S>> {
+    ) -> Option<Intersection<S>> {
         self.intersect_sharing(ray, span, method, roots, &mut PerRay::new())
     }
 
@@ -92,7 +81,7 @@ impl<S: Scalar> Triangle<S> {
         method: TriangleMethod,
         roots: RootMethod,
         per_ray: &mut PerRay<S>,
-    ) -> Option<TriangleHit<S>> {
+    ) -> Option<Intersection<S>> {
         match method {
             TriangleMethod::Cramer => self.cramer(ray, span, roots),
             TriangleMethod::MollerTrumbore => self.moller_trumbore(ray, span, roots),
@@ -106,7 +95,7 @@ impl<S: Scalar> Triangle<S> {
     /// A hit needs D ≠ 0 (the ray is not parallel to the triangle), t in the span, and
     /// u, v, u + v in [0, 1]. Each quotient is formed only once the ones before it passed.
     /// The quotients saturate for a nearly parallel ray, and a saturated one fails its test.
-    fn cramer(&self, ray: &Ray<S>, span: Span<S>, roots: RootMethod) -> Option<TriangleHit<S>> {
+    fn cramer(&self, ray: &Ray<S>, span: Span<S>, roots: RootMethod) -> Option<Intersection<S>> {
         let minus_d = -ray.dir;
         let det = minus_d.dot(self.e1_cross_e2);
         if det == S::ZERO {
@@ -122,7 +111,7 @@ impl<S: Scalar> Triangle<S> {
             return None;
         }
         let t = roots.div(s.dot(self.e1_cross_e2), det);
-        span.contains(t).then_some(TriangleHit { t, u, v })
+        span.contains(t).then_some(Intersection { t, u, v })
     }
 
     /// Möller and Trumbore (1997): with p = d × e2, det = e1·p, s = o − a and q = s × e1,
@@ -132,7 +121,7 @@ impl<S: Scalar> Triangle<S> {
         ray: &Ray<S>,
         span: Span<S>,
         roots: RootMethod,
-    ) -> Option<TriangleHit<S>> {
+    ) -> Option<Intersection<S>> {
         let p = ray.dir.cross(self.e2);
         let det = self.e1.dot(p);
         if det.abs() <= self.min_det || det == S::ZERO {
@@ -150,7 +139,7 @@ impl<S: Scalar> Triangle<S> {
             return None;
         }
         let t = self.e2.dot(q) * inverse;
-        span.contains(t).then_some(TriangleHit { t, u, v })
+        span.contains(t).then_some(Intersection { t, u, v })
     }
 
     /// Woop, Benthin and Wald (2013). The vertices are moved to the ray's origin and sheared so
@@ -165,7 +154,7 @@ impl<S: Scalar> Triangle<S> {
         span: Span<S>,
         roots: RootMethod,
         per_ray: &mut PerRay<S>,
-    ) -> Option<TriangleHit<S>> {
+    ) -> Option<Intersection<S>> {
         let shear = *per_ray.shear.get_or_insert_with(|| Shear::of(ray, roots));
         let [a, b, c] = self.vertices.map(|vertex| shear.apply(vertex - ray.origin));
         let (u_edge, u_sign) = S::diff_of_products(c[0], b[1], c[1], b[0]);
@@ -186,7 +175,7 @@ impl<S: Scalar> Triangle<S> {
         if !span.contains(t) {
             return None;
         }
-        Some(TriangleHit {
+        Some(Intersection {
             t,
             u: roots.div(v_edge, det),
             v: roots.div(w_edge, det),
@@ -200,11 +189,15 @@ impl<S: Scalar> Triangle<S> {
         self.normal
     }
 
-    /// The point of the triangle's plane nearest `point`.
+    /// The point with barycentric coordinates (u, v): a + u·e1 + v·e2. For a hit (u, v and
+    /// u + v in [0, 1]) it is a convex combination of the corners, so within the triangle
+    /// whatever the rounding of the distance along the ray.
     #[inline]
     #[must_use]
-    pub fn project(&self, point: Vec3<S>) -> Vec3<S> {
-        point.onto_plane(self.normal, self.offset)
+    pub fn at(&self, u: S, v: S) -> Vec3<S> {
+        self.vertices[0]
+            .add_scaled(self.e1, u)
+            .add_scaled(self.e2, v)
     }
 }
 
