@@ -21,6 +21,10 @@ pub struct Sample<S> {
     /// The index of the object the primary ray hit first, if any: comparing it between formats
     /// separates geometric error from shading error.
     pub object: Option<usize>,
+    /// The objects any ray of the tree met, a bit each (objects 64 and beyond share bit 63):
+    /// those hit by the primary and secondary rays, and those that cast a shadow on them.
+    /// What an object's error can change in this pixel is limited to these.
+    pub met: u64,
 }
 
 /// A ray waiting on the stack, with the share of the pixel it contributes.
@@ -96,6 +100,7 @@ impl<S: Scalar> Tracer<'_, S> {
     fn trace(&self, primary: Ray<S>, stack: &mut VecView<Task<S>>) -> Sample<S> {
         let mut colour = Rgb::BLACK;
         let mut object = None;
+        let mut met = 0;
         push(
             stack,
             Task {
@@ -113,9 +118,14 @@ impl<S: Scalar> Tracer<'_, S> {
             if task.depth == 0 {
                 object = Some(hit.index);
             }
-            colour = colour + task.weight * self.shade(&task, &hit, stack);
+            met |= bit(hit.index);
+            colour = colour + task.weight * self.shade(&task, &hit, stack, &mut met);
         }
-        Sample { colour, object }
+        Sample {
+            colour,
+            object,
+            met,
+        }
     }
 
     /// The span a ray leaving `from` searches: beyond the surface's tolerance for the epsilon
@@ -178,8 +188,15 @@ impl<S: Scalar> Tracer<'_, S> {
         nearest
     }
 
-    /// The local colour at a hit, pushing its reflected and transmitted rays.
-    fn shade(&self, task: &Task<S>, hit: &Hit<'_, S>, stack: &mut VecView<Task<S>>) -> Rgb<S> {
+    /// The local colour at a hit, pushing its reflected and transmitted rays, and adding the
+    /// objects that shadow it to `met`.
+    fn shade(
+        &self,
+        task: &Task<S>,
+        hit: &Hit<'_, S>,
+        stack: &mut VecView<Task<S>>,
+        met: &mut u64,
+    ) -> Rgb<S> {
         let material = &hit.object.material;
         let shape = &hit.object.shape;
         let roots = self.settings.methods.roots;
@@ -221,7 +238,7 @@ impl<S: Scalar> Tracer<'_, S> {
             if lambert <= S::ZERO {
                 continue;
             }
-            let shadow = self.transmittance(&Ray::new(above, l), distance, this_side);
+            let shadow = self.transmittance(&Ray::new(above, l), distance, this_side, met);
             if shadow == S::ZERO {
                 continue;
             }
@@ -307,8 +324,9 @@ impl<S: Scalar> Tracer<'_, S> {
     }
 
     /// How much light passes from `ray.origin` to a light `distance` away: 1 in the open, the
-    /// product of the occluders' transmissions, 0 behind an opaque object.
-    fn transmittance(&self, ray: &Ray<S>, distance: S, from: Leaving<S>) -> S {
+    /// product of the occluders' transmissions, 0 behind an opaque object. The occluders are
+    /// added to `met`.
+    fn transmittance(&self, ray: &Ray<S>, distance: S, from: Leaving<S>, met: &mut u64) -> S {
         let span = self.span(Some(from), distance);
         let mut passed = S::ONE;
         let mut per_ray = PerRay::new();
@@ -317,6 +335,7 @@ impl<S: Scalar> Tracer<'_, S> {
                 .meet(ray, span, index, object, Some(from), &mut per_ray)
                 .is_some()
             {
+                *met |= bit(index);
                 passed = passed * object.material.transmission;
                 if passed == S::ZERO {
                     break;
@@ -325,6 +344,12 @@ impl<S: Scalar> Tracer<'_, S> {
         }
         passed
     }
+}
+
+/// The bit of object `index` in [`Sample::met`].
+#[inline]
+fn bit(index: usize) -> u64 {
+    1 << index.min(63)
 }
 
 /// Pushes a task. It cannot fail: a task of depth k leaves at most one sibling per level on

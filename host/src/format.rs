@@ -78,18 +78,6 @@ impl Format {
         Self::F32,
     ];
 
-    /// Whether the format has fast approximate roots ([`obscura::Scalar::FAST_ROOTS`]).
-    pub fn has_fast_roots(self) -> bool {
-        struct Fast;
-        impl FormatJob for Fast {
-            type Output = bool;
-            fn run<S: Scalar>(self) -> bool {
-                S::FAST_ROOTS
-            }
-        }
-        self.run(Fast)
-    }
-
     /// Whether `methods` differ meaningfully from `base` in this format for a scene with or
     /// without triangles ([`obscura::Methods::matter`]).
     pub fn methods_matter(self, methods: &Methods, base: &Methods, has_triangles: bool) -> bool {

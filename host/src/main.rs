@@ -17,6 +17,7 @@ mod pareto;
 #[cfg(test)]
 mod peak;
 mod plot;
+mod quantized;
 mod render;
 mod scene_file;
 mod stress;

@@ -95,6 +95,8 @@ impl Scalar for Peak {
         f64::resolution(magnitude)
     }
 
+    const UNIT_ERROR: f64 = f64::UNIT_ERROR;
+
     fn sqrt(self) -> Self {
         Self(self.0.sqrt())
     }

@@ -206,6 +206,27 @@ impl<S: Scalar> Prepared<S> {
     }
 }
 
+impl<S: Scalar> Prepared<S> {
+    /// The objects each pixel's ray tree meets ([`obscura::Sample::met`]), row by row.
+    ///
+    /// # Errors
+    /// As [`Self::render`].
+    pub fn met_map(&self) -> Result<Vec<u64>> {
+        let mut met = Vec::new();
+        for y in 0..self.camera.height() {
+            let row = checked::catch(|| {
+                self.camera
+                    .row(y)
+                    .rays()
+                    .map(|ray| self.scene.trace(ray).met)
+                    .collect::<Vec<_>>()
+            });
+            met.extend(row.map_err(|overflowed| self.overflow_at(y, overflowed))?);
+        }
+        Ok(met)
+    }
+}
+
 /// A prepared render whose number format was chosen at run time.
 pub trait AnyFormat: Sync {
     /// See [`Prepared::render`].
@@ -214,6 +235,8 @@ pub trait AnyFormat: Sync {
     fn object_map(&self) -> Result<Vec<Option<usize>>>;
     /// See [`Prepared::rgb565_frame`].
     fn rgb565_frame(&self) -> Result<Vec<u16>>;
+    /// See [`Prepared::met_map`].
+    fn met_map(&self) -> Result<Vec<u64>>;
 }
 
 impl<S: Scalar> AnyFormat for Prepared<S> {
@@ -225,6 +248,9 @@ impl<S: Scalar> AnyFormat for Prepared<S> {
     }
     fn rgb565_frame(&self) -> Result<Vec<u16>> {
         Prepared::rgb565_frame(self)
+    }
+    fn met_map(&self) -> Result<Vec<u64>> {
+        Prepared::met_map(self)
     }
 }
 

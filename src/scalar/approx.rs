@@ -114,6 +114,8 @@ impl Scalar for F32Approx {
         ULPS * f32::resolution(magnitude)
     }
 
+    const UNIT_ERROR: f64 = ULPS * f32::UNIT_ERROR;
+
     #[inline]
     fn sqrt(self) -> Self {
         if self.0 > 0.0 {

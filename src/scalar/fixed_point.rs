@@ -140,6 +140,9 @@ pub trait WideBits: Copy + Ord {
     fn wide_diff_of_products(a: Self, b: Self, c: Self, d: Self) -> (Self::Wide, Ordering);
     /// Whether the fast roots below are approximations (true for the 32-bit formats).
     const FAST_ROOTS: bool;
+    /// The relative error of [`Self::normalize_raw`]'s roots, where they keep fewer bits than
+    /// the format has (0 where they are correctly rounded).
+    const ROOT_ERROR: f64;
     /// ⌊√(self · 2^frac)⌋ for `self` > 0: the square root of a fixed-point number with `frac`
     /// fraction bits, in raw units (it always fits); to about 15 bits when `fast` and the
     /// format has [`Self::FAST_ROOTS`].
@@ -158,10 +161,11 @@ pub trait WideBits: Copy + Ord {
 }
 
 macro_rules! wide_bits {
-    ($($bits:ident => $wide:ident, fast: $fast:literal, roots: $sqrt:path, $rsqrt:path, $normalize:path);*) => {$(
+    ($($bits:ident => $wide:ident, fast: $fast:literal, root_error: $root_error:expr, roots: $sqrt:path, $rsqrt:path, $normalize:path);*) => {$(
         impl WideBits for $bits {
             type Wide = $wide;
             const FAST_ROOTS: bool = $fast;
+            const ROOT_ERROR: f64 = $root_error;
             #[inline]
             fn wide_mul(self, rhs: Self) -> $wide {
                 <$wide>::from(self) * <$wide>::from(rhs)
@@ -216,8 +220,9 @@ macro_rules! wide_bits {
     )*};
 }
 wide_bits!(
-    i32 => i64, fast: true, roots: sqrt_raw_32, rsqrt_raw_32, normalize_raw_32;
-    i64 => i128, fast: false, roots: sqrt_raw_64, rsqrt_raw_64, normalize_raw_64
+    i32 => i64, fast: true, root_error: 0.0, roots: sqrt_raw_32, rsqrt_raw_32, normalize_raw_32;
+    // The root pair keeps about 30 bits, short of the 64-bit formats' fraction.
+    i64 => i128, fast: false, root_error: 1.0 / (1_u64 << 29) as f64, roots: sqrt_raw_64, rsqrt_raw_64, normalize_raw_64
 );
 
 /// The 32-bit formats' unit vectors. With y = Σvᵢ² exact in u64 (each below 2⁶², three below
@@ -452,6 +457,17 @@ where
     fn resolution(_magnitude: f64) -> f64 {
         F::DELTA.to_num::<f64>()
     }
+
+    /// Correctly rounded (half an LSB) where the roots have the format's bits, else the
+    /// roots' relative error.
+    const UNIT_ERROR: f64 = {
+        let lsb = 1.0 / (1_u64 << F::FRAC_NBITS) as f64;
+        if F::Bits::ROOT_ERROR > lsb {
+            F::Bits::ROOT_ERROR
+        } else {
+            lsb
+        }
+    };
 
     #[inline]
     fn rsqrt(self) -> Self {

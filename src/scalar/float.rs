@@ -82,6 +82,11 @@ macro_rules! float_scalar {
                 magnitude * f64::from($t::EPSILON)
             }
 
+            /// A unit vector is its vector times a correctly rounded reciprocal of a correctly
+            /// rounded root: about a unit in the last place.
+            #[allow(trivial_numeric_casts, reason = "the identity cast for f64")]
+            const UNIT_ERROR: f64 = $t::EPSILON as f64;
+
             #[inline]
             fn sqrt(self) -> Self {
                 if self > 0.0 { $sqrt(self) } else { 0.0 }

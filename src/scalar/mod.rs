@@ -75,6 +75,12 @@ pub trait Scalar:
     /// `magnitude` times the machine epsilon for a float. Tolerances are multiples of it.
     fn resolution(magnitude: f64) -> f64;
 
+    /// How far each coordinate of a unit vector from [`Scalar::normalize3`] may be off, with
+    /// exact roots: the resolution at 1 where the format's roots are correctly rounded, more
+    /// where its roots keep fewer bits than the format has. The error model's unit for every
+    /// direction (the fast roots add [`crate::scene::range::FAST_ROOT_ERROR`]).
+    const UNIT_ERROR: f64;
+
     /// The square root; zero for zero and for negative inputs.
     #[must_use]
     fn sqrt(self) -> Self;
@@ -208,6 +214,10 @@ pub struct FormatInfo {
     pub range: f64,
     /// [`Scalar::resolution`].
     pub resolution: fn(f64) -> f64,
+    /// [`Scalar::UNIT_ERROR`].
+    pub unit_error: f64,
+    /// [`Scalar::FAST_ROOTS`].
+    pub fast_roots: bool,
 }
 
 impl FormatInfo {
@@ -218,6 +228,8 @@ impl FormatInfo {
             name: S::NAME,
             range: S::RANGE,
             resolution: S::resolution,
+            unit_error: S::UNIT_ERROR,
+            fast_roots: S::FAST_ROOTS,
         }
     }
 }

@@ -53,6 +53,8 @@ pub enum Remedy {
     FatterTriangle,
     /// A triangle too large for Möller–Trumbore's reciprocal of its determinant.
     SmallerTriangle,
+    /// A triangle too small, or seen from too near, for its distance to resolve.
+    LargerTriangle,
     /// The eye too near a surface.
     MoveEye,
     /// A light too near a surface.
@@ -75,6 +77,7 @@ impl fmt::Display for Remedy {
             Self::LargerSphere => "make the sphere larger or bring it nearer the eye",
             Self::FatterTriangle => "move a corner away from the line through the other two",
             Self::SmallerTriangle => "split the triangle into smaller ones",
+            Self::LargerTriangle => "make the triangle larger or look at it from farther away",
             Self::MoveEye => "move the eye away from the surface",
             Self::MoveLight => "move the light away from the surface",
             Self::DimLight => "dim the light",

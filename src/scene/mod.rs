@@ -13,7 +13,7 @@ use crate::desc::{BackgroundDesc, CheckerDesc, MaterialDesc, SceneDesc, ShapeDes
 use crate::light::{Background, Light};
 use crate::material::Material;
 use crate::methods::{Methods, RootMethod};
-use crate::scalar::{FormatSet, Scalar};
+use crate::scalar::{FormatInfo, FormatSet, Scalar};
 use crate::shape::{Checker, Plane, Shape, Sphere, Triangle};
 use crate::vec3::Vec3;
 use core::marker::PhantomData;
@@ -113,7 +113,7 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
         Converter::<S> {
             eye,
             world: f64::from(desc.far),
-            slack: range::origin_slack(desc, &methods, S::resolution, S::FAST_ROOTS),
+            slack: range::origin_slack(desc, &methods, &FormatInfo::of::<S>()),
             _format: PhantomData,
         }
         .scene(desc, frame, methods)
@@ -225,9 +225,11 @@ impl<S: Scalar> Converter<S> {
             },
         };
         // The tolerance at the eye, and its growth per unit of a coordinate.
-        let [base, per_unit, ..] = range::tolerance_terms(1.0, None);
-        let (tolerance_base, tolerance_per_unit) =
-            (range::error::<S>(&[base]), range::error::<S>(&[per_unit]));
+        let (tolerance_base, tolerance_per_unit) = (
+            range::error::<S>(&range::tolerance_terms(0.0, None)),
+            range::error::<S>(&range::tolerance_terms(1.0, None))
+                - range::error::<S>(&range::tolerance_terms(0.0, None)),
+        );
         let settings = Settings {
             ambient: self.colour(Item::Scene, "ambient", desc.ambient)?,
             background,
@@ -343,9 +345,7 @@ impl<S: Scalar> Converter<S> {
     }
 
     /// The checkerboard's axes: the world axis least aligned with the normal, made
-    /// perpendicular to it (so a floor's squares follow x and z), and normal × that. Its origin
-    /// is the grid corner nearest the point of the plane closest to the eye, which keeps the
-    /// coordinates small without moving the squares.
+    /// perpendicular to it (so a floor's squares follow x and z), and normal × that.
     fn checker(
         &self,
         item: Item,
@@ -369,15 +369,24 @@ impl<S: Scalar> Converter<S> {
             })?;
         let v = n.cross(u);
         let size = f64::from(desc.size);
+        // The eye's foot on the plane, and its place on the grid of squares aligned to the
+        // plane's point, counted in squares: the pattern is measured from there, so that the
+        // coordinates it multiplies are of points within the world, however large the squares.
         let to_eye = self.eye - point;
-        let corner_u = libm::floor(to_eye.dot(u) / size) * size;
-        let corner_v = libm::floor(to_eye.dot(v) / size) * size;
-        let origin = point + u * corner_u + v * corner_v - self.eye;
+        let foot = point + u * to_eye.dot(u) + v * to_eye.dot(v);
+        let place = |axis: Vec3<f64>| {
+            let squares = to_eye.dot(axis) / size;
+            squares - libm::floor(squares)
+        };
         Ok(Checker {
             colour: self.colour(item, "checker colour", desc.colour)?,
-            origin: self.vector(item, "checker origin", origin)?,
+            origin: self.vector(item, "checker origin", foot - self.eye)?,
             u: self.vector(item, "checker axis", u * size.recip())?,
             v: self.vector(item, "checker axis", v * size.recip())?,
+            start: [
+                self.scalar(item, "the eye's place on the checker", place(u))?,
+                self.scalar(item, "the eye's place on the checker", place(v))?,
+            ],
         })
     }
 

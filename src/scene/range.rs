@@ -49,7 +49,7 @@ use super::error::{Item, Remedy, SceneError};
 use super::validate::distance;
 use crate::desc::{BackgroundDesc, ObjectDesc, SceneDesc, ShapeDesc};
 use crate::methods::{MethodName, Methods, RootMethod, SphereMethod, TriangleMethod};
-use crate::scalar::{FormatSet, Scalar};
+use crate::scalar::{FormatInfo, FormatSet, Scalar};
 use crate::vec3::Vec3;
 
 /// A feature must span this many steps of the error its computation makes, or rounding would
@@ -111,32 +111,109 @@ impl Feature {
     /// The smallest value format `S` resolves here: `steps` of its errors.
     #[must_use]
     pub fn minimum<S: Scalar>(&self) -> f64 {
-        self.minimum_with(S::resolution)
+        self.minimum_with(&FormatInfo::of::<S>())
     }
 
-    /// The smallest value a format of this `resolution` resolves here.
+    /// The smallest value `format` resolves here.
     #[must_use]
-    pub fn minimum_with(&self, resolution: fn(f64) -> f64) -> f64 {
-        self.steps * error_with(&self.terms, resolution)
+    pub fn minimum_with(&self, format: &FormatInfo) -> f64 {
+        self.steps * error_with(&self.terms, format)
     }
 }
 
-/// An error as a sum of terms, each (coefficient, magnitude): the coefficient times the
-/// format's resolution at the magnitude. Unused terms are (0, 0).
-pub type Terms = [(f64, f64); 4];
+/// What one term of an error is a multiple of.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Scale {
+    /// The format's resolution at this magnitude ([`Scalar::resolution`]): the rounding of a
+    /// number that large.
+    At(f64),
+    /// The error of a unit vector's coordinates ([`Scalar::UNIT_ERROR`]): a direction's
+    /// rounding, and a cosine's.
+    Unit,
+}
+
+/// An error as a sum of terms, each a coefficient times a [`Scale`] of the format's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Terms {
+    terms: [(f64, Scale); Terms::CAPACITY],
+    len: usize,
+}
+
+impl Terms {
+    /// The most terms an error has here.
+    const CAPACITY: usize = 8;
+
+    /// The error of these terms, each (coefficient, magnitude) a multiple of the resolution at
+    /// the magnitude (at most [`Self::CAPACITY`] in all; more are a bug, and dropped).
+    #[must_use]
+    pub fn new(terms: &[(f64, f64)]) -> Self {
+        let mut all = Self {
+            terms: [(0.0, Scale::Unit); Self::CAPACITY],
+            len: 0,
+        };
+        for &(coefficient, magnitude) in terms {
+            all.push((coefficient, Scale::At(magnitude)));
+        }
+        all
+    }
+
+    /// This error plus `coefficient` unit vector errors.
+    #[must_use]
+    pub fn units(mut self, coefficient: f64) -> Self {
+        self.push((coefficient, Scale::Unit));
+        self
+    }
+
+    fn push(&mut self, term: (f64, Scale)) {
+        debug_assert!(self.len < Self::CAPACITY, "an error of too many terms");
+        if let Some(slot) = self.terms.get_mut(self.len) {
+            *slot = term;
+            self.len += 1;
+        }
+    }
+
+    /// This error and `other` together.
+    #[must_use]
+    pub fn plus(mut self, other: Self) -> Self {
+        for term in other.iter() {
+            self.push(term);
+        }
+        self
+    }
+
+    /// This error times `factor`.
+    #[must_use]
+    pub fn times(mut self, factor: f64) -> Self {
+        for (coefficient, _) in &mut self.terms {
+            *coefficient *= factor;
+        }
+        self
+    }
+
+    /// The terms, as (coefficient, scale).
+    pub fn iter(&self) -> impl Iterator<Item = (f64, Scale)> + '_ {
+        self.terms.iter().take(self.len).copied()
+    }
+}
 
 /// The size of the error `terms` describe in format `S`.
 #[must_use]
-pub fn error<S: Scalar>(terms: &[(f64, f64)]) -> f64 {
-    error_with(terms, S::resolution)
+pub fn error<S: Scalar>(terms: &Terms) -> f64 {
+    error_with(terms, &FormatInfo::of::<S>())
 }
 
-/// The size of the error `terms` describe in a format of this `resolution`.
+/// The size of the error `terms` describe in `format`.
 #[must_use]
-pub fn error_with(terms: &[(f64, f64)], resolution: fn(f64) -> f64) -> f64 {
+pub fn error_with(terms: &Terms, format: &FormatInfo) -> f64 {
     terms
         .iter()
-        .map(|&(coefficient, magnitude)| coefficient * resolution(magnitude))
+        .map(|(coefficient, scale)| {
+            coefficient
+                * match scale {
+                    Scale::At(magnitude) => (format.resolution)(magnitude),
+                    Scale::Unit => format.unit_error,
+                }
+        })
         .sum()
 }
 
@@ -144,24 +221,18 @@ pub fn error_with(terms: &[(f64, f64)], resolution: fn(f64) -> f64) -> f64 {
 /// coordinate is at most `reach` (relative to the eye), on a sphere of `radius` or a sheet.
 #[must_use]
 pub fn tolerance_terms(reach: f64, radius: Option<f64>) -> Terms {
-    let [own, own_small] = radius.map_or([(0.0, 0.0); 2], own_tolerance_terms);
-    [
-        (SURFACE_TOLERANCE_STEPS, 0.0),
-        (SURFACE_TOLERANCE_STEPS * reach, 1.0),
-        own,
-        own_small,
-    ]
+    let sheet =
+        Terms::new(&[(SURFACE_TOLERANCE_STEPS, 0.0)]).units(SURFACE_TOLERANCE_STEPS * reach);
+    radius.map_or(sheet, |r| sheet.plus(own_tolerance_terms(r)))
 }
 
 /// A sphere's own part of the surface tolerance ([`super::Object::tolerance`]): the rounding
 /// of a point `radius` from its centre, and the error of the root its test finds for a ray
 /// that starts on it, c/2r with c rounded at r².
 #[must_use]
-pub fn own_tolerance_terms(radius: f64) -> [(f64, f64); 2] {
-    [
-        (SURFACE_TOLERANCE_STEPS * radius, 1.0),
-        (SURFACE_TOLERANCE_STEPS / radius, radius * radius),
-    ]
+pub fn own_tolerance_terms(radius: f64) -> Terms {
+    Terms::new(&[(SURFACE_TOLERANCE_STEPS / radius, radius * radius)])
+        .units(SURFACE_TOLERANCE_STEPS * radius)
 }
 
 /// The error in |d|² of a unit direction, in resolutions at 1: each coordinate is rounded.
@@ -173,16 +244,11 @@ const LEVEL: f64 = 1.0 / 255.0;
 /// The largest component of a mirror direction d + 2(cos θ)·n of unit d and n.
 const MIRROR: f64 = 3.0;
 
-/// How far beyond the world's radius a ray can start, in a format of this `resolution`
-/// (see the module documentation): the largest surface tolerance, the rounding of a surface
+/// How far beyond the world's radius a ray can start in `format` (see the module
+/// documentation): the largest surface tolerance, the rounding of a surface
 /// point, and with fast roots the error of the quotient that places a plane's hit.
 #[must_use]
-pub fn origin_slack(
-    desc: &SceneDesc<'_>,
-    methods: &Methods,
-    resolution: fn(f64) -> f64,
-    fast_roots: bool,
-) -> f64 {
+pub fn origin_slack(desc: &SceneDesc<'_>, methods: &Methods, format: &FormatInfo) -> f64 {
     let world = f64::from(desc.far);
     let smallest_radius = desc
         .objects
@@ -196,13 +262,13 @@ pub fn origin_slack(
         });
     // The own tolerance is largest for the smallest sphere, its rounding for the largest; both
     // terms are bounded by taking each at its worst.
-    let tolerance = error_with(&tolerance_terms(world, None), resolution)
+    let tolerance = error_with(&tolerance_terms(world, None), format)
         + smallest_radius.map_or(0.0, |r| {
-            error_with(&own_tolerance_terms(r), resolution)
-                + SURFACE_TOLERANCE_STEPS * world * resolution(1.0)
+            error_with(&own_tolerance_terms(r), format)
+                + SURFACE_TOLERANCE_STEPS * world * format.unit_error
         });
-    let rounding = SURFACE_TOLERANCE_STEPS * resolution(3.0 * world);
-    let quotient = if fast_roots && methods.roots == RootMethod::Approx {
+    let rounding = SURFACE_TOLERANCE_STEPS * (format.resolution)(3.0 * world);
+    let quotient = if format.fast_roots && methods.roots == RootMethod::Approx {
         2.0 * world * FAST_ROOT_ERROR
     } else {
         0.0
@@ -280,7 +346,7 @@ pub fn magnitudes<'a>(
                         let size = f64::from(checker.size);
                         (
                             "a checker coordinate",
-                            checker_reach(origin, world, size) / size,
+                            checker_reach(origin, world) / size + 1.0,
                             Remedy::LargerSquares,
                         )
                     }),
@@ -313,10 +379,9 @@ pub fn magnitudes<'a>(
 }
 
 /// The farthest a point of a plane's surface is from its checkerboard's origin: the point
-/// within `origin` of the eye, the grid corner within a square's diagonal of the plane's
-/// point nearest the eye, which is within the world.
-fn checker_reach(origin: f64, world: f64, size: f64) -> f64 {
-    origin + world + core::f64::consts::SQRT_2 * size
+/// within `origin` of the eye, the origin (the eye's foot on the plane) within the world.
+fn checker_reach(origin: f64, world: f64) -> f64 {
+    origin + world
 }
 
 /// The largest numerator of Cramer's rule and of Möller–Trumbore, with |s| = |o − a| at most
@@ -379,6 +444,45 @@ fn colour_sum(desc: &SceneDesc<'_>) -> f64 {
     (f64::from(desc.max_depth) + 1.0) * local.max(background)
 }
 
+/// The error with which a ray from `from` away finds the surface of `object` by `methods`:
+/// the surface tolerance there, and the error of the distance along the ray its test finds —
+/// for a sphere the discriminant's error over 2r, for a triangle its determinant's error
+/// relative to the determinant (from its stored edges' rounding, and for Möller–Trumbore the
+/// rounding of 1/det), times the way the ray has come. A point (the eye, a light) nearer the
+/// surface than this is on either side of it at random.
+fn locating(object: &ObjectDesc, methods: &Methods, from: f64) -> Terms {
+    match object.shape {
+        ShapeDesc::Sphere { radius, .. } => {
+            let r = f64::from(radius);
+            tolerance_terms(from, Some(r))
+                .plus(discriminant_error(methods.sphere, r, from + r).times(0.5 / r))
+        }
+        ShapeDesc::Plane { .. } => tolerance_terms(from, None),
+        ShapeDesc::Triangle { vertices } => {
+            let [a, b, c] = vertices.map(Vec3::from_f32);
+            let (e1, e2) = (b - a, c - a);
+            let longest = e1.length().max(e2.length());
+            let area = e1.cross(e2).length();
+            let determinant = area_error(from + longest, longest, area).times(from / area);
+            let reciprocal = if methods.triangle == TriangleMethod::MollerTrumbore {
+                Terms::new(&[(from * area, 1.0 / area)])
+            } else {
+                Terms::new(&[])
+            };
+            tolerance_terms(from, None)
+                .plus(determinant)
+                .plus(reciprocal)
+        }
+    }
+}
+
+/// The error of a triangle's determinant (twice its area seen along a ray) for a ray `s` from
+/// its corner: the rounding of the unit direction times |s|·|e| with e the longest edge, and
+/// the area's own rounding.
+fn area_error(s: f64, longest: f64, area: f64) -> Terms {
+    Terms::new(&[(1.0, area)]).units(s * longest)
+}
+
 /// Every feature the scene's computations by `methods` must resolve, object by object and then
 /// light by light. A sphere's or a triangle's first feature is its intersection test's (for a
 /// sphere, as seen from the eye), whose error is the band around its edge where a ray may be
@@ -407,11 +511,12 @@ pub fn features<'a>(
             // well clear of it, or the tolerance bends every ray it sends there. The surface's
             // own coordinates, rounded at their size, place it only so precisely.
             let gap = clearance(object, Vec3::from_f32(eye));
-            let clearance = |value, reach, radius| {
+            let clearance = |value, reach: f64, _radius: Option<f64>| {
                 feature(
-                    "the eye's distance from its surface, against the surface tolerance",
+                    "the eye's distance from its surface, against the error with which a ray \
+                     from the eye finds the surface",
                     value,
-                    tolerance_terms(reach, radius),
+                    locating(object, methods, reach),
                     Remedy::MoveEye,
                 )
             };
@@ -454,23 +559,21 @@ pub fn features<'a>(
                         // Counted in squares, a coordinate errs by the rounding of the axes
                         // (each 1/size, rounded at its own size) over the checker's reach, and
                         // by its own rounding: that must stay within a sixteenth of a square.
-                        let squares = checker_reach(world, world, size);
+                        let reach = checker_reach(world, world);
                         [
                             feature(
                                 "checker square size",
                                 size,
-                                [(1.0, world), (1.0, size), (0.0, 0.0), (0.0, 0.0)],
+                                Terms::new(&[(1.0, world), (1.0, size)]),
                                 Remedy::LargerSquares,
                             ),
                             feature(
                                 "one checker square, against the rounding of 1/size over the world",
                                 1.0,
-                                [
-                                    (3.0_f64.sqrt() * squares, 1.0 / size),
-                                    (1.0, squares / size),
-                                    (0.0, 0.0),
-                                    (0.0, 0.0),
-                                ],
+                                Terms::new(&[
+                                    (3.0_f64.sqrt() * reach, 1.0 / size),
+                                    (1.0, reach / size + 1.0),
+                                ]),
                                 Remedy::LargerSquares,
                             ),
                         ]
@@ -500,20 +603,32 @@ pub fn features<'a>(
                             feature(
                                 "Möller–Trumbore's 1/det, against its rounding",
                                 1.0 / area,
-                                [(1.0, 1.0 / area), (0.0, 0.0), (0.0, 0.0), (0.0, 0.0)],
+                                Terms::new(&[(1.0, 1.0 / area)]),
                                 Remedy::SmallerTriangle,
                             )
                         });
+                    // Cramer's rule and Möller–Trumbore find t as a triple product (t·det, a
+                    // length times twice an area) over det: for a hit as near as the eye is, the
+                    // product must resolve against its rounding (the stored e1 × e2 rounded at
+                    // its size, times |s|, and its own).
+                    let product = (methods.triangle != TriangleMethod::Watertight).then(|| {
+                        feature(
+                            "t·det of a hit as near as the eye, against its rounding",
+                            gap * area,
+                            Terms::new(&[(3.0_f64.sqrt() * s, area), (1.0, gap * area)]),
+                            Remedy::LargerTriangle,
+                        )
+                    });
                     [
                         Some(feature(
                             "twice the triangle's area",
                             area,
-                            [(s * longest, 1.0), (1.0, area), (0.0, 0.0), (0.0, 0.0)],
+                            area_error(s, longest, area),
                             Remedy::FatterTriangle,
                         )),
                         reciprocal,
+                        product,
                         Some(clearance(gap, reach, None)),
-                        None,
                     ]
                 }
             }
@@ -529,34 +644,25 @@ pub fn features<'a>(
             item,
             quantity: "one display level against the light's intensity times a rounded cosine",
             value: LEVEL,
-            terms: [
-                (f64::from(intensity), 1.0),
-                (0.0, 0.0),
-                (0.0, 0.0),
-                (0.0, 0.0),
-            ],
+            terms: Terms::new(&[]).units(f64::from(intensity)),
             steps: 1.0,
             remedy: Remedy::DimLight,
         };
         // A shadow ray starts a tolerance off its surface and looks for occluders between
-        // there and the light: a light within the tolerance of a surface is on the wrong side
-        // of where its rays start.
+        // there and the light, from anywhere in the world: a light nearer a surface than such a
+        // ray can tell is on either side of it at random.
         let position = Vec3::from_f32(light.position);
-        let nearest = desc
-            .objects
-            .iter()
-            .map(|object| clearance(object, position))
-            .fold(f64::INFINITY, f64::min);
-        let reach = distance(light.position, eye);
-        let clear = nearest.is_finite().then(|| Feature {
+        let reach = world + distance(light.position, eye);
+        let clear = desc.objects.iter().map(move |object| Feature {
             item,
-            quantity: "its distance from the nearest surface, against the surface tolerance",
-            value: nearest,
-            terms: tolerance_terms(reach, None),
+            quantity: "its distance from a surface, against the error with which a shadow ray \
+                       finds the surface",
+            value: clearance(object, position),
+            terms: locating(object, methods, reach),
             steps: MIN_FEATURE_STEPS,
             remedy: Remedy::MoveLight,
         });
-        [Some(level), clear].into_iter().flatten()
+        core::iter::once(level).chain(clear)
     });
     objects.chain(lights)
 }
@@ -569,18 +675,12 @@ pub fn features<'a>(
 /// 2r·f times the error in |d|², 2r times half a step at f, and r²'s rounding.
 fn discriminant_error(method: SphereMethod, r: f64, f: f64) -> Terms {
     match method {
-        SphereMethod::Quadratic => [
-            (f * f * DIRECTION_LENGTH, 1.0),
-            (f, f),
-            (1.0, r * r),
-            (0.0, 0.0),
-        ],
-        SphereMethod::Stable => [
-            (2.0 * r * f * DIRECTION_LENGTH, 1.0),
-            (2.0 * r, f),
-            (1.0, r * r),
-            (0.0, 0.0),
-        ],
+        SphereMethod::Quadratic => {
+            Terms::new(&[(f, f), (1.0, r * r)]).units(f * f * DIRECTION_LENGTH)
+        }
+        SphereMethod::Stable => {
+            Terms::new(&[(2.0 * r, f), (1.0, r * r)]).units(2.0 * r * f * DIRECTION_LENGTH)
+        }
     }
 }
 
@@ -610,7 +710,7 @@ pub fn camera(half_width: f64, half_height: f64, width: u32, height: u32) -> (Ma
         item: Item::Camera,
         quantity: "the angle between neighbouring pixels at the image's corner",
         value: pitch / (corner * corner),
-        terms: [(1.0, 1.0), (1.0 / corner, corner), (0.0, 0.0), (0.0, 0.0)],
+        terms: Terms::new(&[(1.0 / corner, corner)]).units(1.0),
         steps: MIN_PIXEL_STEPS,
         remedy,
     };
@@ -660,7 +760,7 @@ fn below_resolution<S: Scalar>(
         format: S::NAME,
         minimum: f.minimum::<S>(),
         remedy: f.remedy,
-        holds: FormatSet::of(|format| f.value >= f.minimum_with(format.resolution)),
+        holds: FormatSet::of(|format| f.value >= f.minimum_with(format)),
         method,
     }
 }
@@ -668,7 +768,7 @@ fn below_resolution<S: Scalar>(
 /// Proves that format `S` holds the scene for `methods`, or says which value does not fit, the
 /// formats that would hold it, and a method that would where one does.
 pub(super) fn check<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods) -> Result<(), SceneError> {
-    let slack = origin_slack(desc, methods, S::resolution, S::FAST_ROOTS);
+    let slack = origin_slack(desc, methods, &FormatInfo::of::<S>());
     if let Some(m) = magnitudes(desc, methods, slack).find(|m| !fits(m.value, S::RANGE)) {
         return Err(out_of_range::<S>(&m));
     }
@@ -688,7 +788,7 @@ pub(super) fn check<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods) -> Resul
 
 /// Whether every magnitude fits format `S` by `methods`.
 fn check_magnitudes<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods) -> bool {
-    let slack = origin_slack(desc, methods, S::resolution, S::FAST_ROOTS);
+    let slack = origin_slack(desc, methods, &FormatInfo::of::<S>());
     magnitudes(desc, methods, slack).all(|m| fits(m.value, S::RANGE))
 }
 

@@ -12,8 +12,9 @@ pub struct Plane<S> {
     normal: Vec3<S>,
     offset: S,
     world_radius: S,
-    /// A power of two no smaller than 1/(2R): scaled by it, a point within R on every axis has
-    /// coordinates within 1, whose squares sum to at most 3 in any format.
+    /// A power of two near 1/R, at least 1/(2R): scaled by it, a point within R on every axis
+    /// has coordinates within 1, whose squares sum to at most 3 in any format and resolve as
+    /// finely as the format allows.
     world_scale: S,
     /// (R·`world_scale`)², at most 1.
     scaled_radius_squared: S,
@@ -21,17 +22,20 @@ pub struct Plane<S> {
 }
 
 /// A checkerboard on a plane: the two in-plane axes, pre-divided by the square size, so that
-/// (p − origin)·axis counts squares, and the colour of every other square.
+/// (p − origin)·axis counts squares from the origin, where the count starts at `start`; and the
+/// colour of every other square.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Checker<S> {
     /// The colour of the squares whose two coordinates sum to an odd number.
     pub colour: Rgb<S>,
-    /// A point on a corner of a square.
+    /// A point on the plane: the eye's foot on it, so that the points seen are near it.
     pub origin: Vec3<S>,
     /// The first in-plane axis divided by the square size.
     pub u: Vec3<S>,
     /// The second in-plane axis divided by the square size.
     pub v: Vec3<S>,
+    /// The origin's coordinates on the grid of squares, each in [0, 1).
+    pub start: [S; 2],
 }
 
 impl<S: Scalar> Plane<S> {
@@ -44,13 +48,21 @@ impl<S: Scalar> Plane<S> {
         world_radius: S,
         checker: Option<Checker<S>>,
     ) -> Self {
-        // Halve the scale until R·scale ≤ 1 (by doubling a reach up to at most 2R, a ray's
-        // length, which the scene build proved to fit).
+        // A power of two near 1/R: halved until R·scale ≤ 1 (by doubling a reach up to at most
+        // 2R, a ray's length, which the scene build proved to fit), or doubled while R·scale
+        // ≤ ½ (halving a reach down to R), so that a small world's squares do not vanish below
+        // the format's resolution; doubling stops short of the format's range, and where the
+        // reach can be halved no more.
         let (mut reach, mut world_scale) = (S::ONE, S::ONE);
         let half = S::ratio(1, 2);
         while reach < world_radius {
             reach = reach + reach;
             world_scale = world_scale * half;
+        }
+        let ceiling = S::MAX / S::from_int(2);
+        while reach * half >= world_radius && reach * half < reach && world_scale < ceiling {
+            reach = reach * half;
+            world_scale = world_scale + world_scale;
         }
         let scaled_radius = world_radius * world_scale;
         Self {
@@ -122,10 +134,10 @@ impl<S: Scalar> Plane<S> {
     pub fn pattern_colour(&self, point: Vec3<S>) -> Option<Rgb<S>> {
         let checker = self.checker?;
         let local = point - checker.origin;
-        let squares = local
-            .dot(checker.u)
+        let [start_u, start_v] = checker.start;
+        let squares = (local.dot(checker.u) + start_u)
             .floor_int()
-            .wrapping_add(local.dot(checker.v).floor_int());
+            .wrapping_add((local.dot(checker.v) + start_v).floor_int());
         (squares & 1 == 1).then_some(checker.colour)
     }
 }
@@ -241,6 +253,7 @@ mod tests {
                 origin: v::<S>(0.0, -1.0, 0.0),
                 u: v(0.5, 0.0, 0.0),
                 v: v(0.0, 0.0, 0.5),
+                start: [S::ZERO; 2],
             };
             let plane = floor(Some(checker));
             assert_eq!(plane.pattern_colour(v(0.5, -1.0, 0.5)), None);

@@ -1,6 +1,6 @@
 //! `obscura analyze`: a scene's range analysis, in tables (see [`crate::analysis`]).
 
-use crate::analysis::{Analysis, Bits, Extents, Fit};
+use crate::analysis::{Analysis, Bits, Extents, Fit, Pick, measure, pick};
 use crate::cli::AnalyzeArgs;
 use crate::cost::Machine;
 use crate::scene_file;
@@ -8,16 +8,19 @@ use anyhow::Result;
 
 pub fn run(args: &AnalyzeArgs) -> Result<()> {
     let named = scene_file::load(&args.scene)?;
-    let (width, height) = args.size;
+    let size @ (width, height) = args.size;
     let methods = args.methods.methods();
     let analysis = Analysis::of(&named.scene, methods, width, height)?;
     println!("# {} by {methods}\n", named.name);
     print_extents(&analysis.extents);
     print_bits(&analysis.bits);
     println!(
-        "\n## Formats, at {width}x{height}\n\nPredicted PSNR against f64 from the image's \
-         edges (G = {:.1} levels² per pixel) and each format's rounding; cost per pixel from the \
-         committed chart, on the built-in scene like this one ({}).\n",
+        "\n## Formats, at {width}x{height}\n\nThe model's bound against f64 (the format's \
+         constants and tolerances, rendered in f64; its rounding, moving the image by up to a \
+         shift of the f64 image, whose neighbouring pixels differ by G = {:.1} levels²; and the \
+         shading's rounding), beside the PSNR measured on the host, which computes the \
+         firmware's bits. Cost per pixel from the committed chart, on the built-in scene like \
+         this one ({}).\n",
         analysis.edge_energy,
         if analysis.has_triangles {
             "with triangles"
@@ -26,48 +29,75 @@ pub fn run(args: &AnalyzeArgs) -> Result<()> {
         }
     );
     println!(
-        "| format | holds the scene | predicted PSNR (dB) | M4F instr/px | M0 instr/px | host \
-         ns/px |"
+        "| format | holds the scene | predicted PSNR ≥ (dB) | shift (px) | predicted object \
+         mismatch ≤ | measured PSNR (dB) | M4F instr/px | M0 instr/px | host ns/px |"
     );
-    println!("|---|---|---:|---:|---:|---:|");
+    println!("|---|---|---:|---:|---:|---:|---:|---:|---:|");
     let number = |x: Option<f64>| x.map_or("–".to_owned(), |x| format!("{x:.0}"));
     for verdict in &analysis.verdicts {
+        let scene = match verdict.fit {
+            Fit::Holds => Some(named.scene.clone()),
+            Fit::Rescaled(factor) => Some(named.scene.scaled(factor as f32)),
+            Fit::Refused(_) => None,
+        };
+        let measured = scene
+            .map(|scene| measure(verdict.format, &scene, methods, size))
+            .transpose()?;
         let fit = match &verdict.fit {
             Fit::Holds => "yes".to_owned(),
             Fit::Rescaled(factor) => format!("rescaled ×{factor} about the eye"),
             Fit::Refused(reason) => format!("no: {reason}"),
         };
-        let psnr = verdict.predicted_psnr.map_or("–".to_owned(), |p| {
-            if p.is_finite() {
-                format!("{p:.1}")
-            } else {
-                "∞".to_owned()
-            }
-        });
+        let p = verdict.prediction;
         let costs = Machine::ALL.map(|m| number(analysis.cost(m, verdict.format, &methods)));
         println!(
-            "| {} | {fit} | {psnr} | {} | {} | {} |",
-            verdict.format, costs[0], costs[1], costs[2]
+            "| {} | {fit} | {} | {} | {} | {} | {} | {} | {} |",
+            verdict.format,
+            p.map_or("–".to_owned(), |p| decibels(p.psnr_db)),
+            p.map_or("–".to_owned(), |p| format!("{:.3}", p.shift_px)),
+            p.map_or("–".to_owned(), |p| format!("{:.3} %", p.mismatch_pct)),
+            measured.map_or("–".to_owned(), decibels),
+            costs[0],
+            costs[1],
+            costs[2]
         );
     }
     let target = args.auto.target_psnr;
-    match analysis.cheapest(args.auto.cost_on, target, &methods) {
-        Some(verdict) => {
-            let how = match verdict.fit {
-                Fit::Rescaled(factor) => format!(", rescaled ×{factor} about the eye"),
-                Fit::Holds | Fit::Refused(_) => String::new(),
-            };
+    let machine = args.auto.cost_on;
+    match pick(
+        &[(&named.scene, &analysis)],
+        methods,
+        size,
+        machine,
+        target,
+        true,
+    )? {
+        Some(Pick {
+            format, rescaled, ..
+        }) => {
+            let how = rescaled.map_or(String::new(), |factor| {
+                format!(", rescaled ×{factor} about the eye")
+            });
             println!(
-                "\nthe cheapest on {} predicted to reach {target} dB: {}{how} (--format auto)",
-                args.auto.cost_on, verdict.format
+                "\nthe cheapest on {machine} that reaches {target} dB: {format}{how} (--format \
+                 auto)"
             );
         }
         None => println!(
-            "\nno format holds the scene and is predicted to reach {target} dB: lower \
-             --target-psnr, or change the scene as the refusals above say"
+            "\nno format holds the scene and reaches {target} dB: lower --target-psnr, or \
+             change the scene as the refusals above say"
         ),
     }
     Ok(())
+}
+
+/// A PSNR in dB as the tables print it.
+pub fn decibels(db: f64) -> String {
+    if db.is_finite() {
+        format!("{db:.1}")
+    } else {
+        "∞".to_owned()
+    }
 }
 
 fn print_extents(e: &Extents) {

@@ -1,6 +1,6 @@
 //! `obscura firmware`: the firmware under QEMU against the host, bit for bit, and what it costs.
 
-use crate::analysis::{Analysis, Fit};
+use crate::analysis::{Analysis, Pick, pick};
 use crate::cli::{FirmwareArgs, FormatChoice};
 use crate::cost::Machine;
 use crate::firmware::{self, Target};
@@ -57,47 +57,30 @@ fn formats(args: &FirmwareArgs, scenes: &[&BuiltIn], methods: &Methods) -> Resul
 
 fn auto_format(args: &FirmwareArgs, scenes: &[&BuiltIn], methods: &Methods) -> Result<Format> {
     let machine = Machine::from(args.target);
-    let analyses = scenes
+    let size = (firmware::SIDE, firmware::SIDE);
+    let owned: Vec<OwnedScene> = scenes
         .iter()
-        .map(|s| {
-            let scene = OwnedScene::from_desc(&s.desc);
-            Analysis::of(&scene, *methods, firmware::SIDE, firmware::SIDE)
-        })
+        .map(|s| OwnedScene::from_desc(&s.desc))
+        .collect();
+    let analyses = owned
+        .iter()
+        .map(|scene| Analysis::of(scene, *methods, size.0, size.1))
         .collect::<Result<Vec<_>>>()?;
-    let meets = |format: Format| {
-        analyses.iter().all(|analysis| {
-            analysis.verdicts.iter().any(|v| {
-                v.format == format
-                    && v.fit == Fit::Holds
-                    && v.predicted_psnr.is_some_and(|p| p >= args.target_psnr)
-            })
-        })
-    };
-    let chosen = Format::FIRMWARE
-        .into_iter()
-        .filter(|&format| meets(format))
-        .filter_map(|format| {
-            let costs: Option<Vec<f64>> = analyses
-                .iter()
-                .map(|analysis| analysis.cost(machine, format, methods))
-                .collect();
-            costs.map(|costs| (costs.iter().sum::<f64>(), format))
-        })
-        .min_by(|a, b| a.0.total_cmp(&b.0))
-        .map(|(_, format)| format)
-        .with_context(|| {
-            format!(
-                "no firmware format holds every scene and is predicted to reach {} dB; \
-                 `obscura analyze` says why",
-                args.target_psnr
-            )
-        })?;
+    let pairs: Vec<_> = owned.iter().zip(&analyses).collect();
+    let Pick {
+        format, psnr_db, ..
+    } = pick(&pairs, *methods, size, machine, args.target_psnr, false)?.with_context(|| {
+        format!(
+            "no firmware format holds every scene and reaches {} dB; `obscura analyze` says why",
+            args.target_psnr
+        )
+    })?;
     eprintln!(
-        "--format auto: {chosen} is the cheapest on {} predicted to reach {} dB on every scene",
-        Machine::from(args.target),
+        "--format auto: {format} is the cheapest on {machine} that reaches {} dB on every scene \
+         ({psnr_db:.1} dB at the least, measured on the host, whose frames are the firmware's)",
         args.target_psnr
     );
-    Ok(chosen)
+    Ok(format)
 }
 
 /// How many differing pixels are listed when a frame does not match.

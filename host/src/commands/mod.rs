@@ -9,7 +9,7 @@ mod fuzz;
 mod render;
 mod stress;
 
-use crate::analysis::{Analysis, Fit};
+use crate::analysis::{Analysis, Pick, pick};
 use crate::cli::{AutoArgs, Command, FormatChoice, SceneArgs};
 use crate::format::Format;
 use crate::owned::OwnedScene;
@@ -93,33 +93,46 @@ fn pick_format(
 ) -> Result<(Format, OwnedScene)> {
     let FormatChoice::Given(format) = choice else {
         let analysis = Analysis::of(&named.scene, methods, width, height)?;
-        let Some(verdict) = analysis.cheapest(auto.cost_on, auto.target_psnr, &methods) else {
+        let size = (width, height);
+        let picked = pick(
+            &[(&named.scene, &analysis)],
+            methods,
+            size,
+            auto.cost_on,
+            auto.target_psnr,
+            true,
+        )?;
+        let Some(Pick {
+            format,
+            rescaled,
+            psnr_db,
+        }) = picked
+        else {
             bail!(
-                "no format holds {} and is predicted to reach {} dB at {width}x{height}; \
-                 `obscura analyze {}` says why",
+                "no format holds {} and reaches {} dB at {width}x{height}; `obscura analyze {}` \
+                 says why",
                 named.name,
                 auto.target_psnr,
                 named.name
             );
         };
-        let predicted = verdict.predicted_psnr.unwrap_or(f64::INFINITY);
         eprintln!(
-            "--format auto: {} is the cheapest on {} predicted to reach {} dB ({predicted:.1} \
-             dB predicted)",
-            verdict.format, auto.cost_on, auto.target_psnr
+            "--format auto: {format} is the cheapest on {} that reaches {} dB ({psnr_db:.1} dB \
+             measured on the host)",
+            auto.cost_on, auto.target_psnr
         );
-        let scene = match verdict.fit {
-            Fit::Rescaled(factor) => {
+        let scene = match rescaled {
+            Some(factor) => {
                 eprintln!(
-                    "--format auto: {} holds {} only rescaled by {factor} about the eye (the \
-                     image is the same); rendering it so",
-                    verdict.format, named.name
+                    "--format auto: {format} holds {} only rescaled by {factor} about the eye \
+                     (the image is the same); rendering it so",
+                    named.name
                 );
                 named.scene.scaled(factor as f32)
             }
-            Fit::Holds | Fit::Refused(_) => named.scene.clone(),
+            None => named.scene.clone(),
         };
-        return Ok((verdict.format, scene));
+        return Ok((format, scene));
     };
     Ok((format, named.scene.clone()))
 }

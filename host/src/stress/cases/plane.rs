@@ -63,7 +63,7 @@ impl FormatJob for Job {
                     || {
                         // The hit's distance errs by the rounding of the direction, magnified
                         // by the grazing angle, and by the rounding of the world's radius.
-                        let error = reach * S::resolution(1.0) / -exact.dir.y + S::resolution(far);
+                        let error = reach * S::UNIT_ERROR / -exact.dir.y + S::resolution(far);
                         (reach - far).abs() <= MODEL_ERRORS * error
                     },
                 );

@@ -1,36 +1,27 @@
 //! `obscura analyze` and `--format auto`: how large and how fine a scene's numbers get, which
-//! formats hold it (as it is, or rescaled about the eye), the PSNR each is predicted to reach,
-//! and the cheapest that meets a target.
-//!
-//! The prediction: a format's rounding moves what a ray sees by a small angle δθ (two steps of
-//! a unit vector at its resolution, one for the primary ray and one for a bounce; more where
-//! the nearest surface is closer than a unit, the roots are approximate or the rays stepped).
-//! Moving an image by δ pixels changes about a δ share of the pixels along each edge by the
-//! step across it, so the mean squared error is about δ·G, with G the mean squared difference
-//! of neighbouring pixels (across and down) of the f64 image. Nothing is rendered in the
-//! format itself: the tests hold the prediction to `compare`.
+//! formats hold it (as it is, or rescaled about the eye), the error each is predicted to make
+//! at most ([`predict`]), and the cheapest that reaches a target, measured on the host, whose
+//! renders are the firmware's bits.
+
+mod predict;
+
+pub use predict::{Prediction, Reference};
 
 use crate::cost::{Machine, cost};
 use crate::format::{Format, FormatJob};
+use crate::metrics::accuracy;
 use crate::owned::OwnedScene;
-use crate::render::{HostScene, Request, all_cores, prepare_reference};
+use crate::render::{HostScene, Request, all_cores, prepare, prepare_reference};
 use anyhow::Result;
-use image::RgbImage;
 use obscura::methods::MethodName;
+use obscura::scalar::FormatInfo;
 use obscura::scene::range::{self, Feature, Magnitude};
 use obscura::{
-    Item, Methods, RayMethod, RootMethod, Scalar, SceneDesc, SceneError, ShapeDesc, SphereMethod,
-    TriangleMethod, Vec3,
+    Item, Methods, Scalar, SceneDesc, SceneError, ShapeDesc, SphereMethod, TriangleMethod, Vec3,
 };
 
 /// The largest power of two a scene is rescaled by, either way.
 const MAX_RESCALE_POWER: i32 = 24;
-
-/// Unit-vector steps a format's rounding turns a ray by: the primary ray's and one bounce's.
-const DIRECTION_STEPS: f64 = 2.0;
-
-/// The relative error of the 32-bit fixed formats' fast roots (about 14 bits).
-const FAST_ROOT_ERROR: f64 = 1.0 / 16_384.0;
 
 /// What the analysis finds.
 #[derive(Debug)]
@@ -103,11 +94,8 @@ pub struct Verdict {
     pub format: Format,
     /// Whether it holds the scene.
     pub fit: Fit,
-    /// The PSNR it is predicted to reach against f64, where it holds the scene.
-    pub predicted_psnr: Option<f64>,
-    /// The share of pixels, in percent, whose primary ray it is predicted to see hit another
-    /// object than f64's, where it holds the scene.
-    pub predicted_mismatch_pct: Option<f64>,
+    /// What the model predicts, where it holds the scene.
+    pub prediction: Option<Prediction>,
 }
 
 impl Analysis {
@@ -117,53 +105,34 @@ impl Analysis {
     /// When the scene is invalid or too large even for f64: no format can hold it.
     pub fn of(scene: &OwnedScene, methods: Methods, width: u32, height: u32) -> Result<Self> {
         let desc = scene.desc();
-        let reference = prepare_reference(&Request {
-            desc: &desc,
-            width,
-            height,
-            methods,
-        })
-        .map_err(|error| error.context("no format can hold the scene"))?;
-        let image = reference.render(all_cores(), None)?;
-        Ok(Self::with_reference(scene, methods, &image))
+        let reference = reference(&desc, methods, (width, height))
+            .map_err(|error| error.context("no format can hold the scene"))?;
+        Ok(Self::with_reference(scene, methods, &reference))
     }
 
-    /// [`Self::of`] for the f64 reference `image` of the scene, already rendered at the size
-    /// to analyse.
-    pub fn with_reference(scene: &OwnedScene, methods: Methods, image: &RgbImage) -> Self {
+    /// [`Self::of`] for the f64 `reference` of the scene, already rendered at the size to
+    /// analyse.
+    pub fn with_reference(scene: &OwnedScene, methods: Methods, reference: &Reference) -> Self {
         let desc = scene.desc();
-        let (width, height) = image.dimensions();
-        let edge_energy = edge_energy(image);
+        let size = reference.image.dimensions();
         let verdicts = Format::ALL
             .into_iter()
             .map(|format| {
-                let fit = fit(format, scene, methods, (width, height));
+                let fit = fit(format, scene, methods, size);
                 // A rescaled scene is predicted as it will be rendered: the same image, but the
-                // nearest surface at another distance.
-                let predicted_psnr = match fit {
-                    Fit::Holds => Some(predicted_psnr(
-                        format,
-                        &desc,
-                        methods,
-                        width,
-                        height,
-                        edge_energy,
-                    )),
-                    Fit::Rescaled(factor) => Some(predicted_psnr(
-                        format,
-                        &scene.scaled(factor as f32).desc(),
-                        methods,
-                        width,
-                        height,
-                        edge_energy,
-                    )),
+                // nearest surface at another distance and the constants of another size.
+                let prediction = match fit {
+                    Fit::Holds => predict::predict(format, &desc, methods, reference).ok(),
+                    Fit::Rescaled(factor) => {
+                        let rescaled = scene.scaled(factor as f32);
+                        predict::predict(format, &rescaled.desc(), methods, reference).ok()
+                    }
                     Fit::Refused(_) => None,
                 };
                 Verdict {
                     format,
                     fit,
-                    predicted_psnr,
-                    predicted_mismatch_pct: None,
+                    prediction,
                 }
             })
             .collect();
@@ -171,7 +140,7 @@ impl Analysis {
             extents: extents(&desc),
             bits: bits(&desc, methods),
             verdicts,
-            edge_energy,
+            edge_energy: reference.structure.edge_energy(),
             has_triangles: desc.has_triangles(),
         }
     }
@@ -180,25 +149,134 @@ impl Analysis {
     pub fn cost(&self, machine: Machine, format: Format, methods: &Methods) -> Option<f64> {
         cost(machine, format, methods, self.has_triangles)
     }
+}
 
-    /// The cheapest format on `machine` that holds the scene and is predicted to reach
-    /// `target_psnr`, and its verdict; `None` when none is.
-    pub fn cheapest(
-        &self,
-        machine: Machine,
-        target_psnr: f64,
-        methods: &Methods,
-    ) -> Option<&Verdict> {
-        self.verdicts
-            .iter()
-            .filter(|v| {
-                !matches!(v.fit, Fit::Refused(_))
-                    && v.predicted_psnr.is_some_and(|p| p >= target_psnr)
-            })
-            .filter_map(|v| self.cost(machine, v.format, methods).map(|c| (c, v)))
-            .min_by(|a, b| a.0.total_cmp(&b.0))
-            .map(|(_, v)| v)
+/// A format `--format auto` picked, and what it measured.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Pick {
+    /// The format.
+    pub format: Format,
+    /// The factor the scene is rescaled by about the eye, when the format holds it only so.
+    pub rescaled: Option<f64>,
+    /// Its PSNR against f64, measured on the host (which computes the firmware's bits), in dB:
+    /// the lowest over the scenes.
+    pub psnr_db: f64,
+}
+
+/// The cheapest format on `machine` (by the committed chart) that holds every one of `scenes`
+/// (each with its analysis at `size` by `methods`) and, rendered on the host, reaches
+/// `target_psnr` against f64 on each: the formats are measured cheapest first, and the first
+/// that reaches it is taken. With `rescale`, a format that holds a scene only rescaled about
+/// the eye renders it so (a firmware, whose scenes are built in, cannot). `None` when no
+/// format reaches it.
+///
+/// # Errors
+/// When a render fails.
+pub fn pick(
+    scenes: &[(&OwnedScene, &Analysis)],
+    methods: Methods,
+    size: (u32, u32),
+    machine: Machine,
+    target_psnr: f64,
+    rescale: bool,
+) -> Result<Option<Pick>> {
+    let analyses: Vec<&Analysis> = scenes.iter().map(|&(_, analysis)| analysis).collect();
+    let mut candidates: Vec<(f64, Format)> = Format::ALL
+        .into_iter()
+        .filter_map(|format| {
+            let costs = analyses
+                .iter()
+                .map(|analysis| {
+                    let verdict = analysis.verdicts.iter().find(|v| v.format == format)?;
+                    let usable = match verdict.fit {
+                        Fit::Holds => true,
+                        Fit::Rescaled(_) => rescale,
+                        Fit::Refused(_) => false,
+                    };
+                    usable
+                        .then(|| analysis.cost(machine, format, &methods))
+                        .flatten()
+                })
+                .collect::<Option<Vec<f64>>>()?;
+            Some((costs.iter().sum(), format))
+        })
+        .collect();
+    candidates.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for (_, format) in candidates {
+        let mut worst = f64::INFINITY;
+        let mut rescaled = None;
+        for &(scene, analysis) in scenes {
+            let verdict = analysis.verdicts.iter().find(|v| v.format == format);
+            let scene = match verdict.map(|v| &v.fit) {
+                Some(Fit::Rescaled(factor)) => {
+                    rescaled = Some(*factor);
+                    scene.scaled(*factor as f32)
+                }
+                _ => scene.clone(),
+            };
+            worst = worst.min(measure(format, &scene, methods, size)?);
+        }
+        if worst >= target_psnr {
+            return Ok(Some(Pick {
+                format,
+                rescaled,
+                psnr_db: worst,
+            }));
+        }
     }
+    Ok(None)
+}
+
+/// The PSNR of `format` against f64 on `scene` at `size` by `methods`, measured.
+///
+/// # Errors
+/// When either cannot build the scene, or a render fails.
+pub fn measure(
+    format: Format,
+    scene: &OwnedScene,
+    methods: Methods,
+    (width, height): (u32, u32),
+) -> Result<f64> {
+    let desc = scene.desc();
+    let request = Request {
+        desc: &desc,
+        width,
+        height,
+        methods,
+    };
+    let threads = all_cores();
+    let contender = prepare(format, &request)?;
+    let reference = prepare_reference(&request)?;
+    let none = vec![None; (width * height) as usize];
+    Ok(accuracy(
+        &contender.render(threads, None)?,
+        &reference.render(threads, None)?,
+        &none,
+        &none,
+    )
+    .psnr_db)
+}
+
+/// The f64 reference of `desc` at `size` by `methods` (exact roots).
+///
+/// # Errors
+/// When f64 cannot build the scene, or the render fails.
+pub fn reference(
+    desc: &SceneDesc<'_>,
+    methods: Methods,
+    (width, height): (u32, u32),
+) -> Result<Reference> {
+    let reference = prepare_reference(&Request {
+        desc,
+        width,
+        height,
+        methods,
+    })?;
+    Ok(Reference::new(
+        reference.render(all_cores(), None)?,
+        reference.object_map()?,
+        reference.met_map()?,
+    ))
 }
 
 /// Whether `format` holds `scene` for `methods` at `size`: as it is, or rescaled about the eye
@@ -241,84 +319,6 @@ fn builds(
         }
     }
     format.run(Build(desc, methods, width, height))
-}
-
-/// The resolution of `format` at 1: one step of a unit vector's coordinate.
-fn unit_step(format: Format) -> f64 {
-    struct Step;
-    impl FormatJob for Step {
-        type Output = f64;
-        fn run<S: Scalar>(self) -> f64 {
-            S::resolution(1.0)
-        }
-    }
-    format.run(Step)
-}
-
-/// The angle, in radians, by which format `format`'s rounding may turn what a ray sees: see
-/// the module's documentation.
-pub fn angular_error(format: Format, desc: &SceneDesc<'_>, methods: &Methods, width: u32) -> f64 {
-    let step = unit_step(format);
-    let nearest = extents(desc).nearest;
-    // A point rounds by a step wherever it is; seen from nearer than a unit, that is a larger
-    // angle than a direction's step.
-    let mut angle = DIRECTION_STEPS * step * (1.0 / nearest).max(1.0);
-    if methods.roots == RootMethod::Approx && format.has_fast_roots() {
-        angle += DIRECTION_STEPS * FAST_ROOT_ERROR;
-    }
-    if methods.rays == RayMethod::Stepped {
-        // Each pixel adds the rounding of the step to the last: about √n steps by the n-th.
-        angle += step * f64::from(width).sqrt();
-    }
-    angle
-}
-
-/// The PSNR format `format` is predicted to reach against f64: see the module's documentation.
-pub fn predicted_psnr(
-    format: Format,
-    desc: &SceneDesc<'_>,
-    methods: Methods,
-    width: u32,
-    height: u32,
-    edge_energy: f64,
-) -> f64 {
-    let pixel = pixel_angle(desc, height);
-    let shift = (angular_error(format, desc, &methods, width) / pixel).min(1.0);
-    let mse = shift * edge_energy;
-    if mse > 0.0 {
-        10.0 * (255.0_f64 * 255.0 / mse).log10()
-    } else {
-        f64::INFINITY
-    }
-}
-
-/// The angle one pixel spans at the centre of an image `height` pixels high.
-fn pixel_angle(desc: &SceneDesc<'_>, height: u32) -> f64 {
-    let half = f64::from(desc.camera.vfov_degrees).to_radians() / 2.0;
-    2.0 * half.tan() / f64::from(height)
-}
-
-/// G: the mean, over pixels and channels, of the squared differences with the pixel to the
-/// right and the one below, in 8-bit levels².
-pub fn edge_energy(image: &RgbImage) -> f64 {
-    let (width, height) = image.dimensions();
-    let mut sum = 0.0;
-    for y in 0..height {
-        for x in 0..width {
-            let here = image.get_pixel(x, y).0;
-            for (nx, ny) in [(x + 1, y), (x, y + 1)] {
-                if nx < width && ny < height {
-                    let there = image.get_pixel(nx, ny).0;
-                    sum += here
-                        .iter()
-                        .zip(there)
-                        .map(|(&a, b)| (f64::from(a) - f64::from(b)).powi(2))
-                        .sum::<f64>();
-                }
-            }
-        }
-    }
-    sum / (3.0 * f64::from(width) * f64::from(height))
 }
 
 /// The scene's extents, relative to the eye.
@@ -401,7 +401,7 @@ fn bits(desc: &SceneDesc<'_>, methods: Methods) -> Vec<Bits> {
     let mut rows = Vec::new();
     let mut row = |computation: String, methods: Methods, of: &dyn Fn(Item) -> bool| {
         // The bounds as a format that rounds as finely as f64 would need them.
-        let slack = range::origin_slack(desc, &methods, f64::resolution, false);
+        let slack = range::origin_slack(desc, &methods, &FormatInfo::of::<f64>());
         let largest = range::magnitudes(desc, &methods, slack)
             .filter(|m| of(m.item))
             .max_by(|a, b| a.value.total_cmp(&b.value));
@@ -454,7 +454,7 @@ fn fraction_bits(feature: &Feature) -> f64 {
     let lsbs: f64 = feature
         .terms
         .iter()
-        .map(|&(coefficient, _)| coefficient)
+        .map(|(coefficient, _)| coefficient)
         .sum();
     (feature.steps * lsbs / feature.value).log2()
 }
@@ -462,10 +462,11 @@ fn fraction_bits(feature: &Feature) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::metrics::accuracy;
+    use crate::fuzz::false_accept;
+    use crate::metrics::{Accuracy, accuracy};
     use crate::peak::{self, Peak};
     use crate::render::{Prepared, prepare};
-    use obscura::{BiasMethod, SphereMethod, scenes};
+    use obscura::{BiasMethod, RayMethod, RootMethod, SphereMethod, scenes};
 
     #[test]
     fn integer_bits_count_the_sign() {
@@ -489,15 +490,6 @@ mod tests {
         assert!((extents.nearest - 3.0).abs() < 1e-9, "{extents:?}");
     }
 
-    #[test]
-    fn edge_energy_is_the_mean_squared_step_between_neighbours() {
-        // A single vertical edge: black | white, two pixels wide, one high.
-        let mut image = RgbImage::new(2, 1);
-        image.put_pixel(1, 0, image::Rgb([255, 255, 255]));
-        // One pair across, 255² in each of three channels, over 2 pixels × 3 channels.
-        assert!((edge_energy(&image) - 255.0 * 255.0 / 2.0).abs() < 1e-9);
-    }
-
     /// The scenes the analysis is held to: the built-in ones, as they are and scaled.
     fn scenes() -> Vec<(String, OwnedScene)> {
         let mut all = Vec::new();
@@ -510,8 +502,8 @@ mod tests {
         all
     }
 
-    /// PSNR of `format` against f64 (exact roots, same methods) on `scene`.
-    fn measured_psnr(format: Format, scene: &OwnedScene, methods: Methods, size: u32) -> f64 {
+    /// `format` against f64 (exact roots, same methods) on `scene`, measured.
+    fn measured(format: Format, scene: &OwnedScene, methods: Methods, size: u32) -> Accuracy {
         let desc = scene.desc();
         let request = Request {
             desc: &desc,
@@ -530,12 +522,10 @@ mod tests {
             &contender.object_map().expect("renders"),
             &reference.object_map().expect("renders"),
         )
-        .psnr_db
     }
 
     #[test]
-    fn every_format_predicted_to_meet_the_target_meets_it() {
-        const TARGET: f64 = 40.0;
+    fn every_prediction_on_the_built_in_scenes_holds_and_tells_formats_apart() {
         let variants = [
             (Methods::LECTURE, 240),
             (
@@ -567,37 +557,39 @@ mod tests {
                 160,
             ),
         ];
-        let (mut held, mut doubted) = (0, 0);
+        let mut gaps = Vec::new();
         for (name, scene) in scenes() {
             for (methods, size) in variants {
                 let analysis = Analysis::of(&scene, methods, size, size).expect("analyses");
                 for verdict in &analysis.verdicts {
                     let format = verdict.format;
-                    if format == Format::F64 || verdict.fit != Fit::Holds {
+                    let (Fit::Holds, Some(prediction)) = (&verdict.fit, verdict.prediction) else {
+                        continue;
+                    };
+                    if format == Format::F64 {
                         continue;
                     }
-                    if methods.roots == RootMethod::Approx && !format.has_fast_roots() {
-                        continue;
-                    }
-                    let predicted = verdict.predicted_psnr.unwrap_or(0.0);
-                    if predicted < TARGET {
-                        doubted += 1;
-                        continue;
-                    }
-                    let measured = measured_psnr(format, &scene, methods, size);
+                    let measured = measured(format, &scene, methods, size);
                     assert!(
-                        measured >= TARGET,
-                        "{name} in {format} by {methods} at {size}: predicted {predicted:.1} dB, \
-                         measured {measured:.1}"
+                        !false_accept(&prediction, &measured, size * size),
+                        "{name} in {format} by {methods} at {size}: predicted {prediction:?}, \
+                         measured {measured:?}"
                     );
-                    held += 1;
+                    if format.is_fixed_point() && measured.psnr_db.is_finite() {
+                        gaps.push(measured.psnr_db - prediction.psnr_db);
+                    }
                 }
             }
         }
-        // The prediction discriminates: it passes many and doubts some.
+        // The model errs on the safe side, by little enough to tell formats apart where
+        // their errors show (in the fixed formats; a float's error is a pixel or two, which
+        // flip by chance).
+        gaps.sort_by(f64::total_cmp);
+        let median = gaps[gaps.len() / 2];
         assert!(
-            held >= 40 && doubted >= 10,
-            "{held} held, {doubted} doubted"
+            gaps.len() >= 30 && median < 12.0,
+            "{} measured; the median is {median:.1} dB above the prediction",
+            gaps.len()
         );
     }
 

@@ -1,0 +1,169 @@
+//! [`Quantized`]: f64 arithmetic on a format's stored numbers. Every constant a scene build
+//! stores (positions, radii, the checker's 1/size, colours, tolerances, the smallest weight) is
+//! the format's own value, rounded to its grid; the range proof and the features are the
+//! format's; a quotient saturates at its range. The rounding of each operation is left out but
+//! for the one an image is most sensitive to: a power (Phong's highlight, cosⁿ) is taken of
+//! its cosine less the format's rounding of a cosine, which an exponent n multiplies by n where
+//! the highlight shows. So a render in it against the f64 reference shows what the format's
+//! constants, tolerances and highlights do to the image, pixel by pixel, which
+//! [`crate::analysis`] adds to its model of the rest of the rounding.
+
+use obscura::Scalar;
+
+/// Steps of rounding in a cosine of two unit vectors: each vector's, and the dot product's.
+pub const COSINE_STEPS: f64 = 4.0;
+use std::cmp::Ordering;
+use std::fmt;
+use std::marker::PhantomData;
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+/// An f64 with format `S`'s constants (see the module documentation).
+pub struct Quantized<S>(f64, PhantomData<S>);
+
+impl<S> Quantized<S> {
+    const fn new(x: f64) -> Self {
+        Self(x, PhantomData)
+    }
+}
+
+impl<S> Clone for Quantized<S> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<S> Copy for Quantized<S> {}
+
+impl<S> Default for Quantized<S> {
+    fn default() -> Self {
+        Self::new(0.0)
+    }
+}
+
+impl<S> PartialEq for Quantized<S> {
+    fn eq(&self, other: &Self) -> bool {
+        self.0 == other.0
+    }
+}
+
+impl<S> PartialOrd for Quantized<S> {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        self.0.partial_cmp(&other.0)
+    }
+}
+
+impl<S> fmt::Debug for Quantized<S> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+impl<S> Add for Quantized<S> {
+    type Output = Self;
+    fn add(self, rhs: Self) -> Self {
+        Self::new(self.0 + rhs.0)
+    }
+}
+
+impl<S> Sub for Quantized<S> {
+    type Output = Self;
+    fn sub(self, rhs: Self) -> Self {
+        Self::new(self.0 - rhs.0)
+    }
+}
+
+impl<S> Mul for Quantized<S> {
+    type Output = Self;
+    fn mul(self, rhs: Self) -> Self {
+        Self::new(self.0 * rhs.0)
+    }
+}
+
+impl<S> Neg for Quantized<S> {
+    type Output = Self;
+    fn neg(self) -> Self {
+        Self::new(-self.0)
+    }
+}
+
+impl<S: Scalar> Div for Quantized<S> {
+    type Output = Self;
+    /// Saturating at the format's range, as the format's own quotient does.
+    fn div(self, rhs: Self) -> Self {
+        let quotient = self.0 / rhs.0;
+        Self::new(if quotient.is_nan() {
+            0.0
+        } else {
+            quotient.clamp(-S::RANGE, S::RANGE)
+        })
+    }
+}
+
+impl<S: Scalar> Scalar for Quantized<S> {
+    const NAME: &'static str = S::NAME;
+    const ZERO: Self = Self::new(0.0);
+    const ONE: Self = Self::new(1.0);
+    const MAX: Self = Self::new(S::RANGE);
+    const RANGE: f64 = S::RANGE;
+
+    fn from_f64(x: f64) -> Option<Self> {
+        S::from_f64(x).map(|stored| Self::new(stored.to_f64()))
+    }
+
+    fn to_f64(self) -> f64 {
+        self.0
+    }
+
+    fn from_int(n: i32) -> Self {
+        Self::new(S::from_int(n).to_f64())
+    }
+
+    fn floor_int(self) -> i32 {
+        self.0.floor_int()
+    }
+
+    fn resolution(magnitude: f64) -> f64 {
+        S::resolution(magnitude)
+    }
+
+    const UNIT_ERROR: f64 = S::UNIT_ERROR;
+
+    fn sqrt(self) -> Self {
+        Self::new(self.0.sqrt())
+    }
+
+    fn ratio(num: i32, den: i32) -> Self {
+        Self::new(S::ratio(num, den).to_f64())
+    }
+
+    /// The power of the base less its rounding as a cosine: see the module documentation.
+    fn powi(self, exponent: u16) -> Self {
+        let base = (self.0 - COSINE_STEPS * S::UNIT_ERROR).max(0.0);
+        Self::new(base.powi(i32::from(exponent)))
+    }
+
+    fn diff_of_products(a: Self, b: Self, c: Self, d: Self) -> (Self, Ordering) {
+        let (value, sign) = f64::diff_of_products(a.0, b.0, c.0, d.0);
+        (Self::new(value), sign)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::checked::CheckedFx;
+
+    type Q16 = Quantized<CheckedFx<fixed::types::I16F16>>;
+
+    #[test]
+    fn constants_are_the_formats_and_arithmetic_is_f64s() {
+        let third = Q16::from_f64(1.0 / 3.0).unwrap();
+        assert_eq!(third.to_f64(), 21_845.0 / 65_536.0);
+        // No rounding of the product: it is f64's.
+        assert_eq!((third * third).to_f64(), (21_845.0_f64 / 65_536.0).powi(2));
+        assert_eq!(Q16::from_f64(40_000.0), None);
+        assert_eq!((Q16::ONE / Q16::ZERO).to_f64(), Q16::RANGE);
+        assert_eq!(Q16::ratio(1, 3).to_f64(), 21_845.0 / 65_536.0);
+        assert_eq!(Q16::resolution(1.0), 1.0 / 65_536.0);
+    }
+}
