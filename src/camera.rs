@@ -88,21 +88,42 @@ impl<S: Scalar> Camera<S> {
         self.height
     }
 
-    /// Row y of the image (counting down from the top), ready to give its pixels' rays.
+    /// Row y of the image (counting down from the top), ready to give its pixels' rays, or
+    /// `None` below the image.
     #[must_use]
-    pub fn row(&self, y: u32) -> Row<S> {
-        let fy = pixel_centre::<S>(y, self.height, self.roots);
-        Row {
-            start: self.top_left.add_scaled(self.down, fy),
+    pub fn row(&self, y: u32) -> Option<Row<S>> {
+        (y < self.height).then(|| Row {
+            start: self
+                .top_left
+                .add_scaled(self.down, pixel_centre::<S>(y, self.height, self.roots)),
             camera: *self,
-        }
+        })
     }
 
     /// The primary ray through the centre of pixel (x, y), computed for that pixel alone
-    /// (whichever [`RayMethod`] the camera's rows use).
+    /// (whichever [`RayMethod`] the camera's rows use), or `None` outside the image.
     #[must_use]
-    pub fn ray(&self, x: u32, y: u32) -> Ray<S> {
-        self.row(y).ray(x)
+    pub fn ray(&self, x: u32, y: u32) -> Option<Ray<S>> {
+        self.row(y)?.ray(x)
+    }
+
+    /// The primary ray through the point `offset` (across, down) pixels from the centre of pixel
+    /// (x, y) — a sample within the pixel, or beside it — or `None` when (x, y) is outside the
+    /// image. An offset of zero is [`Self::ray`].
+    #[must_use]
+    pub fn ray_offset(&self, x: u32, y: u32, [across, down]: [S; 2]) -> Option<Ray<S>> {
+        let row = self.row(y)?;
+        (x < self.width).then(|| {
+            let along = |size: u32| S::from_int(i32::try_from(size).unwrap_or(i32::MAX));
+            let fx = pixel_centre::<S>(x, self.width, self.roots)
+                + self.roots.div(across, along(self.width));
+            let fy = self.roots.div(down, along(self.height));
+            let s = row
+                .start
+                .add_scaled(self.down, fy)
+                .add_scaled(self.across, fx);
+            row.through(s)
+        })
     }
 }
 
@@ -118,10 +139,13 @@ impl<S: Scalar> Row<S> {
     /// The primary ray through the centre of pixel x: with e at the origin and
     /// s = top_left + down·(y + ½)/height + across·(x + ½)/width, the direction is
     /// (s − e)/|s − e|. Each fraction is one exact ratio, so no error accumulates along a row.
+    /// `None` beyond the row's end.
     #[must_use]
-    pub fn ray(&self, x: u32) -> Ray<S> {
-        let fx = pixel_centre::<S>(x, self.camera.width, self.camera.roots);
-        self.through(self.start.add_scaled(self.camera.across, fx))
+    pub fn ray(&self, x: u32) -> Option<Ray<S>> {
+        (x < self.camera.width).then(|| {
+            let fx = pixel_centre::<S>(x, self.camera.width, self.camera.roots);
+            self.through(self.start.add_scaled(self.camera.across, fx))
+        })
     }
 
     /// The primary rays of the row's pixels, left to right, by the camera's [`RayMethod`].
@@ -170,7 +194,11 @@ impl<S: Scalar> Iterator for Rays<S> {
             return None;
         }
         let ray = match self.row.camera.rays {
-            RayMethod::PerPixel => self.row.ray(self.x),
+            RayMethod::PerPixel => {
+                let fx = pixel_centre::<S>(self.x, self.row.camera.width, self.row.camera.roots);
+                self.row
+                    .through(self.row.start.add_scaled(self.row.camera.across, fx))
+            }
             RayMethod::Stepped => {
                 let ray = self.row.through(self.s);
                 self.s = self.s + self.step;
@@ -182,8 +210,8 @@ impl<S: Scalar> Iterator for Rays<S> {
     }
 }
 
-/// (i + ½) / n = (2i + 1) / 2n, one quotient of integers that every format holds exactly up
-/// to [`MAX_IMAGE_SIDE`] (with approximate roots, to their 14 bits).
+/// (i + ½) / n = (2i + 1) / 2n for i < n ≤ [`MAX_IMAGE_SIDE`], one quotient of integers that
+/// every format holds exactly (with approximate roots, to their 14 bits).
 #[inline]
 fn pixel_centre<S: Scalar>(i: u32, n: u32, roots: RootMethod) -> S {
     let num = i32::try_from(2 * i + 1).unwrap_or(i32::MAX);
@@ -209,12 +237,12 @@ mod tests {
             let frame = Frame::new(&DESC).unwrap();
             // An odd size has a pixel whose centre is the image centre.
             let camera = Camera::<S>::new(&frame, 3, 3, &Methods::LECTURE).unwrap();
-            let centre = camera.ray(1, 1);
+            let centre = camera.ray(1, 1).unwrap();
             assert_eq!(centre.origin, Vec3::ZERO);
             assert_close(centre.dir.z, 1.0, 1e-4);
             // With vfov 90°, the top-left pixel centre of a 3×3 image is at s = (−⅔, ⅔, 1)
             // (x to the left: right = forward × up = −x for this frame).
-            let corner = camera.ray(0, 0).dir;
+            let corner = camera.ray(0, 0).unwrap().dir;
             let n = (2.0_f64 * 4.0 / 9.0 + 1.0).sqrt();
             assert_close(corner.x, 2.0 / 3.0 / n, 1e-4);
             assert_close(corner.y, 2.0 / 3.0 / n, 1e-4);
@@ -228,8 +256,8 @@ mod tests {
         let camera = Camera::<f64>::new(&frame, 4, 2, &Methods::LECTURE).unwrap();
         // vfov 90° on a 4×2 image: the plane spans 2 units vertically and 4 across, so the
         // first pixel centre is 1.5 units from the axis (right = forward × up = −x here).
-        let first = camera.ray(0, 0).dir;
-        let last = camera.ray(3, 0).dir;
+        let first = camera.ray(0, 0).unwrap().dir;
+        let last = camera.ray(3, 0).unwrap().dir;
         assert_close(first.x / first.z, 1.5, 1e-12);
         assert_close(last.x / last.z, -1.5, 1e-12);
         assert_close(first.y / first.z, 0.5, 1e-12);
@@ -245,17 +273,57 @@ mod tests {
             };
             let per_pixel = Camera::<S>::new(&frame, 64, 8, &Methods::LECTURE).unwrap();
             let camera = Camera::<S>::new(&frame, 64, 8, &stepped).unwrap();
-            let row = camera.row(3);
+            let row = camera.row(3).unwrap();
             assert_eq!(row.rays().count(), 64);
             for (x, ray) in (0..64).zip(row.rays()) {
-                let exact = per_pixel.ray(x, 3).dir;
+                let exact = per_pixel.ray(x, 3).unwrap().dir;
                 assert_close(ray.dir.x, exact.x.to_f64(), 1e-3);
                 assert_close(ray.dir.y, exact.y.to_f64(), 1e-3);
             }
             assert_eq!(
-                per_pixel.row(3).rays().collect::<Vec<_>>(),
-                (0..64).map(|x| per_pixel.ray(x, 3)).collect::<Vec<_>>()
+                per_pixel.row(3).unwrap().rays().collect::<Vec<_>>(),
+                (0..64)
+                    .map(|x| per_pixel.ray(x, 3).unwrap())
+                    .collect::<Vec<_>>()
             );
+        });
+    }
+
+    #[test]
+    fn every_pixel_coordinate_has_a_ray_or_none() {
+        for_each_format!(S, {
+            let frame = Frame::new(&DESC).unwrap();
+            let camera = Camera::<S>::new(&frame, 64, 8, &Methods::LECTURE).unwrap();
+            for (x, y) in [(63, 7), (0, 0)] {
+                assert!(camera.ray(x, y).is_some() && camera.row(y).is_some());
+            }
+            for (x, y) in [
+                (64, 0),
+                (0, 8),
+                (u32::MAX, 0),
+                (0, u32::MAX),
+                (u32::MAX, u32::MAX),
+            ] {
+                assert_eq!(camera.ray(x, y), None, "{x}, {y}");
+                assert_eq!(camera.ray_offset(x, y, [S::ZERO; 2]), None, "{x}, {y}");
+            }
+            assert_eq!(camera.row(u32::MAX), None);
+            assert_eq!(camera.row(0).unwrap().ray(u32::MAX), None);
+        });
+    }
+
+    #[test]
+    fn an_offset_ray_passes_beside_the_centre() {
+        for_each_format!(S, {
+            let frame = Frame::new(&DESC).unwrap();
+            let camera = Camera::<S>::new(&frame, 64, 8, &Methods::LECTURE).unwrap();
+            let zero = camera.ray_offset(5, 3, [S::ZERO; 2]);
+            assert_eq!(zero, camera.ray(5, 3));
+            // A whole pixel across and down is the next pixel's centre.
+            let beside = camera.ray_offset(5, 3, [S::ONE, S::ONE]).unwrap().dir;
+            let next = camera.ray(6, 4).unwrap().dir;
+            assert_close(beside.x, next.x.to_f64(), 1e-4);
+            assert_close(beside.y, next.y.to_f64(), 1e-4);
         });
     }
 

@@ -88,8 +88,12 @@ where
             height: camera.height(),
         });
     }
+    let (end, height) = (rows.end, camera.height());
     for y in rows {
-        for (pixel, ray) in line.iter_mut().zip(camera.row(y).rays()) {
+        let row = camera
+            .row(y)
+            .ok_or(RenderError::RowsOutOfRange { end, height })?;
+        for (pixel, ray) in line.iter_mut().zip(row.rays()) {
             *pixel = scene.trace(ray).colour.quantize();
         }
         // Both fit i32: they are at most MAX_IMAGE_SIDE.

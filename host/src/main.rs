@@ -18,6 +18,8 @@ mod pareto;
 mod peak;
 mod plot;
 mod quantized;
+#[cfg(test)]
+mod regressions;
 mod render;
 mod scene_file;
 mod stress;

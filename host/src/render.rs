@@ -8,6 +8,7 @@ use embedded_graphics::pixelcolor::{IntoStorage, Rgb565, Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
 use image::RgbImage;
 use indicatif::{ProgressBar, ProgressStyle};
+use obscura::camera::Row;
 use obscura::{Camera, Methods, RootMethod, Scalar, Scene, SceneDesc, SceneError, render_rows};
 use rayon::prelude::*;
 use std::convert::Infallible;
@@ -151,7 +152,7 @@ impl<S: Scalar> Prepared<S> {
     /// overflows.
     fn overflow_at(&self, y: u32, overflowed: Overflowed) -> anyhow::Error {
         let (first, pixel) = (0..self.camera.width())
-            .zip(self.camera.row(y).rays())
+            .zip(self.camera.row(y).into_iter().flat_map(Row::rays))
             .find_map(|(x, ray)| {
                 checked::catch(|| self.scene.trace(ray))
                     .err()
@@ -196,7 +197,8 @@ impl<S: Scalar> Prepared<S> {
             let row = checked::catch(|| {
                 self.camera
                     .row(y)
-                    .rays()
+                    .into_iter()
+                    .flat_map(Row::rays)
                     .map(|ray| self.scene.first_hit(&ray))
                     .collect::<Vec<_>>()
             });
@@ -217,13 +219,23 @@ impl<S: Scalar> Prepared<S> {
             let row = checked::catch(|| {
                 self.camera
                     .row(y)
-                    .rays()
+                    .into_iter()
+                    .flat_map(Row::rays)
                     .map(|ray| self.scene.trace(ray).met)
                     .collect::<Vec<_>>()
             });
             met.extend(row.map_err(|overflowed| self.overflow_at(y, overflowed))?);
         }
         Ok(met)
+    }
+}
+
+impl Prepared<f64> {
+    /// What the ray through the point `offset` (across, down) pixels from the centre of pixel
+    /// (x, y) sees, or `None` outside the image.
+    pub fn sample(&self, x: u32, y: u32, offset: [f64; 2]) -> Option<obscura::Sample<f64>> {
+        let ray = self.camera.ray_offset(x, y, offset)?;
+        Some(self.scene.trace(ray))
     }
 }
 
@@ -235,8 +247,6 @@ pub trait AnyFormat: Sync {
     fn object_map(&self) -> Result<Vec<Option<usize>>>;
     /// See [`Prepared::rgb565_frame`].
     fn rgb565_frame(&self) -> Result<Vec<u16>>;
-    /// See [`Prepared::met_map`].
-    fn met_map(&self) -> Result<Vec<u64>>;
 }
 
 impl<S: Scalar> AnyFormat for Prepared<S> {
@@ -248,9 +258,6 @@ impl<S: Scalar> AnyFormat for Prepared<S> {
     }
     fn rgb565_frame(&self) -> Result<Vec<u16>> {
         Prepared::rgb565_frame(self)
-    }
-    fn met_map(&self) -> Result<Vec<u64>> {
-        Prepared::met_map(self)
     }
 }
 

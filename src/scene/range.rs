@@ -63,6 +63,10 @@ pub const RANGE_HEADROOM: f64 = 1.01;
 /// bit to spare).
 pub const FAST_ROOT_ERROR: f64 = 1.0 / 8192.0;
 
+/// The errors a light must be from a surface for its shadow rays to tell which side of it the
+/// light is on: a decision, not a shape, so fewer than [`MIN_FEATURE_STEPS`].
+pub const SIDE_STEPS: f64 = 2.0;
+
 /// The steps between neighbouring pixels' rays a format must resolve: at fewer, neighbouring
 /// pixels would see along one ray.
 pub const MIN_PIXEL_STEPS: f64 = 2.0;
@@ -511,7 +515,7 @@ pub fn features<'a>(
             // well clear of it, or the tolerance bends every ray it sends there. The surface's
             // own coordinates, rounded at their size, place it only so precisely.
             let gap = clearance(object, Vec3::from_f32(eye));
-            let clearance = |value, reach: f64, _radius: Option<f64>| {
+            let clearance = |value, reach: f64| {
                 feature(
                     "the eye's distance from its surface, against the error with which a ray \
                      from the eye finds the surface",
@@ -549,7 +553,7 @@ pub fn features<'a>(
                             tolerance_terms(from_eye + r, Some(r)),
                             Remedy::LargerSphere,
                         )),
-                        Some(clearance(gap, from_eye + r, Some(r))),
+                        Some(clearance(gap, from_eye + r)),
                     ]
                 }
                 ShapeDesc::Plane { checker, point, .. } => {
@@ -580,7 +584,7 @@ pub fn features<'a>(
                     });
                     let [square, reciprocal] =
                         checker.map_or([None, None], |[a, b]| [Some(a), Some(b)]);
-                    [square, reciprocal, Some(clearance(gap, reach, None)), None]
+                    [square, reciprocal, Some(clearance(gap, reach)), None]
                 }
                 ShapeDesc::Triangle { vertices } => {
                     // The tests' determinants are twice the area seen along the ray; their
@@ -626,9 +630,9 @@ pub fn features<'a>(
                             area_error(s, longest, area),
                             Remedy::FatterTriangle,
                         )),
+                        Some(clearance(gap, reach)),
                         reciprocal,
                         product,
-                        Some(clearance(gap, reach, None)),
                     ]
                 }
             }
@@ -659,7 +663,7 @@ pub fn features<'a>(
                        finds the surface",
             value: clearance(object, position),
             terms: locating(object, methods, reach),
-            steps: MIN_FEATURE_STEPS,
+            steps: SIDE_STEPS,
             remedy: Remedy::MoveLight,
         });
         core::iter::once(level).chain(clear)

@@ -51,7 +51,8 @@ pub fn render<S: Scalar>(
     let mut line = vec![Rgb888::BLACK; width as usize];
     render_rows(&scene, &camera, 0..height, &mut line, &mut frame).expect("renders");
     let objects = (0..height)
-        .flat_map(|y| camera.row(y).rays())
+        .filter_map(|y| camera.row(y))
+        .flat_map(|row| row.rays())
         .map(|ray| scene.first_hit(&ray))
         .collect();
     (frame, objects)

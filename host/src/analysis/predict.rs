@@ -37,252 +37,149 @@ use super::extents;
 use crate::format::{Format, FormatJob};
 use crate::metrics::accuracy;
 use crate::quantized::{COSINE_STEPS, Quantized};
-use crate::render::{Prepared, Request, exact_roots};
+use crate::render::{Prepared, Request, all_cores, exact_roots};
 use anyhow::Result;
+use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use image::RgbImage;
 use obscura::scene::range::{self, FAST_ROOT_ERROR};
 use obscura::{
     Item, Methods, RayMethod, RootMethod, Scalar, SceneDesc, ShapeDesc, TriangleMethod, Vec3,
 };
+use rayon::prelude::*;
+use std::f64::consts::FRAC_1_SQRT_2;
 
 /// Unit-vector steps a format's rounding turns a ray by: the primary ray's and one bounce's.
 const DIRECTION_STEPS: f64 = 2.0;
 
-/// What an error spread evenly over its bound comes to on average: half the bound.
-const EVEN: f64 = 0.5;
-
 /// Steps of rounding in a colour: each product and sum on the way to the pixel.
 const COLOUR_STEPS: f64 = 8.0;
 
-/// The f64 reference of a scene at one size: its image, the object each primary ray hits, the
-/// objects each pixel's ray tree meets, and the image's structure.
+/// The f64 reference of a scene at one size: the scene and camera themselves, to trace rays
+/// beside the pixels' centres; its image; the object each primary ray hits; and the objects each
+/// pixel's ray tree meets.
 #[derive(Debug)]
 pub struct Reference {
+    /// The scene and camera, in f64.
+    prepared: Prepared<f64>,
     /// The image.
     pub image: RgbImage,
     /// The object each pixel's primary ray hits.
     pub objects: Vec<Option<usize>>,
     /// The objects each pixel's ray tree meets ([`obscura::Sample::met`]).
     pub met: Vec<u64>,
-    /// The image's structure.
-    pub structure: Structure,
 }
 
+/// Images of at least this many pixels have their rays nudged on all cores.
+const PARALLEL_PIXELS: u32 = 1 << 16;
+
+/// The directions a pixel's ray is nudged in, to see what lies within a distance of it: along
+/// the rows and columns and the diagonals.
+const NUDGES: [(f64, f64); 8] = [
+    (1.0, 0.0),
+    (-1.0, 0.0),
+    (0.0, 1.0),
+    (0.0, -1.0),
+    (FRAC_1_SQRT_2, FRAC_1_SQRT_2),
+    (FRAC_1_SQRT_2, -FRAC_1_SQRT_2),
+    (-FRAC_1_SQRT_2, FRAC_1_SQRT_2),
+    (-FRAC_1_SQRT_2, -FRAC_1_SQRT_2),
+];
+
 impl Reference {
-    /// The reference of an image, its objects and what each pixel met.
-    pub fn new(image: RgbImage, objects: Vec<Option<usize>>, met: Vec<u64>) -> Self {
-        let structure = Structure::of(&image, &objects);
-        Self {
+    /// The f64 reference of `request` (which must have exact roots: f64 has no others).
+    ///
+    /// # Errors
+    /// When f64 cannot build the scene.
+    pub fn render(request: &Request<'_>) -> Result<Self> {
+        let prepared = Prepared::<f64>::new(request)?;
+        let image = prepared.render(all_cores(), None)?;
+        let objects = prepared.object_map()?;
+        let met = prepared.met_map()?;
+        Ok(Self {
+            prepared,
             image,
             objects,
             met,
-            structure,
-        }
+        })
     }
 
-    /// The mean squared error, in levels², of the image when the edge between each pixel p and
-    /// its neighbour q moves by `shift(p, q)` pixels: for δ ≤ 1, the squared step between them
-    /// (across and below) times δ; where a pixel's edges move by more, its largest squared
-    /// difference from the pixels up to the next power of two of δ away, or, past the image's
-    /// edge, any colour at all.
-    fn moved(&self, shift: impl Fn(usize, usize) -> f64) -> f64 {
+    /// The mean squared error, in levels², and the share of pixels whose primary ray may hit
+    /// another object, when every ray may move by up to `shift(p, q)` pixels where pixel p
+    /// meets its neighbour q: each pixel's ray nudged by the most its edges move, in each of
+    /// eight directions, may see whatever the f64 scene shows there (worst case: the most
+    /// different). A pixel alike its eight neighbours, whose edges move by less than a pixel,
+    /// is left alone. Past the image's edge, a pixel may show anything.
+    fn moved(&self, shift: impl Fn(usize, usize) -> f64 + Sync) -> (f64, f64) {
         let (width, height) = self.image.dimensions();
-        let pixel = |x: u32, y: u32| self.image.get_pixel(x, y).0;
-        let squared = |a: [u8; 3], b: [u8; 3]| -> f64 {
-            a.iter()
-                .zip(b)
-                .map(|(&p, q)| (f64::from(p) - f64::from(q)).powi(2))
-                .sum()
+        let index = |x: u32, y: u32| (y * width + x) as usize;
+        let around = |x: u32, y: u32| {
+            (-1_i64..=1)
+                .flat_map(move |dy| (-1_i64..=1).map(move |dx| (dx, dy)))
+                .filter(|&(dx, dy)| dx != 0 || dy != 0)
+                .filter_map(move |(dx, dy)| {
+                    let (nx, ny) = (i64::from(x) + dx, i64::from(y) + dy);
+                    let inside =
+                        nx >= 0 && ny >= 0 && nx < i64::from(width) && ny < i64::from(height);
+                    inside.then_some((nx as u32, ny as u32))
+                })
         };
-        let neighbours = |x: u32, y: u32| {
-            [
-                x.checked_sub(1).map(|nx| (nx, y)),
-                (x + 1 < width).then(|| (x + 1, y)),
-                y.checked_sub(1).map(|ny| (x, ny)),
-                (y + 1 < height).then(|| (x, y + 1)),
-            ]
-            .into_iter()
-            .flatten()
-        };
-        let mut sum = 0.0;
-        for y in 0..height {
-            for x in 0..width {
-                let here = pixel(x, y);
-                let i = (y * width + x) as usize;
-                let pairs = |k: u32| {
-                    [(x + k, y), (x, y + k)]
-                        .into_iter()
-                        .filter(move |&(nx, ny)| nx < width && ny < height)
+        let pixel = |x: u32, y: u32| -> (f64, f64) {
+            let here = index(x, y);
+            let delta = around(x, y)
+                .map(|(nx, ny)| shift(here, index(nx, ny)))
+                .fold(shift(here, here), f64::max);
+            if delta <= 0.0 {
+                return (0.0, 0.0);
+            }
+            if delta >= f64::from(width.max(height)) {
+                return (3.0 * 255.0 * 255.0, 1.0);
+            }
+            let colour = self.image.get_pixel(x, y).0;
+            let object = self.objects.get(here).copied().flatten();
+            let alike = around(x, y).all(|(nx, ny)| {
+                self.image.get_pixel(nx, ny).0 == colour
+                    && self.objects.get(index(nx, ny)) == self.objects.get(here)
+                    && self.met.get(index(nx, ny)) == self.met.get(here)
+            });
+            if alike && delta < 1.0 {
+                return (0.0, 0.0);
+            }
+            let mut worst = 0.0_f64;
+            let mut mismatched = false;
+            for (across, down) in NUDGES {
+                let Some(sample) = self.prepared.sample(x, y, [across * delta, down * delta])
+                else {
+                    continue;
                 };
-                // A pixel moves with the edges around it.
-                let delta = neighbours(x, y)
-                    .map(|(nx, ny)| shift(i, (ny * width + nx) as usize))
-                    .fold(shift(i, i), f64::max);
-                sum += if delta <= 1.0 {
-                    pairs(1)
-                        .map(|(nx, ny)| {
-                            let j = (ny * width + nx) as usize;
-                            shift(i, j) * squared(here, pixel(nx, ny))
-                        })
-                        .sum::<f64>()
-                } else if delta >= f64::from(width.max(height)) {
-                    // Beyond the image, a pixel may show anything.
-                    3.0 * 255.0 * 255.0
-                } else {
-                    let mut k = 1;
-                    let mut largest: f64 = 0.0;
-                    while f64::from(k) < 2.0 * delta {
-                        let steps: f64 =
-                            pairs(k).map(|(nx, ny)| squared(here, pixel(nx, ny))).sum();
-                        largest = largest.max(steps);
-                        k *= 2;
-                    }
-                    largest
-                };
+                let seen: Rgb888 = sample.colour.quantize();
+                let squared: f64 = [seen.r(), seen.g(), seen.b()]
+                    .iter()
+                    .zip(colour)
+                    .map(|(&a, b)| (f64::from(a) - f64::from(b)).powi(2))
+                    .sum();
+                worst = worst.max(squared);
+                mismatched |= sample.object != object;
             }
-        }
-        sum / (3.0 * f64::from(width) * f64::from(height))
-    }
-
-    /// The share of pixels whose primary ray may hit another object when the edge between each
-    /// pixel p and its neighbour q moves by `shift(p, q)` pixels: a δ share of those next to a
-    /// boundary between objects, and every one within the largest δ of one.
-    fn mismatched(&self, shift: impl Fn(usize, usize) -> f64) -> f64 {
-        let (width, height) = self.image.dimensions();
-        let (w, h) = (width as usize, height as usize);
-        let neighbours = |i: usize| {
-            let (x, y) = (i % w.max(1), i / w.max(1));
-            [
-                (x > 0).then(|| i - 1),
-                (x + 1 < w).then(|| i + 1),
-                (y > 0).then(|| i - w),
-                (y + 1 < h).then(|| i + w),
-            ]
-            .into_iter()
-            .flatten()
+            (worst, if mismatched { 1.0 } else { 0.0 })
         };
-        let objects = &self.objects;
-        let edge = |i: usize| {
-            neighbours(i)
-                .filter(|&j| objects.get(j) != objects.get(i))
-                .map(|j| shift(i, j))
-                .fold(0.0, f64::max)
+        let row = |y: u32| {
+            (0..width)
+                .map(|x| pixel(x, y))
+                .fold((0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1))
         };
-        let farthest = (0..self.structure.boundary.len())
-            .map(edge)
-            .fold(0.0, f64::max);
-        let share: f64 = self
-            .structure
-            .boundary
-            .iter()
-            .enumerate()
-            .map(|(i, &distance)| {
-                if distance == 0 {
-                    edge(i).min(1.0)
-                } else if f64::from(distance) < farthest {
-                    1.0
-                } else {
-                    0.0
-                }
-            })
-            .sum();
-        share / self.structure.boundary.len().max(1) as f64
+        let add = |a: (f64, f64), b: (f64, f64)| (a.0 + b.0, a.1 + b.1);
+        // A small image is not worth the threads (and a fuzzer runs many on its own).
+        let (squared, mismatched) = if width * height < PARALLEL_PIXELS {
+            (0..height).map(row).fold((0.0, 0.0), add)
+        } else {
+            (0..height)
+                .into_par_iter()
+                .map(row)
+                .reduce(|| (0.0, 0.0), add)
+        };
+        let pixels = f64::from(width) * f64::from(height);
+        (squared / (3.0 * pixels), mismatched / pixels)
     }
-}
-
-/// How much an image changes when it moves: its mean squared difference of neighbouring pixels
-/// (across and below), and each pixel's distance from a boundary between objects.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Structure {
-    /// G: the mean squared difference of neighbouring pixels, in 8-bit levels².
-    edge_energy: f64,
-    /// Each pixel's distance, in pixels, from the nearest pixel next to another object.
-    boundary: Vec<u32>,
-}
-
-impl Structure {
-    fn of(image: &RgbImage, objects: &[Option<usize>]) -> Self {
-        let (width, height) = image.dimensions();
-        Self {
-            edge_energy: structure_function(image, 1),
-            boundary: boundary_distance(objects, width, height),
-        }
-    }
-
-    /// G: the mean squared difference of neighbouring pixels.
-    pub fn edge_energy(&self) -> f64 {
-        self.edge_energy
-    }
-}
-
-/// D(k): see [`Structure`].
-fn structure_function(image: &RgbImage, k: u32) -> f64 {
-    let (width, height) = image.dimensions();
-    let mut sum = 0.0;
-    for y in 0..height {
-        for x in 0..width {
-            let here = image.get_pixel(x, y).0;
-            for (nx, ny) in [(x + k, y), (x, y + k)] {
-                if nx < width && ny < height {
-                    let there = image.get_pixel(nx, ny).0;
-                    sum += here
-                        .iter()
-                        .zip(there)
-                        .map(|(&a, b)| (f64::from(a) - f64::from(b)).powi(2))
-                        .sum::<f64>();
-                }
-            }
-        }
-    }
-    sum / (3.0 * f64::from(width) * f64::from(height))
-}
-
-/// Each pixel's distance, in pixels (the larger of across and down), from the nearest pixel
-/// next to a boundary between objects: 0 for such a pixel, by two passes of a chamfer
-/// transform.
-fn boundary_distance(objects: &[Option<usize>], width: u32, height: u32) -> Vec<u32> {
-    let (w, h) = (width as usize, height as usize);
-    let at = |x: usize, y: usize| objects.get(y * w + x).copied().flatten();
-    let mut distance = vec![u32::MAX; w * h];
-    for y in 0..h {
-        for x in 0..w {
-            let here = at(x, y);
-            let boundary = (x > 0 && at(x - 1, y) != here)
-                || (x + 1 < w && at(x + 1, y) != here)
-                || (y > 0 && at(x, y - 1) != here)
-                || (y + 1 < h && at(x, y + 1) != here);
-            if boundary {
-                distance[y * w + x] = 0;
-            }
-        }
-    }
-    let relax = |distance: &mut Vec<u32>, x: usize, y: usize, nx: usize, ny: usize| {
-        let through = distance[ny * w + nx].saturating_add(1);
-        if through < distance[y * w + x] {
-            distance[y * w + x] = through;
-        }
-    };
-    for y in 0..h {
-        for x in 0..w {
-            for (dx, dy) in [(-1, 0), (-1, -1), (0, -1), (1, -1)] {
-                let (nx, ny) = (x as i64 + dx, y as i64 + dy);
-                if nx >= 0 && ny >= 0 && (nx as usize) < w {
-                    relax(&mut distance, x, y, nx as usize, ny as usize);
-                }
-            }
-        }
-    }
-    for y in (0..h).rev() {
-        for x in (0..w).rev() {
-            for (dx, dy) in [(1, 0), (1, 1), (0, 1), (-1, 1)] {
-                let (nx, ny) = (x as i64 + dx, y as i64 + dy);
-                if nx >= 0 && (nx as usize) < w && (ny as usize) < h {
-                    relax(&mut distance, x, y, nx as usize, ny as usize);
-                }
-            }
-        }
-    }
-    distance
 }
 
 /// What the model predicts for one format.
@@ -345,14 +242,8 @@ fn predict_in<S: Scalar>(
     let constants_mse = mse(measured.psnr_db);
     let pixel = pixel_angle(desc, width, height);
     let global_angle = global_angle::<S>(desc, &methods, width, height);
-    let global = EVEN * global_angle / pixel;
-    let shifts: Vec<Shifts> = object_shifts::<S>(desc, &methods, pixel, global_angle)
-        .into_iter()
-        .map(|shift| Shifts {
-            silhouette: EVEN * shift.silhouette,
-            inner: EVEN * shift.inner,
-        })
-        .collect();
+    let global = global_angle / pixel;
+    let shifts = object_shifts::<S>(desc, &methods, pixel);
     // The edge between two pixels moves by the global shift; by an object's silhouette's
     // where one ray tree met the object and the other did not; by its inner edges' where both
     // did.
@@ -378,12 +269,13 @@ fn predict_in<S: Scalar>(
         .map(|shift| shift.silhouette.max(shift.inner))
         .sum::<f64>()
         + global;
-    let shading_levels = EVEN * 255.0 * shading_error::<S>(desc);
+    let shading_levels = 255.0 * shading_error::<S>(desc);
     // Rounding a colour that errs by e levels to the nearest level changes it by one level in
     // an e share of pixels.
     let shading_mse = shading_levels * shading_levels + shading_levels.min(1.0);
-    let total = constants_mse + reference.moved(shift) + shading_mse;
-    let mismatch_pct = measured.object_mismatch_pct + 100.0 * reference.mismatched(shift);
+    let (moved_mse, moved_share) = reference.moved(shift);
+    let total = constants_mse + moved_mse + shading_mse;
+    let mismatch_pct = measured.object_mismatch_pct + 100.0 * moved_share;
     Ok(Prediction {
         psnr_db: psnr(total),
         mismatch_pct: mismatch_pct.min(100.0),
@@ -450,10 +342,7 @@ fn global_angle<S: Scalar>(
     angle
 }
 
-/// How far format `S`'s rounding may move an object's edges, in pixels: the share of a pixel
-/// an edge moves by where the object is larger than a pixel, and where it is smaller (a
-/// checkerboard's squares far away, a sphere in the distance), the share of its own size, which
-/// is the chance that a pixel's one sample lands on the other side.
+/// How far format `S`'s rounding may move an object's edges, in pixels.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct Shifts {
     /// Its silhouette (its edge against what is behind it).
@@ -462,15 +351,9 @@ struct Shifts {
     inner: f64,
 }
 
-/// Each object's [`Shifts`] in format `S`, for pixels `pixel` radians apart and a global
-/// rounding of `global` radians (see the module documentation).
-fn object_shifts<S: Scalar>(
-    desc: &SceneDesc<'_>,
-    methods: &Methods,
-    pixel: f64,
-    global: f64,
-) -> Vec<Shifts> {
-    let world = f64::from(desc.far);
+/// Each object's [`Shifts`] in format `S`, for pixels `pixel` radians apart (see the module
+/// documentation).
+fn object_shifts<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods, pixel: f64) -> Vec<Shifts> {
     let nearest = extents(desc).nearest.max(f64::MIN_POSITIVE);
     let eye = Vec3::from_f32(desc.camera.eye);
     let mut shifts: Vec<Shifts> = desc
@@ -500,37 +383,30 @@ fn object_shifts<S: Scalar>(
         };
         let seen = range::clearance(object, eye).max(nearest);
         let error = feature.error::<S>();
-        let sides = |vertices: [[f32; 3]; 3]| {
+        let longest = |vertices: [[f32; 3]; 3]| {
             let [a, b, c] = vertices.map(Vec3::from_f32);
-            let longest = (b - a).length().max((c - a).length()).max((c - b).length());
-            (longest, (b - a).cross(c - a).length() / longest)
+            (b - a).length().max((c - a).length()).max((c - b).length())
         };
-        // An angle over the larger of a pixel and the feature's own angular size.
-        let share = |angle: f64, size: f64| angle / pixel.min(size);
         match (object.shape, feature.quantity) {
             // The silhouette moves by the discriminant's error over 2r, seen from the eye.
             (ShapeDesc::Sphere { center, radius }, "radius² seen from the eye") => {
                 let r = f64::from(radius);
                 let from_eye = (Vec3::from_f32(center) - eye).length().max(nearest);
-                shift.silhouette += share(error / (2.0 * r * from_eye), r / from_eye);
+                shift.silhouette += error / (2.0 * r * from_eye) / pixel;
             }
             // An edge moves by the determinant's error over the edge's length.
             (ShapeDesc::Triangle { vertices }, "twice the triangle's area") => {
-                let (longest, height) = sides(vertices);
-                shift.silhouette += share(error / (longest * seen), height / seen);
+                shift.silhouette += error / (longest(vertices) * seen) / pixel;
             }
             // Möller–Trumbore's 1/det errs relatively by its rounding over itself, and so do
             // the barycentric coordinates, moving an edge by that share of the triangle.
             (ShapeDesc::Triangle { vertices }, "Möller–Trumbore's 1/det, against its rounding") =>
             {
-                let (longest, height) = sides(vertices);
-                let angle = error / feature.value * longest / seen;
-                shift.silhouette += share(angle, height / seen);
+                shift.silhouette += error / feature.value * longest(vertices) / seen / pixel;
             }
-            // A checker coordinate, counted in squares, errs by its rounding at that size and
-            // by where the point was put: the global rounding along a ray across the world, and
-            // the point's own rounding. Near, that moves the edges by a share of a pixel; where
-            // the squares are smaller than a pixel, by that share of a square.
+            // A checker coordinate, counted in squares, is rounded at its size: a point seen at
+            // distance d is about d from the eye's foot, where the count starts, so its edges
+            // move by size·res(d/size)/d, most at the nearest.
             (
                 ShapeDesc::Plane {
                     checker: Some(checker),
@@ -539,12 +415,7 @@ fn object_shifts<S: Scalar>(
                 "checker square size",
             ) => {
                 let size = f64::from(checker.size);
-                let near = seen / size + 1.0;
-                let edge = size * S::resolution(near) / seen;
-                let across = 2.0 * world;
-                let squares = (across * global + S::resolution(across)) / size
-                    + S::resolution(across / size + 1.0);
-                shift.inner += (edge / pixel).max(2.0 * squares);
+                shift.inner += size * S::resolution(seen / size + 1.0) / seen / pixel;
             }
             _ => {}
         }
@@ -581,29 +452,73 @@ fn shading_error<S: Scalar>(desc: &SceneDesc<'_>) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use obscura::{BackgroundDesc, CameraDesc, MaterialDesc, ObjectDesc, ShapeDesc, scenes};
 
-    #[test]
-    fn a_known_image_moved_by_a_known_shift() {
-        // A vertical edge: black | white, two pixels wide, one high.
-        let mut image = RgbImage::new(2, 1);
-        image.put_pixel(1, 0, image::Rgb([255, 255, 255]));
-        let reference = Reference::new(image, vec![Some(0), Some(1)], vec![1, 2]);
-        // One pair across, 255² in each of three channels, over 2 pixels × 3 channels.
-        assert!((reference.structure.edge_energy() - 255.0 * 255.0 / 2.0).abs() < 1e-9);
-        // Half a pixel's move changes half of that; both pixels are next to the boundary.
-        assert!((reference.moved(|_, _| 0.5) - 255.0 * 255.0 / 4.0).abs() < 1e-9);
-        assert!((reference.mismatched(|_, _| 0.5) - 0.5).abs() < 1e-9);
-        // Beyond the image, a pixel may show anything.
-        assert!((reference.moved(|_, _| 3.0) - 255.0 * 255.0).abs() < 1e-9);
-        assert!((reference.mismatched(|_, _| 3.0) - 1.0).abs() < 1e-9);
-        assert!(reference.moved(|_, _| 0.0).abs() < 1e-9);
+    /// A white sphere on black, seen head on at 32×32.
+    fn ball() -> Reference {
+        let objects = [ObjectDesc {
+            shape: ShapeDesc::Sphere {
+                center: [0.0, 0.0, 5.0],
+                radius: 1.0,
+            },
+            material: MaterialDesc {
+                diffuse: 0.0,
+                ..MaterialDesc::matte([1.0; 3])
+            },
+        }];
+        let desc = SceneDesc {
+            camera: CameraDesc {
+                eye: [0.0; 3],
+                look_at: [0.0, 0.0, 1.0],
+                up: [0.0, 1.0, 0.0],
+                vfov_degrees: 30.0,
+            },
+            objects: &objects,
+            lights: &[],
+            ambient: [1.0; 3],
+            background: BackgroundDesc::Solid([0.0; 3]),
+            far: 10.0,
+            max_depth: 0,
+        };
+        Reference::render(&Request {
+            desc: &desc,
+            width: 32,
+            height: 32,
+            methods: Methods::LECTURE,
+        })
+        .expect("renders")
     }
 
     #[test]
-    fn boundary_distances_grow_away_from_the_edge() {
-        // Object 0 on the left three columns, object 1 on the right three, two rows.
-        let objects: Vec<Option<usize>> = (0..12).map(|i| Some(usize::from(i % 6 >= 3))).collect();
-        let distance = boundary_distance(&objects, 6, 2);
-        assert_eq!(distance, [2, 1, 0, 0, 1, 2, 2, 1, 0, 0, 1, 2]);
+    fn a_nudge_finds_the_pixels_within_its_reach_of_an_edge() {
+        let reference = ball();
+        assert_eq!(reference.moved(|_, _| 0.0), (0.0, 0.0));
+        // Half a pixel's nudge reaches the silhouette from the pixels next to it, no farther.
+        let (half, half_share) = reference.moved(|_, _| 0.5);
+        let (two, two_share) = reference.moved(|_, _| 2.0);
+        assert!(half > 0.0 && half_share > 0.0);
+        assert!(two > half && two_share > half_share);
+        // Each pixel that may change may change by all of white to black.
+        let pixels = 32.0 * 32.0;
+        assert!((half - half_share * 255.0 * 255.0).abs() * pixels < 1e-6);
+        // Past the image's edge, anything.
+        assert_eq!(reference.moved(|_, _| 40.0), (255.0 * 255.0, 1.0));
+    }
+
+    #[test]
+    fn the_prediction_for_f64_itself_is_of_no_error() {
+        let whitted = scenes::WHITTED;
+        let request = Request {
+            desc: &whitted,
+            width: 48,
+            height: 48,
+            methods: Methods::LECTURE,
+        };
+        let reference = Reference::render(&request).expect("renders");
+        let f64s = predict(Format::F64, &whitted, Methods::LECTURE, &reference).expect("holds");
+        assert!(f64s.psnr_db > 100.0, "{f64s:?}");
+        let i20f12 =
+            predict(Format::I20f12, &whitted, Methods::LECTURE, &reference).expect("holds");
+        assert!(i20f12.psnr_db < f64s.psnr_db && i20f12.shift_px > f64s.shift_px);
     }
 }

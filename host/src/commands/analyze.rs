@@ -16,12 +16,10 @@ pub fn run(args: &AnalyzeArgs) -> Result<()> {
     print_bits(&analysis.bits);
     println!(
         "\n## Formats, at {width}x{height}\n\nThe model's bound against f64 (the format's \
-         constants and tolerances, rendered in f64; its rounding, moving the image by up to a \
-         shift of the f64 image, whose neighbouring pixels differ by G = {:.1} levels²; and the \
-         shading's rounding), beside the PSNR measured on the host, which computes the \
-         firmware's bits. Cost per pixel from the committed chart, on the built-in scene like \
-         this one ({}).\n",
-        analysis.edge_energy,
+         constants and tolerances, rendered in f64; its rounding, which may move each pixel's \
+         ray by up to the shift shown, tried on the f64 scene; and the shading's rounding), \
+         beside the PSNR measured on the host, which computes the firmware's bits. Cost per \
+         pixel from the committed chart, on the built-in scene like this one ({}).\n",
         if analysis.has_triangles {
             "with triangles"
         } else {

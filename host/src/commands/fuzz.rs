@@ -12,6 +12,10 @@ use std::time::{Duration, Instant};
 /// Scenes tried between two looks at the clock.
 const BATCH: u64 = 64;
 
+/// Each fuzzing thread's stack: a scene's analysis renders on it, and rayon may stack one
+/// scene's work on another's while it waits.
+const STACK_BYTES: usize = 64 << 20;
+
 pub fn run(args: &FuzzArgs) -> Result<()> {
     let budget = Duration::from_secs(args.seconds);
     let start = Instant::now();
@@ -25,6 +29,7 @@ pub fn run(args: &FuzzArgs) -> Result<()> {
     };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(usize::from(args.threads))
+        .stack_size(STACK_BYTES)
         .build()
         .context("cannot start the fuzzer's threads")?;
     let mut tally = Tally::default();

@@ -26,7 +26,7 @@ use crate::checked;
 use crate::format::Format;
 use crate::metrics::{Accuracy, accuracy};
 use crate::owned::OwnedScene;
-use crate::render::{Request, prepare, prepare_reference};
+use crate::render::{Request, exact_roots, prepare, prepare_reference};
 use crate::variant;
 use anyhow::{Context, Result};
 use image::RgbImage;
@@ -282,7 +282,10 @@ fn try_methods(
         file: None,
     };
     // A scene f64 refuses, every format refuses: validation is the same code for all.
-    let Some((reference, objects, met)) = render_f64(&request) else {
+    let Ok(reference) = Reference::render(&Request {
+        methods: exact_roots(methods),
+        ..request
+    }) else {
         for format in FORMATS {
             tally.builds += 1;
             if prepare(format, &request).is_ok() {
@@ -296,8 +299,7 @@ fn try_methods(
         }
         return;
     };
-    let stable = stable(scene, &request, &reference);
-    let reference = Reference::new(reference, objects, met);
+    let stable = stable(scene, &request, &reference.image);
     let analysis = Analysis::with_reference(scene, methods, &reference);
     for format in FORMATS {
         tally.builds += 1;
@@ -379,26 +381,16 @@ pub fn false_accept(prediction: &Prediction, measured: &Accuracy, pixels: u32) -
         || measured.object_mismatch_pct > MARGIN * prediction.mismatch_pct + spare_pct
 }
 
-/// The f64 reference image, object map and what each pixel met, or `None` when f64 refuses
-/// the scene.
-fn render_f64(request: &Request<'_>) -> Option<(RgbImage, Vec<Option<usize>>, Vec<u64>)> {
-    let reference = prepare_reference(request).ok()?;
-    Some((
-        reference.render(1, None).ok()?,
-        reference.object_map().ok()?,
-        reference.met_map().ok()?,
-    ))
-}
-
 /// Whether the f64 image stays within [`STABLE_PSNR_DB`] when the eye moves by one ulp.
 fn stable(scene: &OwnedScene, request: &Request<'_>, reference: &RgbImage) -> bool {
     let mut nudged = scene.clone();
     nudged.camera.eye = nudged.camera.eye.map(f32::next_up);
     let desc = nudged.desc();
-    let Some((image, ..)) = render_f64(&Request {
+    let Ok(image) = prepare_reference(&Request {
         desc: &desc,
         ..*request
-    }) else {
+    })
+    .and_then(|nudged| nudged.render(1, None)) else {
         return false;
     };
     let none = vec![None; (request.width * request.height) as usize];

@@ -4,6 +4,7 @@
 use crate::metrics::accuracy;
 use crate::render::HostScene;
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+use obscura::camera::Row;
 use obscura::methods::RootMethod;
 use obscura::scene::range;
 use obscura::{Methods, Ray, RayMethod, Scalar, SceneDesc, SceneError, Vec3};
@@ -66,9 +67,10 @@ pub fn image<S: Scalar>(
     let mut wrong = 0;
     let mut unexcused = 0;
     for y in 0..size {
-        for (x, ray) in (0..size).zip(camera.row(y).rays()) {
+        for (x, ray) in (0..size).zip(camera.row(y).into_iter().flat_map(Row::rays)) {
             let g = colour(scene.trace(ray).colour);
-            let centre = ref_camera.ray(x, y).dir;
+            let ray_at = |x, y| ref_camera.ray(x, y).map_or(Vec3::ZERO, |ray| ray.dir);
+            let centre = ray_at(x, y);
             let w = trace_f64(centre);
             got.put_pixel(x, y, image::Rgb(g));
             want.put_pixel(x, y, image::Rgb(w));
@@ -76,14 +78,8 @@ pub fn image<S: Scalar>(
                 continue;
             }
             wrong += 1;
-            let across = ref_camera
-                .ray(if x + 1 < size { x + 1 } else { x - 1 }, y)
-                .dir
-                - centre;
-            let down = ref_camera
-                .ray(x, if y + 1 < size { y + 1 } else { y - 1 })
-                .dir
-                - centre;
+            let across = ray_at(if x + 1 < size { x + 1 } else { x - 1 }, y) - centre;
+            let down = ray_at(x, if y + 1 < size { y + 1 } else { y - 1 }) - centre;
             // Within a quarter pixel, in eight directions at four distances: near a corner of
             // a checkerboard a full quarter pixel may cross two edges at once and change
             // nothing where a shorter nudge crosses one.
