@@ -12,6 +12,7 @@ mod format;
 mod fuzz;
 mod heatmap;
 mod metrics;
+mod output;
 mod owned;
 mod pareto;
 #[cfg(test)]
@@ -33,14 +34,17 @@ fn main() -> ExitCode {
     let cli = cli::Cli::parse();
     // A command that does not catch an overflow itself (to say at which pixel of which scene)
     // still ends with it as an error, never with a wrapped number.
-    let outcome = checked::catch(|| commands::run(cli.command)).unwrap_or_else(|overflowed| {
-        Err(anyhow::anyhow!(
-            "{overflowed}: the scene build's range proof missed it (a bug in obscura: please \
+    let outcome = checked::catch(|| commands::run(cli.command).and_then(|()| Ok(output::flush()?)))
+        .unwrap_or_else(|overflowed| {
+            Err(anyhow::anyhow!(
+                "{overflowed}: the scene build's range proof missed it (a bug in obscura: please \
              report it with the scene)"
-        ))
-    });
+            ))
+        });
     match outcome {
         Ok(()) => ExitCode::SUCCESS,
+        // `obscura scenes | head -1`: the reader has what it wanted.
+        Err(error) if output::is_closed_pipe(&error) => ExitCode::SUCCESS,
         Err(error) => {
             eprintln!("error: {error:#}");
             ExitCode::FAILURE

@@ -354,3 +354,78 @@ fn a_malformed_scene_file_says_where() {
         "{message}"
     );
 }
+
+#[test]
+fn a_reader_that_stops_early_ends_the_command_quietly() {
+    // The reader has gone before the first line, as in `obscura scenes | head -0`.
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let output = Command::new(env!("CARGO_BIN_EXE_obscura"))
+        .arg("scenes")
+        .stdout(writer)
+        .output()
+        .unwrap();
+    let message = stderr(&output);
+    assert!(output.status.success(), "{message}");
+    assert!(message.is_empty(), "{message}");
+}
+
+#[test]
+fn a_full_disk_on_standard_output_is_an_error_not_a_panic() {
+    let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else {
+        return; // not a Linux machine
+    };
+    let output = Command::new(env!("CARGO_BIN_EXE_obscura"))
+        .arg("scenes")
+        .stdout(full)
+        .output()
+        .unwrap();
+    assert!(!output.status.success());
+    let message = stderr(&output);
+    assert!(
+        message.starts_with("error: cannot write standard output") && !message.contains("panicked"),
+        "{message}"
+    );
+}
+
+#[test]
+fn outputs_are_checked_before_any_work() {
+    let dir = scratch("outputs");
+    let images = dir.join("images");
+    // The JSON report cannot be written, so no image is rendered either.
+    let output = obscura(&[
+        "compare",
+        "whitted",
+        "--size",
+        "64x64",
+        "--out-dir",
+        images.to_str().unwrap(),
+        "--json",
+        dir.join("no/such/dir/report.json").to_str().unwrap(),
+    ]);
+    assert!(!output.status.success());
+    assert!(
+        stderr(&output).contains("report.json"),
+        "{}",
+        stderr(&output)
+    );
+    assert!(!images.join("diff.png").exists());
+
+    let unknown = obscura(&[
+        "render",
+        "shapes",
+        "-o",
+        dir.join("x.jpeg2").to_str().unwrap(),
+    ]);
+    assert!(
+        stderr(&unknown).contains("name it .png"),
+        "{}",
+        stderr(&unknown)
+    );
+    let directory = obscura(&["render", "shapes", "-o", dir.to_str().unwrap()]);
+    assert!(
+        stderr(&directory).contains("is a directory"),
+        "{}",
+        stderr(&directory)
+    );
+}

@@ -3,18 +3,20 @@
 use crate::analysis::{Analysis, Bits, Extents, Fit, Pick, measure, pick};
 use crate::cli::AnalyzeArgs;
 use crate::cost::Machine;
+use crate::output::say;
 use crate::scene_file;
 use anyhow::Result;
+use std::io;
 
 pub fn run(args: &AnalyzeArgs) -> Result<()> {
     let named = scene_file::load(&args.scene)?;
     let size @ (width, height) = args.size;
     let methods = args.methods.methods();
     let analysis = Analysis::of(&named.scene, methods, width, height)?;
-    println!("# {} by {methods}\n", named.name);
-    print_extents(&analysis.extents);
-    print_bits(&analysis.bits);
-    println!(
+    say!("# {} by {methods}\n", named.name)?;
+    print_extents(&analysis.extents)?;
+    print_bits(&analysis.bits)?;
+    say!(
         "\n## Formats, at {width}x{height}\n\nThe model's bound against f64 (the format's \
          constants and tolerances, rendered in f64; its rounding, which may move each pixel's \
          ray by up to the shift shown, tried on the f64 scene; and the shading's rounding), \
@@ -25,12 +27,12 @@ pub fn run(args: &AnalyzeArgs) -> Result<()> {
         } else {
             "without triangles"
         }
-    );
-    println!(
+    )?;
+    say!(
         "| format | holds the scene | predicted PSNR ≥ (dB) | shift (px) | predicted object \
          mismatch ≤ | measured PSNR (dB) | M4F instr/px | M0 instr/px | host ns/px |"
-    );
-    println!("|---|---|---:|---:|---:|---:|---:|---:|---:|");
+    )?;
+    say!("|---|---|---:|---:|---:|---:|---:|---:|---:|")?;
     let number = |x: Option<f64>| x.map_or("–".to_owned(), |x| format!("{x:.0}"));
     for verdict in &analysis.verdicts {
         let scene = match verdict.fit {
@@ -48,7 +50,7 @@ pub fn run(args: &AnalyzeArgs) -> Result<()> {
         };
         let p = verdict.prediction;
         let costs = Machine::ALL.map(|m| number(analysis.cost(m, verdict.format, &methods)));
-        println!(
+        say!(
             "| {} | {fit} | {} | {} | {} | {} | {} | {} | {} |",
             verdict.format,
             p.map_or("–".to_owned(), |p| decibels(p.psnr_db)),
@@ -58,7 +60,7 @@ pub fn run(args: &AnalyzeArgs) -> Result<()> {
             costs[0],
             costs[1],
             costs[2]
-        );
+        )?;
     }
     let target = args.auto.target_psnr;
     let machine = args.auto.cost_on;
@@ -76,15 +78,15 @@ pub fn run(args: &AnalyzeArgs) -> Result<()> {
             let how = rescaled.map_or(String::new(), |factor| {
                 format!(", rescaled ×{factor} about the eye")
             });
-            println!(
+            say!(
                 "\nthe cheapest on {machine} that reaches {target} dB: {format}{how} (--format \
                  auto)"
-            );
+            )?;
         }
-        None => println!(
+        None => say!(
             "\nno format holds the scene and reaches {target} dB: lower --target-psnr, or \
              change the scene as the refusals above say"
-        ),
+        )?,
     }
     Ok(())
 }
@@ -98,42 +100,51 @@ pub fn decibels(db: f64) -> String {
     }
 }
 
-fn print_extents(e: &Extents) {
-    println!("## Extents, relative to the eye\n");
-    println!(
+fn print_extents(e: &Extents) -> io::Result<()> {
+    say!("## Extents, relative to the eye\n")?;
+    say!(
         "- objects: {}, lights: {}; the world reaches {} from the eye",
-        e.objects, e.lights, e.world
-    );
+        e.objects,
+        e.lights,
+        e.world
+    )?;
     if let Some((lo, hi)) = e.bounds {
-        println!(
+        say!(
             "- spheres and triangles within x {:.3} to {:.3}, y {:.3} to {:.3}, z {:.3} to {:.3}",
-            lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]
-        );
+            lo[0],
+            hi[0],
+            lo[1],
+            hi[1],
+            lo[2],
+            hi[2]
+        )?;
     }
-    println!(
+    say!(
         "- depth: the nearest surface {:.4} from the eye, the farthest {:.4}",
-        e.nearest, e.farthest
-    );
+        e.nearest,
+        e.farthest
+    )?;
     let smallest = |what: &str, found: Option<(f64, usize)>| {
         if let Some((value, object)) = found {
-            println!("- smallest {what}: {value} (object {object})");
+            say!("- smallest {what}: {value} (object {object})")?;
         }
+        Ok(())
     };
-    smallest("sphere radius", e.smallest_radius);
-    smallest("triangle edge", e.shortest_edge);
-    smallest("checker square", e.smallest_square);
+    smallest("sphere radius", e.smallest_radius)?;
+    smallest("triangle edge", e.shortest_edge)?;
+    smallest("checker square", e.smallest_square)
 }
 
-fn print_bits(rows: &[Bits]) {
-    println!(
+fn print_bits(rows: &[Bits]) -> io::Result<()> {
+    say!(
         "\n## Bits a fixed-point format needs\n\nInteger bits (sign included) hold the largest \
          intermediate value; fraction bits resolve the most demanding feature.\n"
-    );
-    println!(
+    )?;
+    say!(
         "| computation | largest intermediate | integer bits | most demanding feature | \
          fraction bits |"
-    );
-    println!("|---|---|---:|---|---:|");
+    )?;
+    say!("|---|---|---:|---|---:|")?;
     for row in rows {
         let largest = row.largest.map_or("–".to_owned(), |m| {
             format!("{}: {} = {:.4e}", m.item, m.quantity, m.value)
@@ -141,9 +152,12 @@ fn print_bits(rows: &[Bits]) {
         let finest = row.finest.map_or("–".to_owned(), |f| {
             format!("{}: {} = {:.4e}", f.item, f.quantity, f.value)
         });
-        println!(
+        say!(
             "| {} | {largest} | {} | {finest} | {} |",
-            row.computation, row.integer, row.fraction
-        );
+            row.computation,
+            row.integer,
+            row.fraction
+        )?;
     }
+    Ok(())
 }

@@ -3,6 +3,7 @@
 
 use crate::cli::BenchArgs;
 use crate::format::Format;
+use crate::output::{self, say};
 use crate::render::{Request, exact_roots, prepare};
 use crate::scene_file;
 use crate::timing::interleaved_median_ms;
@@ -39,6 +40,9 @@ struct Bench {
 const VAX_MINUTES: f64 = 74.0;
 
 pub fn run(args: &BenchArgs) -> Result<()> {
+    if let Some(path) = &args.json {
+        output::check_file(path)?;
+    }
     let named = scene_file::load(&args.scene)?;
     let desc = named.scene.desc();
     let (width, height) = args.size;
@@ -128,29 +132,35 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         threads: thread_times,
     };
 
-    println!(
+    say!(
         "{} {width}x{height}, median of {} interleaved runs:",
-        bench.scene, bench.runs
-    );
-    println!("| format | ms/frame (1 thread) | time ÷ f32 |");
-    println!("|---|---:|---:|");
+        bench.scene,
+        bench.runs
+    )?;
+    say!("| format | ms/frame (1 thread) | time ÷ f32 |")?;
+    say!("|---|---:|---:|")?;
     for f in &bench.formats {
-        println!(
+        say!(
             "| {} | {:.1} | {:.2} |",
-            f.format, f.ms_per_frame, f.ratio_to_f32
-        );
+            f.format,
+            f.ms_per_frame,
+            f.ratio_to_f32
+        )?;
     }
     if jobs.iter().any(|&(_, m)| m != methods) {
-        println!("(f32, which has no fast roots, by exact roots)");
+        say!("(f32, which has no fast roots, by exact roots)")?;
     }
-    println!();
-    println!("| format | threads | ms/frame | speed-up over 1 thread |");
-    println!("|---|---:|---:|---:|");
+    say!("")?;
+    say!("| format | threads | ms/frame | speed-up over 1 thread |")?;
+    say!("|---|---:|---:|---:|")?;
     for t in &bench.threads {
-        println!(
+        say!(
             "| {} | {} | {:.1} | {:.2} |",
-            t.format, t.threads, t.ms_per_frame, t.speedup
-        );
+            t.format,
+            t.threads,
+            t.ms_per_frame,
+            t.speedup
+        )?;
     }
     if bench.scene == "whitted" && (width, height) == (512, 512) {
         let fastest = bench
@@ -158,13 +168,13 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             .iter()
             .map(|t| t.ms_per_frame)
             .fold(one_thread, f64::min);
-        println!(
+        say!(
             "\nWhitted's spheres and checkerboard took {VAX_MINUTES} minutes on a VAX-11/780 in 1979; here \
              {first} takes {one_thread:.1} ms on one thread ({:.0}x faster) and {fastest:.1} ms on all \
              threads tried ({:.0}x).",
             VAX_MINUTES * 60_000.0 / one_thread,
             VAX_MINUTES * 60_000.0 / fastest
-        );
+        )?;
     }
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&bench)?;

@@ -7,6 +7,7 @@ use crate::cli::ChartArgs;
 use crate::firmware::{self, Target};
 use crate::format::Format;
 use crate::metrics::accuracy;
+use crate::output::{self, say};
 use crate::pareto;
 use crate::plot::{self, SpeedPoint};
 use crate::render::{AnyFormat, Request, all_cores, prepare, prepare_reference};
@@ -17,6 +18,7 @@ use obscura::Methods;
 use obscura::scenes::{self, BuiltIn};
 use std::collections::HashMap;
 use std::fmt::Write as _;
+use std::io;
 use std::time::Duration;
 
 /// The PSNR a render must reach, on both scenes, to be recommended.
@@ -53,8 +55,7 @@ fn variants() -> Vec<Variant> {
 pub fn run(args: &ChartArgs) -> Result<()> {
     let (width, height) = args.size;
     let variants = variants();
-    std::fs::create_dir_all(&args.out_dir)
-        .with_context(|| format!("cannot create {}", args.out_dir.display()))?;
+    output::check_dir(&args.out_dir)?;
 
     // The microcontrollers: one firmware image per flash-full of formats, each drawing every
     // variant; each run is also held to the host's frames, bit for bit in fixed point.
@@ -207,22 +208,22 @@ pub fn run(args: &ChartArgs) -> Result<()> {
         args.out_dir.join("speed-accuracy.png"),
     );
     plot::speed_accuracy(&points, &svg, &png)?;
-    print_table(&points);
+    print_table(&points)?;
     for (v, reason) in &refused {
-        println!(
+        say!(
             "refused: {} in {} by {}: {reason}",
             v.scene.name,
             v.format,
             variant::label(&v.methods)
-        );
+        )?;
     }
-    print_recommendations(&measured, &points);
-    println!(
+    print_recommendations(&measured, &points)?;
+    say!(
         "wrote {}, {} and {}",
         csv.display(),
         svg.display(),
         png.display()
-    );
+    )?;
     Ok(())
 }
 
@@ -309,11 +310,11 @@ fn to_csv(points: &[SpeedPoint]) -> String {
     text
 }
 
-fn print_table(points: &[SpeedPoint]) {
-    println!(
+fn print_table(points: &[SpeedPoint]) -> io::Result<()> {
+    say!(
         "| scene | format | methods | M4F instr/px | M0 instr/px | host ns/px | PSNR (dB) | object mismatch |"
-    );
-    println!("|---|---|---|---:|---:|---:|---:|---:|");
+    )?;
+    say!("|---|---|---|---:|---:|---:|---:|---:|")?;
     let count = |x: Option<f64>| x.map_or("–".to_owned(), |x| format!("{x:.0}"));
     for p in points {
         let psnr = if p.psnr_db.is_infinite() {
@@ -321,7 +322,7 @@ fn print_table(points: &[SpeedPoint]) {
         } else {
             format!("{:.2}", p.psnr_db)
         };
-        println!(
+        say!(
             "| {} | {} | {} | {} | {} | {:.0} | {psnr} | {:.4} % |",
             p.scene,
             p.format,
@@ -330,16 +331,17 @@ fn print_table(points: &[SpeedPoint]) {
             count(p.m0_instructions_per_pixel),
             p.host_ns_per_pixel,
             p.object_mismatch_pct
-        );
+        )?;
     }
+    Ok(())
 }
 
 /// For each cost axis, the cheapest format and methods that reach [`TARGET_PSNR_DB`] on every
 /// scene (cost summed over the scenes). On a scene where the methods change nothing (a triangle
 /// method, and no triangles) the lecture's run stands in for them; a scene they are refused on
 /// rules them out.
-fn print_recommendations(measured: &[&Variant], points: &[SpeedPoint]) {
-    println!("\nthe cheapest to reach {TARGET_PSNR_DB} dB on every scene:");
+fn print_recommendations(measured: &[&Variant], points: &[SpeedPoint]) -> io::Result<()> {
+    say!("\nthe cheapest to reach {TARGET_PSNR_DB} dB on every scene:")?;
     let point = |scene: &str, format: Format, methods: &Methods| {
         measured
             .iter()
@@ -374,9 +376,10 @@ fn print_recommendations(measured: &[&Variant], points: &[SpeedPoint]) {
         }
         match best {
             Some((_, format, methods)) => {
-                println!("  {name}: {format} by {}", variant::label(&methods));
+                say!("  {name}: {format} by {}", variant::label(&methods))?;
             }
-            None => println!("  {name}: no measurement"),
+            None => say!("  {name}: no measurement")?,
         }
     }
+    Ok(())
 }

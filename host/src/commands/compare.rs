@@ -4,10 +4,12 @@ use crate::cli::CompareArgs;
 use crate::format::Format;
 use crate::heatmap::heatmap;
 use crate::metrics::{Accuracy, accuracy};
+use crate::output::{self, say};
 use crate::render::{Request, all_cores, prepare, prepare_reference};
 use crate::timing::interleaved_median_ms;
 use anyhow::{Context, Result};
 use serde::Serialize;
+use std::io;
 
 /// The figures `compare` prints and writes as JSON.
 #[derive(Debug, Serialize)]
@@ -29,6 +31,10 @@ pub struct Report {
 }
 
 pub fn run(args: &CompareArgs) -> Result<()> {
+    output::check_dir(&args.out_dir)?;
+    if let Some(path) = &args.json {
+        output::check_file(path)?;
+    }
     let super::Resolved {
         name,
         format,
@@ -65,8 +71,6 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         }],
     );
 
-    std::fs::create_dir_all(&args.out_dir)
-        .with_context(|| format!("cannot create {}", args.out_dir.display()))?;
     let files = [
         (args.out_dir.join(format!("{format}.png")), &image),
         (args.out_dir.join(format!("{reference}.png")), &truth),
@@ -104,33 +108,33 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         reference_ms_per_frame: times[1],
         runs: args.runs,
     };
-    print_table(&report);
-    println!(
+    print_table(&report)?;
+    say!(
         "wrote {}, {} and {} (diff: largest channel error per pixel, log scale, legend below)",
         files[0].0.display(),
         files[1].0.display(),
         diff_path.display()
-    );
+    )?;
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&report)?;
         std::fs::write(path, text + "\n")
             .with_context(|| format!("cannot write {}", path.display()))?;
-        println!("wrote {}", path.display());
+        say!("wrote {}", path.display())?;
     }
     Ok(())
 }
 
-fn print_table(r: &Report) {
+fn print_table(r: &Report) -> io::Result<()> {
     let psnr = if r.psnr_db.is_infinite() {
         "∞ (identical)".to_owned()
     } else {
         format!("{:.2}", r.psnr_db)
     };
-    println!(
+    say!(
         "| scene | size | format | PSNR (dB) | mean error | max error | pixels differing | object mismatch | ms/frame | f64 ms/frame |"
-    );
-    println!("|---|---|---|---:|---:|---:|---:|---:|---:|---:|");
-    println!(
+    )?;
+    say!("|---|---|---|---:|---:|---:|---:|---:|---:|---:|")?;
+    say!(
         "| {} | {}x{} | {} | {psnr} | {:.4} | {} | {:.3} % | {:.4} % | {:.1} | {:.1} |",
         r.scene,
         r.width,
@@ -142,5 +146,6 @@ fn print_table(r: &Report) {
         r.object_mismatch_pct,
         r.ms_per_frame,
         r.reference_ms_per_frame
-    );
+    )?;
+    Ok(())
 }

@@ -6,6 +6,7 @@ use crate::cost::Machine;
 use crate::firmware::{self, Target};
 use crate::format::Format;
 use crate::heatmap::heatmap;
+use crate::output::{self, say};
 use crate::owned::OwnedScene;
 use crate::render::{Request, prepare};
 use anyhow::{Context, Result, bail};
@@ -15,6 +16,7 @@ use image::RgbImage;
 use obscura::Methods;
 use obscura::scenes::BuiltIn;
 use serde::Serialize;
+use std::io;
 use std::path::Path;
 use std::time::Duration;
 
@@ -87,6 +89,10 @@ fn auto_format(args: &FirmwareArgs, scenes: &[&BuiltIn], methods: &Methods) -> R
 const LISTED: usize = 10;
 
 pub fn run(args: &FirmwareArgs) -> Result<()> {
+    output::check_dir(&args.out_dir.join(args.target.name()))?;
+    if let Some(path) = &args.json {
+        output::check_file(path)?;
+    }
     let target = args.target;
     let methods = args.methods.methods();
     let scenes = args
@@ -118,7 +124,6 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
     let elf = firmware::build(target, &features)?;
     let size = firmware::image_size(&elf)?;
     let dir = args.out_dir.join(target.name());
-    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
     eprintln!("running {} under QEMU in {}", elf.display(), dir.display());
     let frames = firmware::run(target, &elf, &dir, Duration::from_secs(args.timeout))?;
 
@@ -156,7 +161,7 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
                     &device,
                     &host,
                     &path,
-                );
+                )?;
                 if format.is_fixed_point() {
                     mismatched.push(format!("{} in {format}", scene.name));
                 }
@@ -182,26 +187,26 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
             });
         }
     }
-    print_table(target, &reports);
+    print_table(target, &reports)?;
     let budget = target.budget();
     let stack = reports.iter().map(|r| r.stack_bytes).max().unwrap_or(0);
     let over = size.exceeds(stack, budget);
     match &over {
-        None => println!(
+        None => say!(
             "within the {} budget: {} of {} KiB flash, {} of {} KiB RAM with the stack",
             target.name(),
             size.flash,
             budget.flash / 1024,
             size.ram + stack,
             budget.ram / 1024
-        ),
-        Some(why) => println!("over the {} budget: {why}", target.name()),
+        )?,
+        Some(why) => say!("over the {} budget: {why}", target.name())?,
     }
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&reports)?;
         std::fs::write(path, text + "\n")
             .with_context(|| format!("cannot write {}", path.display()))?;
-        println!("wrote {}", path.display());
+        say!("wrote {}", path.display())?;
     }
     if !mismatched.is_empty() {
         bail!(
@@ -236,31 +241,32 @@ fn list_differences(
     device: &[u16],
     host: &[u16],
     diff: &Path,
-) {
-    println!(
+) -> io::Result<()> {
+    say!(
         "{scene} in {format}: {} pixels differ (firmware vs host, RGB565):",
         differing.len()
-    );
+    )?;
     for &i in differing.iter().take(LISTED) {
         let (x, y) = (i as u32 % width, i as u32 / width);
-        println!("  ({x}, {y}): {:#06x} vs {:#06x}", device[i], host[i]);
+        say!("  ({x}, {y}): {:#06x} vs {:#06x}", device[i], host[i])?;
     }
     if differing.len() > LISTED {
-        println!(
+        say!(
             "  … and {} more; see {}",
             differing.len() - LISTED,
             diff.display()
-        );
+        )?;
     }
+    Ok(())
 }
 
-fn print_table(target: Target, reports: &[Report]) {
-    println!(
+fn print_table(target: Target, reports: &[Report]) -> io::Result<()> {
+    say!(
         "| target | scene | format | identical to host | differing pixels | instructions/frame | instructions/pixel | stack (bytes) | flash (bytes) | static RAM (bytes) | RAM + stack (bytes) | scene + ray stack (bytes): sized / fixed |"
-    );
-    println!("|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    )?;
+    say!("|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")?;
     for r in reports {
-        println!(
+        say!(
             "| {} ({}) | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} / {} |",
             r.target,
             target.triple(),
@@ -276,22 +282,22 @@ fn print_table(target: Target, reports: &[Report]) {
             r.ram_bytes + r.stack_bytes,
             r.storage_bytes,
             r.fixed_storage_bytes
-        );
+        )?;
     }
     if let Some(first) = reports.first() {
-        println!("methods: {}", first.methods);
+        say!("methods: {}", first.methods)?;
     }
-    println!(
+    say!(
         "(instructions, not cycles: QEMU counts one per instruction and models no wait states or \
          multi-cycle instructions; \"fixed\": the host's capacities of 64 objects, 16 lights, 16 rays)"
-    );
+    )?;
     let mhz = target.core_hz() / 1_000_000;
     for r in reports {
         let frame_pixels = f64::from(r.width) * f64::from(r.height);
         let seconds = |pixels: u64| {
             r.instructions_per_frame as f64 * pixels as f64 / frame_pixels / target.core_hz() as f64
         };
-        println!(
+        say!(
             "{} in {} at {mhz} MHz, estimated at one instruction per cycle: {:.2} s per {}x{} frame, {:.1} s at 512x512",
             r.scene,
             r.format,
@@ -299,6 +305,7 @@ fn print_table(target: Target, reports: &[Report]) {
             r.width,
             r.height,
             seconds(512 * 512)
-        );
+        )?;
     }
+    Ok(())
 }

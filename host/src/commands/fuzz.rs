@@ -3,6 +3,7 @@
 
 use crate::cli::FuzzArgs;
 use crate::fuzz::{self, Tally};
+use crate::output::{self, say};
 use anyhow::{Context, Result, bail};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
@@ -17,6 +18,10 @@ const BATCH: u64 = 64;
 const STACK_BYTES: usize = 64 << 20;
 
 pub fn run(args: &FuzzArgs) -> Result<()> {
+    output::check_dir(&args.out_dir)?;
+    if let Some(path) = &args.json {
+        output::check_file(path)?;
+    }
     let budget = Duration::from_secs(args.seconds);
     let start = Instant::now();
     let bar = if std::io::stderr().is_terminal() {
@@ -58,7 +63,7 @@ pub fn run(args: &FuzzArgs) -> Result<()> {
     }
     bar.finish_and_clear();
     for finding in &tally.findings {
-        println!(
+        say!(
             "scene {} in {} by {} at {}x{}: {}{}",
             finding.seed,
             finding.format,
@@ -70,13 +75,13 @@ pub fn run(args: &FuzzArgs) -> Result<()> {
                 .file
                 .as_ref()
                 .map_or(String::new(), |f| format!(" (see {})", f.display()))
-        );
+        )?;
     }
-    println!(
+    say!(
         "fuzz seed {} in {:.0} s: {tally}",
         args.seed,
         start.elapsed().as_secs_f64()
-    );
+    )?;
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&tally)?;
         std::fs::write(path, text + "\n")

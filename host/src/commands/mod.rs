@@ -12,6 +12,7 @@ mod stress;
 use crate::analysis::{Analysis, Pick, pick};
 use crate::cli::{AutoArgs, Command, FormatChoice, SceneArgs};
 use crate::format::Format;
+use crate::output::say;
 use crate::owned::OwnedScene;
 use crate::scene_file::{self, NamedScene};
 use anyhow::{Result, bail};
@@ -23,11 +24,11 @@ pub fn run(command: Command) -> Result<()> {
     match command {
         Command::Scenes => {
             for scene in &scenes::BUILT_IN {
-                println!("{:10} {}", scene.name, scene.summary);
+                say!("{:10} {}", scene.name, scene.summary)?;
             }
-            println!(
+            say!(
                 "(all commands but `firmware` take a TOML scene file as well; host/scenes/ has an example)"
-            );
+            )?;
             Ok(())
         }
         Command::Analyze(args) => analyze::run(&args),

@@ -1,11 +1,13 @@
 //! `obscura render`: one scene, one format, one PNG.
 
 use crate::cli::RenderArgs;
+use crate::output::{self, say};
 use crate::render::{Request, prepare};
 use anyhow::{Context, Result};
 use std::time::Instant;
 
 pub fn run(args: &RenderArgs) -> Result<()> {
+    output::check_image(&args.output)?;
     let super::Resolved {
         name,
         format,
@@ -28,11 +30,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         .with_context(|| format!("rendering {name} in {format}"))?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
     super::save(&image, &args.output)?;
-    println!(
+    say!(
         "{} {width}x{height} in {format} on {} threads: {ms:.1} ms; wrote {}",
         name,
         args.threads,
         args.output.display()
-    );
+    )?;
     Ok(())
 }

@@ -1,11 +1,13 @@
 //! `obscura stress`: the stress cases, their verdicts in a table, and the stability chart.
 
 use crate::cli::StressArgs;
+use crate::output::{self, say};
 use crate::plot::{self, StabilitySeries};
 use crate::stress::{self, CASES, Case, Outcome, Row};
 use anyhow::{Context, Result, bail};
 use serde::Serialize;
 use std::fmt::Write as _;
+use std::io;
 
 #[derive(Serialize)]
 struct CaseReport<'a> {
@@ -17,6 +19,10 @@ struct CaseReport<'a> {
 }
 
 pub fn run(args: &StressArgs) -> Result<()> {
+    output::check_dir(&args.out_dir)?;
+    if let Some(path) = &args.json {
+        output::check_file(path)?;
+    }
     let chosen: Vec<&Case> = if args.case.is_empty() {
         CASES.iter().collect()
     } else {
@@ -37,7 +43,7 @@ pub fn run(args: &StressArgs) -> Result<()> {
     for case in chosen {
         eprintln!("stress case {}: {}", case.name, case.about);
         let rows = stress::run_case(case)?;
-        print_case(case, &rows);
+        print_case(case, &rows)?;
         results.push((case, rows));
     }
     let count = |f: fn(&Outcome) -> bool| {
@@ -48,15 +54,13 @@ pub fn run(args: &StressArgs) -> Result<()> {
             .count()
     };
     let failed = count(|o| matches!(o, Outcome::Failed { .. }));
-    println!(
+    say!(
         "verdicts: {} within their error bound, {} refused up front, {} reported, {failed} failed",
         count(|o| matches!(o, Outcome::Within { .. })),
         count(|o| matches!(o, Outcome::Refused { .. })),
         count(|o| matches!(o, Outcome::Reported { .. })),
-    );
+    )?;
 
-    std::fs::create_dir_all(&args.out_dir)
-        .with_context(|| format!("cannot create {}", args.out_dir.display()))?;
     let series: Vec<StabilitySeries> = results
         .iter()
         .flat_map(|(case, rows)| to_series(case, rows))
@@ -66,7 +70,7 @@ pub fn run(args: &StressArgs) -> Result<()> {
         args.out_dir.join("stability.png"),
     );
     plot::stability(&series, &svg, &png)?;
-    println!("wrote {} and {}", svg.display(), png.display());
+    say!("wrote {} and {}", svg.display(), png.display())?;
     if let Some(path) = &args.json {
         let reports: Vec<CaseReport<'_>> = results
             .iter()
@@ -80,7 +84,7 @@ pub fn run(args: &StressArgs) -> Result<()> {
             .collect();
         std::fs::write(path, serde_json::to_string_pretty(&reports)? + "\n")
             .with_context(|| format!("cannot write {}", path.display()))?;
-        println!("wrote {}", path.display());
+        say!("wrote {}", path.display())?;
     }
     if failed > 0 {
         bail!("{failed} measurements exceeded their error bound (marked FAILED above)");
@@ -89,25 +93,26 @@ pub fn run(args: &StressArgs) -> Result<()> {
 }
 
 /// One line per format and method, one column per value of the stressed parameter.
-fn print_case(case: &Case, rows: &[Row]) {
+fn print_case(case: &Case, rows: &[Row]) -> io::Result<()> {
     let mut xs: Vec<f64> = Vec::new();
     for row in rows {
         if !xs.contains(&row.x) {
             xs.push(row.x);
         }
     }
-    println!("\n### {}: {}\n", case.name, case.about);
-    println!(
+    say!("\n### {}: {}\n", case.name, case.about)?;
+    say!(
         "{} against {}; a cell is the measurement, or why the scene was refused.\n",
-        case.y_label, case.x_label
-    );
+        case.y_label,
+        case.x_label
+    )?;
     let mut header = String::from("| format | method |");
     let mut rule = String::from("|---|---|");
     for x in &xs {
         let _ = write!(header, " {x:.3e} |");
         rule.push_str("---:|");
     }
-    println!("{header}\n{rule}");
+    say!("{header}\n{rule}")?;
     let mut lines: Vec<(&str, &str)> = Vec::new();
     for row in rows {
         if !lines.contains(&(row.format, row.method)) {
@@ -134,8 +139,9 @@ fn print_case(case: &Case, rows: &[Row]) {
             };
             let _ = write!(line, " {text} |");
         }
-        println!("{line}");
+        say!("{line}")?;
     }
+    Ok(())
 }
 
 fn to_series(case: &Case, rows: &[Row]) -> Vec<StabilitySeries> {
