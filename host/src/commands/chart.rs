@@ -4,6 +4,7 @@
 //! (PSNR and object mismatch against f64), and the Pareto front of each pairing.
 
 use crate::cli::ChartArgs;
+use crate::cost;
 use crate::firmware::{self, Target};
 use crate::format::Format;
 use crate::metrics::accuracy;
@@ -17,8 +18,8 @@ use anyhow::{Context, Result, bail};
 use obscura::Methods;
 use obscura::scenes::{self, BuiltIn};
 use std::collections::HashMap;
-use std::fmt::Write as _;
 use std::io;
+use std::path::Path;
 use std::time::Duration;
 
 /// The PSNR a render must reach, on both scenes, to be recommended.
@@ -201,8 +202,7 @@ pub fn run(args: &ChartArgs) -> Result<()> {
     }
 
     let csv = args.out_dir.join("speed-accuracy.csv");
-    std::fs::write(&csv, to_csv(&points))
-        .with_context(|| format!("cannot write {}", csv.display()))?;
+    write_csv(&points, &csv).with_context(|| format!("cannot write {}", csv.display()))?;
     let (svg, png) = (
         args.out_dir.join("speed-accuracy.svg"),
         args.out_dir.join("speed-accuracy.png"),
@@ -272,42 +272,45 @@ fn fronts(points: &[SpeedPoint], cost: fn(&SpeedPoint) -> Option<f64>, psnr: boo
     on_front
 }
 
-fn to_csv(points: &[SpeedPoint]) -> String {
-    let mut text = String::from(
-        "scene,format,variant,m4f_instructions_per_pixel,m0_instructions_per_pixel,host_ns_per_pixel,psnr_db,object_mismatch_pct",
-    );
+/// Writes the chart's points as CSV to `path`: the columns [`cost`] reads back, then each
+/// point's accuracy and whether it lies on each machine's Pareto fronts (1 or 0).
+fn write_csv(points: &[SpeedPoint], path: &Path) -> Result<()> {
     let mut all_fronts = Vec::new();
+    let mut header: Vec<String> = cost::COLUMNS.iter().map(|c| (*c).to_owned()).collect();
+    header.extend(["psnr_db".to_owned(), "object_mismatch_pct".to_owned()]);
     for (name, cost) in COSTS {
         for (metric, psnr) in [("psnr", true), ("mismatch", false)] {
-            let _ = write!(text, ",pareto_{name}_{metric}");
+            header.push(format!("pareto_{name}_{metric}"));
             all_fronts.push(fronts(points, cost, psnr));
         }
     }
-    text.push('\n');
+    let mut writer = csv::Writer::from_path(path)?;
+    writer.write_record(&header)?;
     let number = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x:.4}"));
     for (i, p) in points.iter().enumerate() {
-        let _ = write!(
-            text,
-            "{},{},\"{}\",{},{},{:.3},{},{:.4}",
-            p.scene,
-            p.format,
-            p.variant,
+        let mut record = vec![
+            p.scene.clone(),
+            p.format.to_string(),
+            p.variant.clone(),
             number(p.m4f_instructions_per_pixel),
             number(p.m0_instructions_per_pixel),
-            p.host_ns_per_pixel,
+            format!("{:.3}", p.host_ns_per_pixel),
             if p.psnr_db.is_infinite() {
                 "inf".to_owned()
             } else {
                 format!("{:.3}", p.psnr_db)
             },
-            p.object_mismatch_pct
+            format!("{:.4}", p.object_mismatch_pct),
+        ];
+        record.extend(
+            all_fronts
+                .iter()
+                .map(|front| u8::from(front[i]).to_string()),
         );
-        for front in &all_fronts {
-            text.push_str(if front[i] { ",1" } else { ",0" });
-        }
-        text.push('\n');
+        writer.write_record(&record)?;
     }
-    text
+    writer.flush()?;
+    Ok(())
 }
 
 fn print_table(points: &[SpeedPoint]) -> io::Result<()> {
