@@ -81,7 +81,7 @@ fn nan_and_infinite_values() {
         build(&scene(&objects, &[])).unwrap_err(),
         SceneError::NotFinite {
             item: Item::Object(0),
-            field: "sphere radius"
+            field: "shape.sphere.radius"
         }
     );
     let mut desc = scene(&[], &[]);
@@ -125,7 +125,7 @@ fn zero_and_negative_radius() {
                 error,
                 SceneError::OutOfBounds {
                     item: Item::Object(0),
-                    field: "sphere radius",
+                    field: "shape.sphere.radius",
                     ..
                 }
             ),
@@ -142,7 +142,7 @@ fn zero_length_normal_view_and_up() {
         build(&scene(&objects, &[])).unwrap_err(),
         SceneError::ZeroLength {
             item: Item::Object(0),
-            field: "plane normal"
+            field: "shape.plane.normal"
         }
     );
     let mut desc = scene(&[], &[]);
@@ -223,14 +223,14 @@ fn field_of_view_far_and_materials_out_of_bounds() {
                 reflection: 1.5,
                 ..MATTE
             },
-            "reflection",
+            "material.reflection",
         ),
         (
             MaterialDesc {
                 diffuse: -0.1,
                 ..MATTE
             },
-            "diffuse",
+            "material.diffuse",
         ),
         (
             MaterialDesc {
@@ -238,15 +238,15 @@ fn field_of_view_far_and_materials_out_of_bounds() {
                 transmission: 0.6,
                 ..MATTE
             },
-            "reflection + transmission",
+            "material.reflection + material.transmission",
         ),
-        (MaterialDesc { ior: 0.5, ..MATTE }, "ior"),
+        (MaterialDesc { ior: 0.5, ..MATTE }, "material.ior"),
         (
             MaterialDesc {
                 colour: [1.2, 0.0, 0.0],
                 ..MATTE
             },
-            "material colour",
+            "material.colour",
         ),
     ] {
         let error = build(&scene(&bad(material), &[])).unwrap_err();
@@ -265,7 +265,7 @@ fn field_of_view_far_and_materials_out_of_bounds() {
     assert!(matches!(
         build(&scene(&checker, &[])).unwrap_err(),
         SceneError::OutOfBounds {
-            field: "checker size",
+            field: "shape.plane.checker.size",
             ..
         }
     ));
@@ -430,7 +430,7 @@ fn every_message_says_what_to_do() {
     let errors = [
         SceneError::NotFinite {
             item: Item::Object(1),
-            field: "sphere radius",
+            field: "shape.sphere.radius",
         },
         SceneError::DegenerateTriangle {
             item: Item::Object(0),

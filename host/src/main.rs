@@ -47,6 +47,9 @@ fn main() -> ExitCode {
         Err(error) if output::is_closed_pipe(&error) => ExitCode::SUCCESS,
         Err(error) => {
             eprintln!("error: {error:#}");
+            if let Some(place) = error.downcast_ref::<scene_file::Located>() {
+                eprintln!("{}", place.excerpt());
+            }
             ExitCode::FAILURE
         }
     }

@@ -19,7 +19,7 @@ fn scene(far: f64, eye: [f64; 3], look_at: [f64; 3], fov: f64, body: &str) -> Ow
         "far = {far}\ncamera = {{ eye = {eye:?}, look_at = {look_at:?}, up = [0.0, 1.0, 0.0], \
          vfov_degrees = {fov} }}\n{body}"
     );
-    scene_file::parse(&text).expect("a scene file")
+    scene_file::parse(std::path::Path::new("regression.toml"), &text).expect("a scene file")
 }
 
 /// A ball on a checkered floor under one light, the usual test scene, with these changes.

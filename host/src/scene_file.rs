@@ -1,11 +1,21 @@
 //! The scenes the harness takes: a built-in one by name, or a TOML scene file (see
-//! `host/scenes/` and the README's "Scene files"). A file is only read and parsed here; the
-//! core's scene build then checks what it says.
+//! `host/scenes/` and the README's "Scene files"). A file is read (up to [`MAX_FILE_BYTES`]),
+//! parsed and checked for vectors of three here; the core's scene build then checks what it
+//! says, and [`NamedScene::locate`] points its refusals at the file's line and column.
 
 use crate::owned::OwnedScene;
 use anyhow::{Context, Result, bail};
-use obscura::scenes;
-use std::path::Path;
+use obscura::{Item, SceneError, scenes};
+use std::fmt;
+use std::io::Read;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use toml::Spanned;
+use toml::de::{DeTable, DeValue};
+
+/// The largest scene file read: far beyond a scene the core holds (a full one takes a few
+/// KiB), small enough that a wrong file is refused before it is parsed.
+pub const MAX_FILE_BYTES: u64 = 1 << 20;
 
 /// A scene and what to call it.
 #[derive(Clone, Debug)]
@@ -14,20 +24,86 @@ pub struct NamedScene {
     pub name: String,
     /// The description.
     pub scene: OwnedScene,
+    /// The file it was read from, if it was.
+    source: Option<Source>,
 }
+
+/// A scene file's path and text.
+#[derive(Clone, Debug)]
+struct Source {
+    path: PathBuf,
+    text: String,
+}
+
+/// A place in a scene file: what an error there is about. Its `Display` is `file:line:column`;
+/// [`Located::excerpt`] shows the line.
+#[derive(Debug)]
+pub struct Located {
+    path: PathBuf,
+    /// 1-based.
+    line: usize,
+    /// 1-based, in characters.
+    column: usize,
+    /// The line's text.
+    text: String,
+    /// How many characters of the line the place spans (at least 1).
+    width: usize,
+}
+
+impl Located {
+    /// The place in `text` at byte `span`.
+    fn new(path: &Path, text: &str, span: Range<usize>) -> Self {
+        let start = span.start.min(text.len());
+        let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
+        let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
+        let end = span.end.clamp(start, line_end);
+        Self {
+            path: path.to_owned(),
+            line: text[..start].matches('\n').count() + 1,
+            column: text[line_start..start].chars().count() + 1,
+            text: text[line_start..line_end].trim_end().to_owned(),
+            width: text[start..end].chars().count().max(1),
+        }
+    }
+
+    /// The line, with the place marked under it.
+    pub fn excerpt(&self) -> String {
+        let number = self.line.to_string();
+        let gutter = " ".repeat(number.len());
+        format!(
+            "{gutter} |\n{number} | {}\n{gutter} | {}{}",
+            self.text,
+            " ".repeat(self.column - 1),
+            "^".repeat(self.width)
+        )
+    }
+}
+
+impl fmt::Display for Located {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:{}:{}", self.path.display(), self.line, self.column)
+    }
+}
+
+impl std::error::Error for Located {}
 
 /// The built-in scene called `name`, or else the scene file at that path.
 ///
 /// # Errors
-/// When it is neither, or the file cannot be read or is not a scene.
+/// When it is neither, or the file cannot be read or is not a scene: where in the file, and
+/// why.
 pub fn load(name: &str) -> Result<NamedScene> {
     if let Some(built_in) = scenes::find(name) {
         return Ok(NamedScene {
             name: built_in.name.to_owned(),
             scene: OwnedScene::from_desc(&built_in.desc),
+            source: None,
         });
     }
     let path = Path::new(name);
+    if path.is_dir() {
+        bail!("{name} is a directory: give a scene file in it (a .toml; see host/scenes/)");
+    }
     if !path.is_file() {
         let names: Vec<_> = scenes::BUILT_IN.iter().map(|s| s.name).collect();
         bail!(
@@ -36,30 +112,203 @@ pub fn load(name: &str) -> Result<NamedScene> {
             names.join(", ")
         );
     }
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
-    let scene = parse(&text).with_context(|| format!("{} is not a scene file", path.display()))?;
+    let text = read(path)?;
+    let scene = parse(path, &text)?;
     Ok(NamedScene {
         name: path.file_stem().map_or_else(
             || name.to_owned(),
             |stem| stem.to_string_lossy().into_owned(),
         ),
         scene,
+        source: Some(Source {
+            path: path.to_owned(),
+            text,
+        }),
     })
 }
 
-/// Parses the TOML text of a scene file.
+/// The text of the file at `path`, refused beyond [`MAX_FILE_BYTES`] before more is read.
+fn read(path: &Path) -> Result<String> {
+    let file =
+        std::fs::File::open(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let mut text = String::new();
+    file.take(MAX_FILE_BYTES + 1)
+        .read_to_string(&mut text)
+        .with_context(|| format!("cannot read {} as text", path.display()))?;
+    if text.len() as u64 > MAX_FILE_BYTES {
+        bail!(
+            "{} is larger than a scene file may be ({} KiB): is it the scene you meant?",
+            path.display(),
+            MAX_FILE_BYTES / 1024
+        );
+    }
+    Ok(text)
+}
+
+/// Parses the TOML text of the scene file at `path`.
 ///
 /// # Errors
-/// TOML's own, which say where in the text and what was expected.
-pub fn parse(text: &str) -> Result<OwnedScene> {
-    Ok(toml::from_str(text)?)
+/// TOML's own, a vector without three numbers, or a value of the wrong kind: each located in
+/// the file ([`Located`]) and saying what was expected.
+pub fn parse(path: &Path, text: &str) -> Result<OwnedScene> {
+    let at = |span: Option<Range<usize>>, message: String| {
+        let error = anyhow::Error::msg(message);
+        match span {
+            Some(span) => error.context(Located::new(path, text, span)),
+            None => error.context(format!("{} is not a scene file", path.display())),
+        }
+    };
+    let table = DeTable::parse(text).map_err(|e| at(e.span(), e.message().to_owned()))?;
+    if let Some((span, message)) = wrong_vector(table.get_ref(), "") {
+        return Err(at(Some(span), message));
+    }
+    toml::from_str(text).map_err(|e| at(e.span(), e.message().to_owned()))
+}
+
+/// The first array of numbers in `table` whose length is not 3 (every vector and colour of a
+/// scene has three), with its span and what is wrong; `path` is the table's key path.
+fn wrong_vector(table: &DeTable<'_>, path: &str) -> Option<(Range<usize>, String)> {
+    table.iter().find_map(|(key, value)| {
+        let path = if path.is_empty() {
+            key.get_ref().to_string()
+        } else {
+            format!("{path}.{}", key.get_ref())
+        };
+        wrong_in(value.get_ref(), value.span(), &path)
+    })
+}
+
+fn wrong_in(value: &DeValue<'_>, span: Range<usize>, path: &str) -> Option<(Range<usize>, String)> {
+    match value {
+        DeValue::Table(table) => wrong_vector(table, path),
+        DeValue::Array(items) => {
+            let numbers = items
+                .iter()
+                .all(|v| matches!(v.get_ref(), DeValue::Integer(_) | DeValue::Float(_)));
+            if numbers && items.len() != 3 {
+                return Some((
+                    span,
+                    format!(
+                        "{path} has {} numbers; a vector or a colour has exactly 3",
+                        items.len()
+                    ),
+                ));
+            }
+            items
+                .iter()
+                .enumerate()
+                .find_map(|(i, v)| wrong_in(v.get_ref(), v.span(), &format!("{path}[{i}]")))
+        }
+        _ => None,
+    }
+}
+
+impl NamedScene {
+    /// `error`, where it is a refusal of this scene's build ([`SceneError`]) and the scene came
+    /// from a file, placed at the line and column of the value at fault (or of its object,
+    /// light or camera when the value is one the tracer computes).
+    pub fn locate(&self, error: anyhow::Error) -> anyhow::Error {
+        let Some(source) = &self.source else {
+            return error;
+        };
+        let Some(refusal) = error.chain().find_map(|e| e.downcast_ref::<SceneError>()) else {
+            return error;
+        };
+        let Ok(table) = DeTable::parse(&source.text) else {
+            return error;
+        };
+        match span_of(table.get_ref(), refusal) {
+            Some(span) => error.context(Located::new(&source.path, &source.text, span)),
+            None => error.context(source.path.display().to_string()),
+        }
+    }
+}
+
+/// The span of what `error` is about in a scene file's `root` table: the value named by its
+/// field, as deep as the file spells it out, or else its item.
+fn span_of(root: &DeTable<'_>, error: &SceneError) -> Option<Range<usize>> {
+    if let SceneError::TooMany { what, capacity, .. } = *error {
+        return element(root, what, capacity).map(Spanned::span);
+    }
+    let (mut span, mut table) = match error.item()? {
+        Item::Scene => (None, root),
+        item => {
+            let found = match item {
+                Item::Object(i) => element(root, "objects", i),
+                Item::Light(i) => element(root, "lights", i),
+                _ => entry(root, "camera"),
+            }?;
+            match found.get_ref() {
+                DeValue::Table(table) => (Some(found.span()), table),
+                _ => return Some(found.span()),
+            }
+        }
+    };
+    let field = error.field().unwrap_or("");
+    let key_end = field
+        .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == '.'))
+        .unwrap_or(field.len());
+    for part in field[..key_end].split('.') {
+        let Some(value) = entry(table, part) else {
+            break;
+        };
+        span = Some(value.span());
+        match value.get_ref() {
+            DeValue::Table(inner) => table = inner,
+            _ => break,
+        }
+    }
+    span
+}
+
+/// The value of `key` in `table`.
+fn entry<'t, 'i>(table: &'t DeTable<'i>, key: &str) -> Option<&'t Spanned<DeValue<'i>>> {
+    table
+        .iter()
+        .find(|(k, _)| k.get_ref() == key)
+        .map(|(_, v)| v)
+}
+
+/// Element `index` of the array `key` in `table` (an object or a light).
+fn element<'t, 'i>(
+    table: &'t DeTable<'i>,
+    key: &str,
+    index: usize,
+) -> Option<&'t Spanned<DeValue<'i>>> {
+    match entry(table, key)?.get_ref() {
+        DeValue::Array(items) => items.get(index),
+        _ => None,
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use obscura::{BackgroundDesc, MaterialDesc, ShapeDesc};
+
+    fn parse(text: &str) -> Result<OwnedScene> {
+        super::parse(Path::new("scene.toml"), text)
+    }
+
+    /// `text` as if loaded from scene.toml.
+    fn named(text: &str) -> NamedScene {
+        NamedScene {
+            name: "scene".to_owned(),
+            scene: parse(text).unwrap(),
+            source: Some(Source {
+                path: PathBuf::from("scene.toml"),
+                text: text.to_owned(),
+            }),
+        }
+    }
+
+    /// Where `error` is placed in `text`, as "file:line:column".
+    fn placed(text: &str, error: SceneError) -> String {
+        let located = named(text).locate(anyhow::Error::new(error));
+        located
+            .downcast_ref::<Located>()
+            .map_or_else(String::new, ToString::to_string)
+    }
 
     const MINIMAL: &str = r#"
         far = 20.0
@@ -103,7 +352,7 @@ mod tests {
         let typo = MINIMAL.replace("radius", "radios");
         let error = format!("{:#}", parse(&typo).expect_err("an unknown field"));
         assert!(
-            error.contains("radios") && error.contains("line"),
+            error.contains("radios") && error.starts_with("scene.toml:6:52: "),
             "{error}"
         );
         let missing = MINIMAL.replace("far = 20.0", "");
@@ -118,6 +367,91 @@ mod tests {
     }
 
     #[test]
+    fn a_vector_of_other_than_three_numbers_is_refused_where_it_is() {
+        let four = MINIMAL.replace("radius = 1.0", "radius = 1.0 }\nx = { y = [1, 2, 3, 4]");
+        let long = MINIMAL.replace("[0.0, 1.0, 0.0], radius", "[0.0, 1.0, 0.0, 5.0], radius");
+        let error = parse(&long).expect_err("four numbers");
+        let place = error
+            .downcast_ref::<Located>()
+            .expect("located")
+            .to_string();
+        assert_eq!(place, "scene.toml:6:35");
+        assert!(
+            format!("{error:#}").contains("objects[0].shape.sphere.center has 4 numbers"),
+            "{error:#}"
+        );
+        let short = MINIMAL.replace("colour = [1.0, 1.0, 1.0]", "colour = [1.0]");
+        let error = format!("{:#}", parse(&short).expect_err("one number"));
+        assert!(error.contains("lights[0].colour has 1 numbers"), "{error}");
+        assert!(parse(&four).is_err());
+    }
+
+    #[test]
+    fn a_refusal_of_the_build_points_at_the_value_or_else_its_item() {
+        let radius = SceneError::OutOfBounds {
+            item: Item::Object(0),
+            field: "shape.sphere.radius",
+            value: -1.0,
+            expected: "> 0",
+        };
+        assert_eq!(placed(MINIMAL, radius), "scene.toml:6:61");
+        // The material does not give an ior: the material itself is the place.
+        let ior = SceneError::OutOfBounds {
+            item: Item::Object(0),
+            field: "material.ior",
+            value: 0.5,
+            expected: "≥ 1",
+        };
+        assert_eq!(placed(MINIMAL, ior), "scene.toml:7:20");
+        // As deep as the file goes: object 1's shape.
+        let triangle = SceneError::DegenerateTriangle {
+            item: Item::Object(1),
+        };
+        assert_eq!(placed(MINIMAL, triangle), "scene.toml:10:9");
+        // A value the tracer computes: the object.
+        let computed = SceneError::OutOfRange {
+            item: Item::Object(1),
+            quantity: "b² − c in the quadratic",
+            value: 1e6,
+            format: "i16f16",
+            range: 32768.0,
+            remedy: obscura::Remedy::ShrinkWorld,
+            holds: obscura::scalar::FormatSet::default(),
+        };
+        assert_eq!(placed(MINIMAL, computed), "scene.toml:9:9");
+        assert_eq!(
+            placed(MINIMAL, SceneError::UpParallelToView),
+            "scene.toml:3:76"
+        );
+        let light = SceneError::OutsideWorld {
+            item: Item::Light(0),
+            distance: 30.0,
+            far: 20.0,
+        };
+        assert_eq!(placed(MINIMAL, light), "scene.toml:12:9");
+        let many = SceneError::TooMany {
+            what: "objects",
+            count: 2,
+            capacity: 1,
+        };
+        assert_eq!(placed(MINIMAL, many), "scene.toml:9:9");
+        let far = SceneError::OutOfBounds {
+            item: Item::Scene,
+            field: "far",
+            value: -1.0,
+            expected: "> 0",
+        };
+        assert_eq!(placed(MINIMAL, far), "scene.toml:2:15");
+    }
+
+    #[test]
+    fn an_excerpt_marks_the_place_under_its_line() {
+        let place = Located::new(Path::new("s.toml"), "a = 1\nbé = [1, 2]\n", 12..18);
+        assert_eq!(place.to_string(), "s.toml:2:6");
+        assert_eq!(place.excerpt(), "  |\n2 | bé = [1, 2]\n  |      ^^^^^^");
+    }
+
+    #[test]
     fn a_name_is_a_built_in_scene_or_a_file() {
         assert_eq!(load("whitted").expect("built in").name, "whitted");
         let error = format!("{:#}", load("no-such-scene").expect_err("neither"));
@@ -125,5 +459,10 @@ mod tests {
             error.contains("whitted") && error.contains("scene file"),
             "{error}"
         );
+        let directory = format!(
+            "{:#}",
+            load(env!("CARGO_MANIFEST_DIR")).expect_err("a directory")
+        );
+        assert!(directory.contains("is a directory"), "{directory}");
     }
 }

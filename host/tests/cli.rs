@@ -350,8 +350,53 @@ fn a_malformed_scene_file_says_where() {
     assert!(!output.status.success());
     let message = stderr(&output);
     assert!(
-        message.contains("broken.toml is not a scene file") && message.contains("line 2"),
+        message.contains("broken.toml:2:18: camera.eye has 2 numbers")
+            && message.contains("2 | camera = { eye = [0.0, 0.0] }")
+            && message.contains("  |                  ^^^^^^^^^^"),
         "{message}"
+    );
+}
+
+#[test]
+fn a_refused_value_is_named_by_its_line_and_column() {
+    let dir = scratch("refused");
+    let marbles =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/marbles.toml"))
+            .unwrap();
+    let file = dir.join("marbles.toml");
+    let line = marbles
+        .lines()
+        .position(|l| l.contains("ior = 1.5"))
+        .unwrap();
+    std::fs::write(&file, marbles.replace("ior = 1.5", "ior = 0.5")).unwrap();
+    for command in ["render", "analyze", "compare"] {
+        let output = obscura(&[command, file.to_str().unwrap(), "--size", "8x8"]);
+        assert!(!output.status.success());
+        let message = stderr(&output);
+        assert!(
+            message.contains(&format!("marbles.toml:{}:", line + 1))
+                && message.contains("object 2: material.ior is 0.5, but it must be ≥ 1"),
+            "{command}: {message}"
+        );
+    }
+}
+
+#[test]
+fn a_directory_or_an_outsize_file_is_not_read_as_a_scene() {
+    let dir = scratch("not-a-scene");
+    let output = obscura(&["render", dir.to_str().unwrap()]);
+    assert!(
+        stderr(&output).contains("is a directory"),
+        "{}",
+        stderr(&output)
+    );
+    let big = dir.join("big.toml");
+    std::fs::write(&big, "# padding\n".repeat(200_000)).unwrap();
+    let output = obscura(&["analyze", big.to_str().unwrap()]);
+    assert!(
+        stderr(&output).contains("larger than a scene file may be"),
+        "{}",
+        stderr(&output)
     );
 }
 

@@ -94,14 +94,16 @@ pub enum SceneError {
     NotFinite {
         /// Whose value.
         item: Item,
-        /// Which value.
+        /// Which value: its key in a scene file, under the item's table
+        /// (`shape.sphere.radius`, `material.ior`).
         field: &'static str,
     },
     /// A value lies outside the interval it must lie in. Give one inside it.
     OutOfBounds {
         /// Whose value.
         item: Item,
-        /// Which value.
+        /// Which value: its key in a scene file, under the item's table
+        /// (`shape.sphere.radius`, `material.ior`).
         field: &'static str,
         /// What it is.
         value: f32,
@@ -112,7 +114,8 @@ pub enum SceneError {
     ZeroLength {
         /// Whose vector.
         item: Item,
-        /// Which vector.
+        /// Which vector: its key in a scene file, under the item's table, or the difference
+        /// of two (`look_at − eye`).
         field: &'static str,
     },
     /// The three corners of a triangle lie on one line, so it has no area and no normal.
@@ -158,7 +161,8 @@ pub enum SceneError {
     OutOfRange {
         /// Whose computation.
         item: Item,
-        /// Which value.
+        /// Which value: a value of the description by its key in a scene file
+        /// (`shape.sphere.center`), or one the tracer computes from it, in words.
         quantity: &'static str,
         /// The largest magnitude it reaches.
         value: f64,
@@ -177,7 +181,8 @@ pub enum SceneError {
     BelowResolution {
         /// Whose feature.
         item: Item,
-        /// Which feature.
+        /// Which feature: a value of the description by its key in a scene file
+        /// (`shape.plane.checker.size`), or one the tracer computes from it, in words.
         quantity: &'static str,
         /// Its size.
         value: f64,
@@ -217,6 +222,44 @@ impl fmt::Display for SceneError {
 }
 
 impl SceneError {
+    /// The part of the description the error is about, if it is about one.
+    pub fn item(&self) -> Option<Item> {
+        match *self {
+            Self::NotFinite { item, .. }
+            | Self::OutOfBounds { item, .. }
+            | Self::ZeroLength { item, .. }
+            | Self::DegenerateTriangle { item }
+            | Self::OutsideWorld { item, .. }
+            | Self::OutOfRange { item, .. }
+            | Self::BelowResolution { item, .. } => Some(item),
+            Self::UpParallelToView => Some(Item::Camera),
+            Self::DepthExceedsStack { .. } => Some(Item::Scene),
+            Self::TooMany { .. } | Self::MethodUnavailable { .. } | Self::ImageSize { .. } => None,
+        }
+    }
+
+    /// The value of the item the error is about, where it is one: its key in a scene file under
+    /// the item's table, at the start of the text (`material.reflection + material.transmission`
+    /// begins with `material.reflection`). A value the tracer computes is named in words, and
+    /// starts with no key of the item.
+    pub fn field(&self) -> Option<&'static str> {
+        match *self {
+            Self::NotFinite { field, .. }
+            | Self::OutOfBounds { field, .. }
+            | Self::ZeroLength { field, .. } => Some(field),
+            Self::OutOfRange { quantity, .. } | Self::BelowResolution { quantity, .. } => {
+                Some(quantity)
+            }
+            Self::DegenerateTriangle { .. } => Some("shape.triangle.vertices"),
+            Self::UpParallelToView => Some("up"),
+            Self::DepthExceedsStack { .. } => Some("max_depth"),
+            Self::TooMany { .. }
+            | Self::OutsideWorld { .. }
+            | Self::MethodUnavailable { .. }
+            | Self::ImageSize { .. } => None,
+        }
+    }
+
     /// The message without its figures (the values, bounds and ranges), for a firmware:
     /// formatting floating-point numbers would take a quarter of its flash. The host's message
     /// for the same scene and format (the [`fmt::Display`] of the error) has them.

@@ -213,13 +213,13 @@ impl<S: Scalar> Converter<S> {
         }
         let background = match desc.background {
             BackgroundDesc::Solid(c) => {
-                Background::Solid(self.colour(Item::Scene, "background", c)?)
+                Background::Solid(self.colour(Item::Scene, "background.solid", c)?)
             }
             BackgroundDesc::Gradient { horizon, zenith } => Background::Gradient {
-                horizon: self.colour(Item::Scene, "background horizon", horizon)?,
+                horizon: self.colour(Item::Scene, "background.gradient.horizon", horizon)?,
                 rise: self.colour_f64(
                     Item::Scene,
-                    "background zenith − horizon",
+                    "background.gradient.zenith − horizon",
                     Vec3::from_f32(zenith) - Vec3::from_f32(horizon),
                 )?,
             },
@@ -264,8 +264,8 @@ impl<S: Scalar> Converter<S> {
                 let r = f64::from(radius);
                 tolerance = range::error::<S>(&range::own_tolerance_terms(r));
                 Shape::Sphere(Sphere::new(
-                    self.point(item, "sphere centre", center)?,
-                    self.scalar(item, "sphere radius", r)?,
+                    self.point(item, "shape.sphere.center", center)?,
+                    self.scalar(item, "shape.sphere.radius", r)?,
                 ))
             }
             ShapeDesc::Plane {
@@ -278,7 +278,7 @@ impl<S: Scalar> Converter<S> {
                     .direction()
                     .ok_or(SceneError::ZeroLength {
                         item,
-                        field: "plane normal",
+                        field: "shape.plane.normal",
                     })?;
                 let checker = match checker {
                     Some(checker) => {
@@ -287,8 +287,8 @@ impl<S: Scalar> Converter<S> {
                     None => None,
                 };
                 Shape::Plane(Plane::new(
-                    self.point(item, "plane point", point)?,
-                    self.vector(item, "plane normal", n)?,
+                    self.point(item, "shape.plane.point", point)?,
+                    self.vector(item, "shape.plane.normal", n)?,
                     self.scalar(item, "the world radius", self.world)?,
                     checker,
                 ))
@@ -303,9 +303,9 @@ impl<S: Scalar> Converter<S> {
                     .direction()
                     .ok_or(SceneError::DegenerateTriangle { item })?;
                 let corners = [
-                    self.point(item, "triangle vertex", a)?,
-                    self.point(item, "triangle vertex", b)?,
-                    self.point(item, "triangle vertex", c)?,
+                    self.point(item, "shape.triangle.vertices", a)?,
+                    self.point(item, "shape.triangle.vertices", b)?,
+                    self.point(item, "shape.triangle.vertices", c)?,
                 ];
                 // Möller–Trumbore's smallest determinant: below it a numerator over it would
                 // leave the format.
@@ -326,14 +326,14 @@ impl<S: Scalar> Converter<S> {
             1.0
         };
         let material = Material {
-            colour: self.colour(item, "material colour", m.colour)?,
-            diffuse: self.scalar(item, "diffuse", f64::from(m.diffuse))?,
-            specular: self.scalar(item, "specular", f64::from(m.specular))?,
+            colour: self.colour(item, "material.colour", m.colour)?,
+            diffuse: self.scalar(item, "material.diffuse", f64::from(m.diffuse))?,
+            specular: self.scalar(item, "material.specular", f64::from(m.specular))?,
             shininess: m.shininess,
-            reflection: self.scalar(item, "reflection", f64::from(m.reflection))?,
-            transmission: self.scalar(item, "transmission", f64::from(m.transmission))?,
+            reflection: self.scalar(item, "material.reflection", f64::from(m.reflection))?,
+            transmission: self.scalar(item, "material.transmission", f64::from(m.transmission))?,
             ior: self
-                .scalar(item, "ior", ior)
+                .scalar(item, "material.ior", ior)
                 .map_err(|error| with_remedy(error, Remedy::LowerIor))?,
             inv_ior: self.scalar(item, "1 / ior", 1.0 / ior)?,
         };
@@ -365,7 +365,7 @@ impl<S: Scalar> Converter<S> {
             .direction()
             .ok_or(SceneError::ZeroLength {
                 item,
-                field: "plane normal",
+                field: "shape.plane.normal",
             })?;
         let v = n.cross(u);
         let size = f64::from(desc.size);
@@ -379,7 +379,7 @@ impl<S: Scalar> Converter<S> {
             squares - libm::floor(squares)
         };
         Ok(Checker {
-            colour: self.colour(item, "checker colour", desc.colour)?,
+            colour: self.colour(item, "shape.plane.checker.colour", desc.colour)?,
             origin: self.vector(item, "checker origin", foot - self.eye)?,
             u: self.vector(item, "checker axis", u * size.recip())?,
             v: self.vector(item, "checker axis", v * size.recip())?,

@@ -12,10 +12,10 @@ pub(super) fn validate(desc: &SceneDesc<'_>) -> Result<Frame, SceneError> {
     at_least(Item::Scene, "far", desc.far, f32::MIN_POSITIVE, "> 0")?;
     colour(Item::Scene, "ambient", desc.ambient)?;
     match desc.background {
-        BackgroundDesc::Solid(c) => colour(Item::Scene, "background colour", c)?,
+        BackgroundDesc::Solid(c) => colour(Item::Scene, "background.solid", c)?,
         BackgroundDesc::Gradient { horizon, zenith } => {
-            colour(Item::Scene, "background horizon colour", horizon)?;
-            colour(Item::Scene, "background zenith colour", zenith)?;
+            colour(Item::Scene, "background.gradient.horizon", horizon)?;
+            colour(Item::Scene, "background.gradient.zenith", zenith)?;
         }
     }
     let frame = camera(&desc.camera)?;
@@ -56,7 +56,7 @@ fn camera(camera: &CameraDesc) -> Result<Frame, SceneError> {
     if distance(camera.look_at, camera.eye) == 0.0 {
         return Err(SceneError::ZeroLength {
             item,
-            field: "the view direction (look_at − eye)",
+            field: "look_at − eye",
         });
     }
     if Vec3::from_f32(camera.up).length() == 0.0 {
@@ -68,12 +68,12 @@ fn camera(camera: &CameraDesc) -> Result<Frame, SceneError> {
 /// Colours and weights in [0, 1], reflection + transmission ≤ 1 (a surface passes on no more
 /// light than reaches it), ior ≥ 1.
 fn material(item: Item, m: &MaterialDesc) -> Result<(), SceneError> {
-    unit_colour(item, "material colour", m.colour)?;
+    unit_colour(item, "material.colour", m.colour)?;
     for (field, value) in [
-        ("diffuse", m.diffuse),
-        ("specular", m.specular),
-        ("reflection", m.reflection),
-        ("transmission", m.transmission),
+        ("material.diffuse", m.diffuse),
+        ("material.specular", m.specular),
+        ("material.reflection", m.reflection),
+        ("material.transmission", m.transmission),
     ] {
         unit_interval(item, field, value)?;
     }
@@ -81,13 +81,13 @@ fn material(item: Item, m: &MaterialDesc) -> Result<(), SceneError> {
     if passed_on > 1.0 {
         return Err(out_of_bounds(
             item,
-            "reflection + transmission",
+            "material.reflection + material.transmission",
             passed_on,
             "≤ 1",
         ));
     }
-    finite(item, "ior", &[m.ior])?;
-    at_least(item, "ior", m.ior, 1.0, "≥ 1")
+    finite(item, "material.ior", &[m.ior])?;
+    at_least(item, "material.ior", m.ior, 1.0, "≥ 1")
 }
 
 /// Checks a shape and returns how far from `eye` it reaches: its farthest point, or for a
@@ -95,9 +95,15 @@ fn material(item: Item, m: &MaterialDesc) -> Result<(), SceneError> {
 fn shape(item: Item, shape: &ShapeDesc, eye: [f32; 3]) -> Result<f64, SceneError> {
     match *shape {
         ShapeDesc::Sphere { center, radius } => {
-            finite(item, "sphere centre", &center)?;
-            finite(item, "sphere radius", &[radius])?;
-            at_least(item, "sphere radius", radius, f32::MIN_POSITIVE, "> 0")?;
+            finite(item, "shape.sphere.center", &center)?;
+            finite(item, "shape.sphere.radius", &[radius])?;
+            at_least(
+                item,
+                "shape.sphere.radius",
+                radius,
+                f32::MIN_POSITIVE,
+                "> 0",
+            )?;
             Ok(distance(center, eye) + f64::from(radius))
         }
         ShapeDesc::Plane {
@@ -105,26 +111,32 @@ fn shape(item: Item, shape: &ShapeDesc, eye: [f32; 3]) -> Result<f64, SceneError
             normal,
             checker,
         } => {
-            finite(item, "plane point", &point)?;
-            finite(item, "plane normal", &normal)?;
+            finite(item, "shape.plane.point", &point)?;
+            finite(item, "shape.plane.normal", &normal)?;
             let n = Vec3::from_f32(normal);
             if n.length() == 0.0 {
                 return Err(SceneError::ZeroLength {
                     item,
-                    field: "plane normal",
+                    field: "shape.plane.normal",
                 });
             }
             if let Some(checker) = checker {
-                unit_colour(item, "checker colour", checker.colour)?;
-                finite(item, "checker size", &[checker.size])?;
-                at_least(item, "checker size", checker.size, f32::MIN_POSITIVE, "> 0")?;
+                unit_colour(item, "shape.plane.checker.colour", checker.colour)?;
+                finite(item, "shape.plane.checker.size", &[checker.size])?;
+                at_least(
+                    item,
+                    "shape.plane.checker.size",
+                    checker.size,
+                    f32::MIN_POSITIVE,
+                    "> 0",
+                )?;
             }
             let to_eye = Vec3::from_f32(eye) - Vec3::from_f32(point);
             Ok(n.dot(to_eye).abs() / n.length())
         }
         ShapeDesc::Triangle { vertices } => {
             for v in &vertices {
-                finite(item, "triangle vertex", v)?;
+                finite(item, "shape.triangle.vertices", v)?;
             }
             let [a, b, c] = vertices.map(Vec3::from_f32);
             let (e1, e2) = (b - a, c - a);

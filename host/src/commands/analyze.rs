@@ -4,12 +4,15 @@ use crate::analysis::{Analysis, Bits, Extents, Fit, Pick, measure, pick};
 use crate::cli::AnalyzeArgs;
 use crate::cost::Machine;
 use crate::output::say;
-use crate::scene_file;
+use crate::scene_file::NamedScene;
 use anyhow::Result;
 use std::io;
 
 pub fn run(args: &AnalyzeArgs) -> Result<()> {
-    let named = scene_file::load(&args.scene)?;
+    super::on_scene(&args.scene, |named| analyze(args, named))
+}
+
+fn analyze(args: &AnalyzeArgs, named: &NamedScene) -> Result<()> {
     let size @ (width, height) = args.size;
     let methods = args.methods.methods();
     let analysis = Analysis::of(&named.scene, methods, width, height)?;

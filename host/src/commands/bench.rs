@@ -5,7 +5,7 @@ use crate::cli::BenchArgs;
 use crate::format::Format;
 use crate::output::{self, say};
 use crate::render::{Request, exact_roots, prepare};
-use crate::scene_file;
+use crate::scene_file::NamedScene;
 use crate::timing::interleaved_median_ms;
 use anyhow::{Context, Result};
 use obscura::Methods;
@@ -43,7 +43,10 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     if let Some(path) = &args.json {
         output::check_file(path)?;
     }
-    let named = scene_file::load(&args.scene)?;
+    super::on_scene(&args.scene, |named| bench(args, named))
+}
+
+fn bench(args: &BenchArgs, named: &NamedScene) -> Result<()> {
     let desc = named.scene.desc();
     let (width, height) = args.size;
     let methods = args.methods.methods();

@@ -6,6 +6,7 @@ use crate::heatmap::heatmap;
 use crate::metrics::{Accuracy, accuracy};
 use crate::output::{self, say};
 use crate::render::{Request, all_cores, prepare, prepare_reference};
+use crate::scene_file::NamedScene;
 use crate::timing::interleaved_median_ms;
 use anyhow::{Context, Result};
 use serde::Serialize;
@@ -35,12 +36,16 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     if let Some(path) = &args.json {
         output::check_file(path)?;
     }
+    super::on_scene(&args.scene.scene, |named| compare(args, named))
+}
+
+fn compare(args: &CompareArgs, named: &NamedScene) -> Result<()> {
     let super::Resolved {
         name,
         format,
         scene,
         methods,
-    } = super::resolve(&args.scene)?;
+    } = super::resolve(named, &args.scene)?;
     let (width, height) = args.scene.size;
     let reference = Format::F64;
     let desc = scene.desc();

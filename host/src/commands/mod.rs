@@ -69,15 +69,21 @@ pub struct Resolved {
     pub methods: Methods,
 }
 
-/// Loads the scene `args` name and picks its format: the format given, or with `auto` the
-/// cheapest that holds the scene and is predicted to reach the target (rescaled about the eye
-/// when only that fits), said aloud on standard error.
-pub fn resolve(args: &SceneArgs) -> Result<Resolved> {
-    let named = scene_file::load(&args.scene)?;
+/// Loads the scene `name` names and runs `command` on it; a refusal of its build is placed at
+/// its line and column when the scene came from a file.
+pub fn on_scene(name: &str, command: impl FnOnce(&NamedScene) -> Result<()>) -> Result<()> {
+    let named = scene_file::load(name)?;
+    command(&named).map_err(|error| named.locate(error))
+}
+
+/// Picks the format for `named` by `args`: the format given, or with `auto` the cheapest that
+/// holds the scene and is predicted to reach the target (rescaled about the eye when only
+/// that fits), said aloud on standard error.
+pub fn resolve(named: &NamedScene, args: &SceneArgs) -> Result<Resolved> {
     let methods = args.methods.methods();
-    let (format, scene) = pick_format(args.format, &named, methods, args.size, &args.auto)?;
+    let (format, scene) = pick_format(args.format, named, methods, args.size, &args.auto)?;
     Ok(Resolved {
-        name: named.name,
+        name: named.name.clone(),
         format,
         scene,
         methods,

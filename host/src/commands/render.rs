@@ -3,17 +3,22 @@
 use crate::cli::RenderArgs;
 use crate::output::{self, say};
 use crate::render::{Request, prepare};
+use crate::scene_file::NamedScene;
 use anyhow::{Context, Result};
 use std::time::Instant;
 
 pub fn run(args: &RenderArgs) -> Result<()> {
     output::check_image(&args.output)?;
+    super::on_scene(&args.scene.scene, |named| render(args, named))
+}
+
+fn render(args: &RenderArgs, named: &NamedScene) -> Result<()> {
     let super::Resolved {
         name,
         format,
         scene,
         methods,
-    } = super::resolve(&args.scene)?;
+    } = super::resolve(named, &args.scene)?;
     let (width, height) = args.scene.size;
     let desc = scene.desc();
     let request = Request {
