@@ -145,7 +145,7 @@ pub struct Terms {
 
 impl Terms {
     /// The most terms an error has here.
-    const CAPACITY: usize = 8;
+    pub const CAPACITY: usize = 8;
 
     /// The error of these terms, each (coefficient, magnitude) a multiple of the resolution at
     /// the magnitude (at most [`Self::CAPACITY`] in all; more are a bug, and dropped).
