@@ -73,5 +73,8 @@ cargo run --release --locked -p obscura-host -- firmware --target m4f --scene wh
 cargo run --release --locked -p obscura-host -- firmware --target m4f --scene whitted,shapes \
     --format i32f32,f32-approx,f32 --triangle moller-trumbore
 
+step "fuzz: random scenes for 150 s from a fixed seed, held to every promise"
+cargo run --release --locked -p obscura-host -- fuzz --seconds 150 --seed 1 --out-dir target/fuzz
+
 step "tests"
 cargo test --workspace --locked

@@ -6,16 +6,11 @@ use crate::fuzz::{self, Tally};
 use crate::output::{self, say};
 use anyhow::{Context, Result, bail};
 use indicatif::{ProgressBar, ProgressStyle};
-use rayon::prelude::*;
 use std::io::IsTerminal;
 use std::time::{Duration, Instant};
 
 /// Scenes tried between two looks at the clock.
 const BATCH: u64 = 64;
-
-/// Each fuzzing thread's stack: a scene's analysis renders on it, and rayon may stack one
-/// scene's work on another's while it waits.
-const STACK_BYTES: usize = 64 << 20;
 
 pub fn run(args: &FuzzArgs) -> Result<()> {
     output::check_dir(&args.out_dir)?;
@@ -32,27 +27,18 @@ pub fn run(args: &FuzzArgs) -> Result<()> {
     } else {
         ProgressBar::hidden()
     };
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(usize::from(args.threads))
-        .stack_size(STACK_BYTES)
-        .build()
-        .context("cannot start the fuzzer's threads")?;
+    let pool = fuzz::pool(usize::from(args.threads))?;
     let mut tally = Tally::default();
     let mut next = 0_u64;
     while start.elapsed() < budget && args.scenes.is_none_or(|n| next < n) {
         let end = args.scenes.map_or(next + BATCH, |n| (next + BATCH).min(n));
-        let batch = pool.install(|| {
-            (next..end)
-                .into_par_iter()
-                .map(|index| {
-                    fuzz::try_scene(fuzz::scene_seed(args.seed, index), Some(&args.out_dir))
-                })
-                .reduce(Tally::default, |mut a, b| {
-                    a.add(b);
-                    a
-                })
-        });
-        tally.add(batch);
+        tally.add(fuzz::try_scenes(
+            &pool,
+            args.seed,
+            next..end,
+            fuzz::method_sets,
+            Some(&args.out_dir),
+        ));
         next = end;
         bar.set_message(format!(
             "{} scenes, {} builds, {} failures",

@@ -19,6 +19,8 @@
 //! Every failure is written as a scene file whose header says what failed and the command that
 //! shows it.
 
+#[cfg(test)]
+mod corpus;
 pub mod generate;
 
 use crate::analysis::{Analysis, Fit, Prediction, Reference};
@@ -34,8 +36,11 @@ use obscura::methods::MethodName;
 use obscura::{BiasMethod, Methods, RayMethod, RootMethod, SphereMethod, TriangleMethod};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
+use rayon::prelude::*;
+use rayon::{ThreadPool, ThreadPoolBuilder};
 use serde::Serialize;
 use std::fmt;
+use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 /// How many times its predicted mean squared error (and object mismatch) a measurement may
@@ -225,15 +230,54 @@ pub fn method_sets(seed: u64) -> Vec<Methods> {
     sets
 }
 
-/// Generates the scene of `seed` and tries it in every format by every method set, writing a
-/// reproducer for each failure into `out_dir` (when given).
-pub fn try_scene(seed: u64, out_dir: Option<&Path>) -> Tally {
+/// Each fuzzing thread's stack: a scene's analysis renders on it, and rayon may stack one
+/// scene's work on another's while it waits.
+const STACK_BYTES: usize = 64 << 20;
+
+/// The threads scenes are tried on.
+///
+/// # Errors
+/// When the threads cannot be started.
+pub fn pool(threads: usize) -> Result<ThreadPool> {
+    ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .stack_size(STACK_BYTES)
+        .build()
+        .context("cannot start the fuzzer's threads")
+}
+
+/// Tries scenes `indices` of the run seeded `seed` on `pool`, each by the method sets
+/// `methods_of` its seed (see [`try_scene`]).
+pub fn try_scenes(
+    pool: &ThreadPool,
+    seed: u64,
+    indices: Range<u64>,
+    methods_of: impl Fn(u64) -> Vec<Methods> + Sync,
+    out_dir: Option<&Path>,
+) -> Tally {
+    pool.install(|| {
+        indices
+            .into_par_iter()
+            .map(|index| {
+                let seed = scene_seed(seed, index);
+                try_scene(seed, &methods_of(seed), out_dir)
+            })
+            .reduce(Tally::default, |mut a, b| {
+                a.add(b);
+                a
+            })
+    })
+}
+
+/// Generates the scene of `seed` and tries it in every format by each of `method_sets`, writing
+/// a reproducer for each failure into `out_dir` (when given).
+pub fn try_scene(seed: u64, method_sets: &[Methods], out_dir: Option<&Path>) -> Tally {
     let generated = generate::scene(seed);
     let mut tally = Tally {
         scenes: 1,
         ..Tally::default()
     };
-    for methods in method_sets(seed) {
+    for &methods in method_sets {
         let outcome = checked::catch_any(|| {
             try_methods(&generated.scene, methods, generated.size, &mut tally)
         });
