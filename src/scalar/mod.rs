@@ -29,10 +29,14 @@ use core::ops::{Add, Div, Mul, Neg, Sub};
 /// A real number format the tracer can compute in.
 ///
 /// `/` and `−x` are total: a quotient or negation that does not fit saturates (a float's
-/// reaches infinity). `+`, `−` and `×` are exact (a float's correctly rounded) while the result
-/// fits the format; beyond it, a float's reaches infinity and a fixed format's wraps, telling
-/// its [`Overflow`] policy first. The scene build proves that no sum or product the tracer forms
-/// for a built scene leaves the format (see the module documentation).
+/// reaches infinity). While the result fits the format, `+` and `−` are exact in fixed point
+/// and `×` is the exact product rounded to nearest (half up), `/` the exact quotient truncated
+/// towards zero; a float's are correctly rounded. Beyond the range, a float's sum or product
+/// reaches infinity and a fixed format's wraps (two's complement), telling its [`Overflow`]
+/// policy first: the firmware's panics in a debug build, the desktop harness's stops the render
+/// with the operation. The scene build proves that no sum or product the tracer forms for a
+/// built scene leaves the format (see the module documentation); `tests/scalar_operators.rs`
+/// holds the fixed formats to this paragraph.
 pub trait Scalar:
     Copy
     + Default
