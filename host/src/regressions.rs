@@ -1,7 +1,8 @@
 //! The scenes that broke obscura's promises before its range proof covered every operation and
 //! its predictions were held to measurement (issue "Numbers you can trust"), each now refused
 //! with a reason that fits, or rendered without a wrapped number and within its predicted
-//! bound. The fuzzer ([`crate::fuzz`]) tries the same promises on scenes nobody wrote.
+//! bound. Each scene is a file in `host/scenes/hostile/` whose header says what it broke; the
+//! fuzzer ([`crate::fuzz`]) tries the same promises on scenes nobody wrote.
 
 use crate::analysis::{Analysis, Fit, measure, pick};
 use crate::cost::Machine;
@@ -13,30 +14,10 @@ use crate::render::{Request, exact_roots, prepare, prepare_reference};
 use crate::scene_file;
 use obscura::{Methods, RayMethod, SphereMethod, TriangleMethod};
 
-/// A scene file's text, with a camera at `eye` looking at `look_at` through `fov` degrees.
-fn scene(far: f64, eye: [f64; 3], look_at: [f64; 3], fov: f64, body: &str) -> OwnedScene {
-    let text = format!(
-        "far = {far}\ncamera = {{ eye = {eye:?}, look_at = {look_at:?}, up = [0.0, 1.0, 0.0], \
-         vfov_degrees = {fov} }}\n{body}"
-    );
-    scene_file::parse(std::path::Path::new("regression.toml"), &text).expect("a scene file")
-}
-
-/// A ball on a checkered floor under one light, the usual test scene, with these changes.
-fn ball_on_floor(checker: f64, light: [f64; 3], ball: &str) -> OwnedScene {
-    scene(
-        30.0,
-        [0.0, 1.0, -5.0],
-        [0.0, 1.0, 0.0],
-        50.0,
-        &format!(
-            "[[objects]]\nshape.plane = {{ point = [0.0, 0.0, 0.0], normal = [0.0, 1.0, 0.0], \
-             checker = {{ colour = [0.1, 0.1, 0.1], size = {checker} }} }}\n\
-             material = {{ colour = [0.9, 0.9, 0.9] }}\n\
-             [[objects]]\nshape.sphere = {{ center = [0.0, 1.0, 0.0], radius = 1.0 }}\n{ball}\n\
-             [[lights]]\nposition = {light:?}\ncolour = [1.0, 1.0, 1.0]\n"
-        ),
-    )
+/// The scene of `host/scenes/hostile/NAME.toml`, whose header says what it broke.
+fn hostile(name: &str) -> OwnedScene {
+    let path = format!("{}/scenes/hostile/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+    scene_file::load(&path).expect("a scene file").scene
 }
 
 /// `scene` in `format` by `methods` at `size`: refused for a reason with one of `words` in it,
@@ -98,20 +79,7 @@ fn refused_or_held(
 
 #[test]
 fn a_phong_highlight_neither_wraps_nor_lies() {
-    // Ordinary materials in a world 1.8 cm across, the light near the surface; and one sphere
-    // of the largest exponent a file accepts.
-    let tiny = scene(
-        0.012,
-        [0.0, 0.004, -0.004],
-        [0.0, 0.002, 0.004],
-        50.0,
-        "[[objects]]\nshape.sphere = { center = [0.0, 0.003, 0.004], radius = 0.002 }\n\
-         material = { colour = [0.8, 0.3, 0.2], specular = 0.6, shininess = 162, \
-         transmission = 0.3, ior = 1.3 }\n\
-         [[objects]]\nshape.plane = { point = [0.0, 0.0, 0.0], normal = [0.0, 1.0, 0.0] }\n\
-         material = { colour = [0.5, 0.5, 0.5], specular = 0.5, shininess = 162 }\n\
-         [[lights]]\nposition = [0.002, 0.0053, 0.004]\ncolour = [1.0, 1.0, 1.0]\n",
-    );
+    let tiny = hostile("phong-tiny");
     refused_or_held(
         &tiny,
         Format::I16f16,
@@ -119,11 +87,7 @@ fn a_phong_highlight_neither_wraps_nor_lies() {
         256,
         &["make the sphere larger", "move the light"],
     );
-    let shiny = ball_on_floor(
-        1.0,
-        [-3.0, 6.0, -4.0],
-        "material = { colour = [0.9, 0.2, 0.1], specular = 0.9, shininess = 65535 }",
-    );
+    let shiny = hostile("phong-shiny");
     assert!(refused_or_held(
         &shiny,
         Format::I20f12,
@@ -135,21 +99,8 @@ fn a_phong_highlight_neither_wraps_nor_lies() {
 
 #[test]
 fn sphere_roots_at_the_edge_of_the_range_neither_wrap_nor_lie() {
-    // A sphere at the far side of a world as large as i20f12 and i32f32 can hold, by both
-    // forms, with rays stepped along the rows.
-    for (format, far) in [(Format::I20f12, 330.0), (Format::I32f32, 22_000.0)] {
-        let edge = far * 0.9;
-        let world = scene(
-            far,
-            [0.0, 0.0, 0.0],
-            [0.0, 0.0, 1.0],
-            40.0,
-            &format!(
-                "[[objects]]\nshape.sphere = {{ center = [0.0, 0.0, {edge}], radius = {r} }}\n\
-                 [[lights]]\nposition = [0.0, {r}, 0.0]\ncolour = [1.0, 1.0, 1.0]\n",
-                r = far * 0.09
-            ),
-        );
+    for format in [Format::I20f12, Format::I32f32] {
+        let world = hostile(&format!("roots-{format}"));
         for sphere in [SphereMethod::Quadratic, SphereMethod::Stable] {
             let methods = Methods {
                 sphere,
@@ -163,8 +114,8 @@ fn sphere_roots_at_the_edge_of_the_range_neither_wrap_nor_lie() {
 
 #[test]
 fn a_checker_too_large_for_its_reciprocal_is_refused_or_predicted_so() {
-    for size in [1e6, 3000.0] {
-        let scene = ball_on_floor(size, [-3.0, 6.0, -4.0], "");
+    for name in ["checker-1e6", "checker-3000"] {
+        let scene = hostile(name);
         for format in [Format::I16f16, Format::I20f12] {
             refused_or_held(
                 &scene,
@@ -195,15 +146,7 @@ fn a_checker_too_large_for_its_reciprocal_is_refused_or_predicted_so() {
 
 #[test]
 fn a_narrow_field_of_view_at_a_silhouette_is_refused_or_predicted_so() {
-    let narrow = scene(
-        20.0,
-        [0.0, 1.0, -5.0],
-        [1.0, 1.0, 0.0],
-        0.05,
-        "[[objects]]\nshape.sphere = { center = [0.0, 1.0, 0.0], radius = 1.0 }\n\
-         material = { colour = [0.8, 0.2, 0.1] }\n\
-         [[lights]]\nposition = [-3.0, 6.0, -4.0]\ncolour = [1.0, 1.0, 1.0]\n",
-    );
+    let narrow = hostile("narrow");
     for format in [Format::I16f16, Format::I20f12] {
         let rendered = refused_or_held(
             &narrow,
@@ -225,7 +168,7 @@ fn a_narrow_field_of_view_at_a_silhouette_is_refused_or_predicted_so() {
 
 #[test]
 fn a_light_just_above_a_floor_is_refused_where_rays_cannot_tell_its_side() {
-    let low = ball_on_floor(1.0, [1.5, 0.001, -1.0], "");
+    let low = hostile("low-light");
     let rendered = refused_or_held(
         &low,
         Format::I16f16,
@@ -245,30 +188,15 @@ fn a_light_just_above_a_floor_is_refused_where_rays_cannot_tell_its_side() {
 
 #[test]
 fn extreme_glass_is_refused_or_predicted_so() {
-    for (ior, format) in [("1e5", Format::F32), ("1e4", Format::I32f32)] {
-        let glass = ball_on_floor(
-            1.0,
-            [-3.0, 6.0, -4.0],
-            &format!(
-                "material = {{ colour = [1.0, 1.0, 1.0], diffuse = 0.05, reflection = 0.1, \
-                 transmission = 0.85, ior = {ior} }}"
-            ),
-        );
+    for (name, format) in [("glass-1e5", Format::F32), ("glass-1e4", Format::I32f32)] {
+        let glass = hostile(name);
         refused_or_held(&glass, format, Methods::LECTURE, 256, &["lower the ior"]);
     }
 }
 
 #[test]
 fn the_eye_on_a_triangles_edge_is_refused_in_every_format() {
-    let edge = scene(
-        20.0,
-        [0.0, 1.0, -5.0],
-        [0.0, 1.0, 0.0],
-        50.0,
-        "[[objects]]\nshape.triangle = { vertices = [[-1.0, 1.0, -5.0], [1.0, 1.0, -5.0], \
-         [0.0, 2.0, 3.0]] }\n\
-         [[lights]]\nposition = [-3.0, 6.0, -4.0]\ncolour = [1.0, 1.0, 1.0]\n",
-    );
+    let edge = hostile("eye-on-edge");
     for format in Format::FIRMWARE {
         let desc = edge.desc();
         let request = Request {
@@ -289,15 +217,7 @@ fn the_eye_on_a_triangles_edge_is_refused_in_every_format() {
 
 #[test]
 fn one_large_triangle_by_moller_trumbore_is_refused_or_predicted_so() {
-    let triangle = scene(
-        30.0,
-        [0.0, 1.0, -5.0],
-        [0.0, 1.0, 0.0],
-        50.0,
-        "[[objects]]\nshape.triangle = { vertices = [[-8.0, 0.0, 4.0], [8.0, 0.0, 4.0], \
-         [0.0, 9.0, 6.0]] }\nmaterial = { colour = [0.2, 0.8, 0.2] }\n\
-         [[lights]]\nposition = [-3.0, 6.0, -4.0]\ncolour = [1.0, 1.0, 1.0]\n",
-    );
+    let triangle = hostile("triangle");
     let methods = Methods {
         triangle: TriangleMethod::MollerTrumbore,
         ..Methods::LECTURE
@@ -316,13 +236,7 @@ fn one_large_triangle_by_moller_trumbore_is_refused_or_predicted_so() {
 
 #[test]
 fn analyze_and_the_build_agree_on_a_field_of_view_of_almost_180_degrees() {
-    let wide = scene(
-        20.0,
-        [0.0, 1.0, -5.0],
-        [0.0, 1.0, 0.0],
-        179.9999,
-        "[[objects]]\nshape.sphere = { center = [0.0, 1.0, 0.0], radius = 1.0 }\n",
-    );
+    let wide = hostile("wide");
     for size in [64, 512] {
         let analysis = Analysis::of(&wide, Methods::LECTURE, size, size).expect("f64 holds it");
         for verdict in &analysis.verdicts {
