@@ -308,10 +308,12 @@ pub struct StressArgs {
 /// `obscura fuzz`.
 #[derive(Debug, Args)]
 pub struct FuzzArgs {
-    /// Stop starting new scenes after this many seconds.
-    #[arg(long, default_value_t = 60)]
-    pub seconds: u64,
-    /// Stop after this many scenes (sooner if the seconds run out).
+    /// Stop starting new scenes after this many seconds (by default 60, or none with
+    /// `--scenes`).
+    #[arg(long)]
+    pub seconds: Option<u64>,
+    /// Stop after this many scenes (sooner if `--seconds` run out): the same seed and count try
+    /// the same builds on any machine.
     #[arg(long)]
     pub scenes: Option<u64>,
     /// The run's seed: the same seed tries the same scenes.

@@ -474,3 +474,30 @@ fn outputs_are_checked_before_any_work() {
         stderr(&directory)
     );
 }
+
+#[test]
+fn fuzz_tries_a_given_number_of_scenes_and_tallies_them() {
+    let dir = scratch("fuzz");
+    let json = dir.join("tally.json");
+    let output = obscura(&[
+        "fuzz",
+        "--scenes",
+        "6",
+        "--seed",
+        "3",
+        "--out-dir",
+        dir.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert!(
+        stdout(&output).contains("fuzz seed 3"),
+        "{}",
+        stdout(&output)
+    );
+    let tally = read_json(&json);
+    assert_eq!(tally["scenes"], 6);
+    assert!(tally["builds"].as_u64().unwrap() >= 6 * 5, "{tally}");
+    assert_eq!(tally["findings"].as_array().unwrap().len(), 0, "{tally}");
+}

@@ -36,11 +36,13 @@ pub struct Object<S> {
     pub shape: Shape<S>,
     /// The surface.
     pub material: Material<S>,
-    /// The object's own part of the surface tolerance (see [`SURFACE_TOLERANCE_STEPS`] and
-    /// [`range::own_tolerance_terms`]). For a sphere of radius r, a ray from its surface
-    /// computes c = |o − c|² − r² ≈ 0 with the rounding error of r² and finds a root near c/2r:
-    /// the error grows as the sphere shrinks (for a fixed format, an LSB over r), besides the
-    /// rounding of a point r from the centre. A sheet adds nothing.
+    /// The object's own part of the surface tolerance (see [`SURFACE_TOLERANCE_STEPS`]). For a
+    /// sphere of radius r ([`range::own_tolerance_terms`]), a ray from its surface computes
+    /// c = |o − c|² − r² ≈ 0 with the rounding error of r² and finds a root near c/2r: the
+    /// error grows as the sphere shrinks (for a fixed format, an LSB over r), besides the
+    /// rounding of a point r from the centre. For a triangle
+    /// ([`range::triangle_tolerance_terms`]), the distance it finds rounds with its corners'
+    /// coordinates and its edges against its area. A plane adds nothing.
     pub tolerance: S,
 }
 
@@ -312,6 +314,8 @@ impl<S: Scalar> Converter<S> {
                 let origin = self.world + self.slack;
                 let numerators = range::triangle_numerators(origin, self.eye, [a64, b64, c64]);
                 let min_det = numerators * range::RANGE_HEADROOM / S::RANGE;
+                tolerance =
+                    range::error::<S>(&range::triangle_tolerance_terms([a, b, c], self.eye));
                 Shape::Triangle(Triangle::new(
                     corners,
                     self.vector(item, "triangle normal", n)?,

@@ -239,6 +239,30 @@ pub fn own_tolerance_terms(radius: f64) -> Terms {
         .units(SURFACE_TOLERANCE_STEPS * radius)
 }
 
+/// A triangle's own part of the surface tolerance ([`super::Object::tolerance`]): a ray that
+/// starts on it finds it again at a distance of about s·(e1 × e2) / (d·(e1 × e2)), with s the
+/// origin less a corner. The numerator rounds with s, which is formed at the corners' distance
+/// from the eye (`reach`: the error the sheet tolerance counts is the point's, at its own
+/// distance); with e1 × e2, at the square of the longest edge L, times |s| ≤ L; and as a triple
+/// product, at L³; the denominator is twice the area A, seen along the ray.
+#[must_use]
+pub fn triangle_tolerance_terms(vertices: [[f32; 3]; 3], eye: Vec3<f64>) -> Terms {
+    let corners = vertices.map(Vec3::from_f32);
+    let [a, b, c] = corners;
+    let (e1, e2) = (b - a, c - a);
+    let longest = e1.length().max(e2.length()).max((c - b).length());
+    let area = e1.cross(e2).length();
+    let reach = corners
+        .iter()
+        .map(|&v| (v - eye).length())
+        .fold(0.0, f64::max);
+    Terms::new(&[
+        (SURFACE_TOLERANCE_STEPS, reach),
+        (SURFACE_TOLERANCE_STEPS * longest / area, longest * longest),
+        (SURFACE_TOLERANCE_STEPS / area, longest * longest * longest),
+    ])
+}
+
 /// The error in |d|² of a unit direction, in resolutions at 1: each coordinate is rounded.
 const DIRECTION_LENGTH: f64 = 2.0;
 
@@ -249,8 +273,9 @@ const LEVEL: f64 = 1.0 / 255.0;
 const MIRROR: f64 = 3.0;
 
 /// How far beyond the world's radius a ray can start in `format` (see the module
-/// documentation): the largest surface tolerance, the rounding of a surface
-/// point, and with fast roots the error of the quotient that places a plane's hit.
+/// documentation): the largest surface tolerance (a sphere's or a triangle's own part at its
+/// largest), the rounding of a surface point, and with fast roots the error of the quotient
+/// that places a plane's hit.
 #[must_use]
 pub fn origin_slack(desc: &SceneDesc<'_>, methods: &Methods, format: &FormatInfo) -> f64 {
     let world = f64::from(desc.far);
@@ -270,7 +295,18 @@ pub fn origin_slack(desc: &SceneDesc<'_>, methods: &Methods, format: &FormatInfo
         + smallest_radius.map_or(0.0, |r| {
             error_with(&own_tolerance_terms(r), format)
                 + SURFACE_TOLERANCE_STEPS * world * format.unit_error
-        });
+        })
+        + desc
+            .objects
+            .iter()
+            .filter_map(|object| match object.shape {
+                ShapeDesc::Triangle { vertices } => Some(error_with(
+                    &triangle_tolerance_terms(vertices, Vec3::from_f32(desc.camera.eye)),
+                    format,
+                )),
+                _ => None,
+            })
+            .fold(0.0, f64::max);
     let rounding = SURFACE_TOLERANCE_STEPS * (format.resolution)(3.0 * world);
     let quotient = if format.fast_roots && methods.roots == RootMethod::Approx {
         2.0 * world * FAST_ROOT_ERROR
@@ -454,7 +490,7 @@ fn colour_sum(desc: &SceneDesc<'_>) -> f64 {
 /// relative to the determinant (from its stored edges' rounding, and for Möller–Trumbore the
 /// rounding of 1/det), times the way the ray has come. A point (the eye, a light) nearer the
 /// surface than this is on either side of it at random.
-fn locating(object: &ObjectDesc, methods: &Methods, from: f64) -> Terms {
+fn locating(object: &ObjectDesc, methods: &Methods, from: f64, eye: [f32; 3]) -> Terms {
     match object.shape {
         ShapeDesc::Sphere { radius, .. } => {
             let r = f64::from(radius);
@@ -474,6 +510,7 @@ fn locating(object: &ObjectDesc, methods: &Methods, from: f64) -> Terms {
                 Terms::new(&[])
             };
             tolerance_terms(from, None)
+                .plus(triangle_tolerance_terms(vertices, Vec3::from_f32(eye)))
                 .plus(determinant)
                 .plus(reciprocal)
         }
@@ -520,7 +557,7 @@ pub fn features<'a>(
                     "the eye's distance from its surface, against the error with which a ray \
                      from the eye finds the surface",
                     value,
-                    locating(object, methods, reach),
+                    locating(object, methods, reach, eye),
                     Remedy::MoveEye,
                 )
             };
@@ -662,7 +699,7 @@ pub fn features<'a>(
             quantity: "its distance from a surface, against the error with which a shadow ray \
                        finds the surface",
             value: clearance(object, position),
-            terms: locating(object, methods, reach),
+            terms: locating(object, methods, reach, eye),
             steps: SIDE_STEPS,
             remedy: Remedy::MoveLight,
         });

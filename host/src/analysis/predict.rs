@@ -317,11 +317,9 @@ fn global_angle<S: Scalar>(
     width: u32,
     height: u32,
 ) -> f64 {
-    let world = f64::from(desc.far);
     let nearest = extents(desc).nearest.max(f64::MIN_POSITIVE);
     let step = S::UNIT_ERROR;
     // A point rounds at its own size, seen from as far: largest for the nearest.
-    let _ = world;
     let mut angle = DIRECTION_STEPS * (step + S::resolution(nearest) / nearest);
     if methods.roots == RootMethod::Approx && S::FAST_ROOTS {
         angle += DIRECTION_STEPS * FAST_ROOT_ERROR;

@@ -9,6 +9,9 @@ use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::time::{Duration, Instant};
 
+/// How long a run lasts that gives neither seconds nor scenes.
+const DEFAULT_SECONDS: u64 = 60;
+
 /// Scenes tried between two looks at the clock.
 const BATCH: u64 = 64;
 
@@ -17,7 +20,11 @@ pub fn run(args: &FuzzArgs) -> Result<()> {
     if let Some(path) = &args.json {
         output::check_file(path)?;
     }
-    let budget = Duration::from_secs(args.seconds);
+    let budget = match (args.seconds, args.scenes) {
+        (Some(seconds), _) => Duration::from_secs(seconds),
+        (None, Some(_)) => Duration::MAX,
+        (None, None) => Duration::from_secs(DEFAULT_SECONDS),
+    };
     let start = Instant::now();
     let bar = if std::io::stderr().is_terminal() {
         let bar = ProgressBar::new_spinner();

@@ -471,3 +471,42 @@ fn write_reproducer(dir: &Path, scene: &OwnedScene, finding: &Finding) -> Result
         .with_context(|| format!("cannot write {}", path.display()))?;
     Ok(path)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene_file;
+
+    #[test]
+    fn a_reproducer_is_the_scene_with_what_failed_and_the_command_that_shows_it() {
+        let dir = std::env::temp_dir().join("obscura-fuzz-reproducer");
+        let _ = std::fs::remove_dir_all(&dir);
+        let generated = generate::scene(11);
+        let finding = Finding {
+            seed: 11,
+            format: "i20f12",
+            methods: Methods {
+                bias: BiasMethod::Exclude,
+                ..Methods::LECTURE
+            },
+            width: 24,
+            height: 16,
+            failure: Failure::Panic {
+                message: "for the test".to_owned(),
+            },
+            file: None,
+        };
+        let path = write_reproducer(&dir, &generated.scene, &finding).unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert!(
+            text.contains("# obscura fuzz: scene 11 in i20f12"),
+            "{text}"
+        );
+        assert!(
+            text.contains("--format i20f12 --size 24x16") && text.contains("--bias exclude"),
+            "{text}"
+        );
+        let loaded = scene_file::load(path.to_str().unwrap()).unwrap();
+        assert_eq!(loaded.scene, generated.scene);
+    }
+}
