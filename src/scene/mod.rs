@@ -110,7 +110,7 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
                 capacity: RAYS,
             });
         }
-        range::check::<S>(desc, &methods)?;
+        range::check(&FormatInfo::of::<S>(), desc, &methods)?;
         let eye = Vec3::from_f32(desc.camera.eye);
         Converter::<S> {
             eye,
@@ -133,7 +133,13 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
             return Err(SceneError::ImageSize { width, height });
         }
         let half_width = self.frame.half_width(width, height);
-        range::check_camera::<S>(half_width, self.frame.half_height, width, height)?;
+        range::check_camera(
+            &FormatInfo::of::<S>(),
+            half_width,
+            self.frame.half_height,
+            width,
+            height,
+        )?;
         let (corner, _) = range::camera(half_width, self.frame.half_height, width, height);
         Camera::new(&self.frame, width, height, &self.settings.methods).ok_or(
             SceneError::OutOfRange {

@@ -758,39 +758,41 @@ pub fn camera(half_width: f64, half_height: f64, width: u32, height: u32) -> (Ma
     (magnitude, feature)
 }
 
-/// Proves that format `S` aims the rays of an image of `width × height` pixels (see
+/// Proves that `format` aims the rays of an image of `width × height` pixels (see
 /// [`camera`]), or says why not.
-pub(super) fn check_camera<S: Scalar>(
+pub(super) fn check_camera(
+    format: &FormatInfo,
     half_width: f64,
     half_height: f64,
     width: u32,
     height: u32,
 ) -> Result<(), SceneError> {
     let (m, f) = camera(half_width, half_height, width, height);
-    if !fits(m.value, S::RANGE) {
-        return Err(out_of_range::<S>(&m));
+    if !fits(m.value, format.range) {
+        return Err(out_of_range(format, &m));
     }
-    if f.value < f.minimum::<S>() {
-        return Err(below_resolution::<S>(&f, None));
+    if f.value < f.minimum_with(format) {
+        return Err(below_resolution(format, &f, None));
     }
     Ok(())
 }
 
-/// The refusal of magnitude `m` in format `S`.
-fn out_of_range<S: Scalar>(m: &Magnitude) -> SceneError {
+/// The refusal of magnitude `m` in `format`.
+fn out_of_range(format: &FormatInfo, m: &Magnitude) -> SceneError {
     SceneError::OutOfRange {
         item: m.item,
         quantity: m.quantity,
         value: m.value,
-        format: S::NAME,
-        range: S::RANGE,
+        format: format.name,
+        range: format.range,
         remedy: m.remedy,
-        holds: FormatSet::of(|format| fits(m.value, format.range)),
+        holds: FormatSet::of(|other| fits(m.value, other.range)),
     }
 }
 
-/// The refusal of feature `f` in format `S`, naming a `method` that resolves it if one does.
-fn below_resolution<S: Scalar>(
+/// The refusal of feature `f` in `format`, naming a `method` that resolves it if one does.
+fn below_resolution(
+    format: &FormatInfo,
     f: &Feature,
     method: Option<(&'static str, &'static str)>,
 ) -> SceneError {
@@ -798,44 +800,49 @@ fn below_resolution<S: Scalar>(
         item: f.item,
         quantity: f.quantity,
         value: f.value,
-        format: S::NAME,
-        minimum: f.minimum::<S>(),
+        format: format.name,
+        minimum: f.minimum_with(format),
         remedy: f.remedy,
-        holds: FormatSet::of(|format| f.value >= f.minimum_with(format)),
+        holds: FormatSet::of(|other| f.value >= f.minimum_with(other)),
         method,
     }
 }
 
-/// Proves that format `S` holds the scene for `methods`, or says which value does not fit, the
-/// formats that would hold it, and a method that would where one does.
-pub(super) fn check<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods) -> Result<(), SceneError> {
-    let slack = origin_slack(desc, methods, &FormatInfo::of::<S>());
-    if let Some(m) = magnitudes(desc, methods, slack).find(|m| !fits(m.value, S::RANGE)) {
-        return Err(out_of_range::<S>(&m));
+/// Proves that `format` holds the scene for `methods`, or says which value does not fit, the
+/// formats that would hold it, and a method that would where one does. (It takes the format's
+/// description rather than its type, so that a firmware with several formats holds one copy.)
+pub(super) fn check(
+    format: &FormatInfo,
+    desc: &SceneDesc<'_>,
+    methods: &Methods,
+) -> Result<(), SceneError> {
+    if let Some(m) = too_large(format, desc, methods) {
+        return Err(out_of_range(format, &m));
     }
-    if let Some(f) = unresolved::<S>(desc, methods) {
+    if let Some(f) = unresolved(format, desc, methods) {
         let method = methods
             .variants()
             .into_iter()
             .filter(|other| other != methods)
             .find(|other| {
-                check_magnitudes::<S>(desc, other) && unresolved::<S>(desc, other).is_none()
+                too_large(format, desc, other).is_none()
+                    && unresolved(format, desc, other).is_none()
             })
             .and_then(|other| other.changed_from(methods));
-        return Err(below_resolution::<S>(&f, method));
+        return Err(below_resolution(format, &f, method));
     }
     Ok(())
 }
 
-/// Whether every magnitude fits format `S` by `methods`.
-fn check_magnitudes<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods) -> bool {
-    let slack = origin_slack(desc, methods, &FormatInfo::of::<S>());
-    magnitudes(desc, methods, slack).all(|m| fits(m.value, S::RANGE))
+/// The first magnitude that does not fit `format` by `methods`.
+fn too_large(format: &FormatInfo, desc: &SceneDesc<'_>, methods: &Methods) -> Option<Magnitude> {
+    let slack = origin_slack(desc, methods, format);
+    magnitudes(desc, methods, slack).find(|m| !fits(m.value, format.range))
 }
 
-/// The first feature format `S` cannot resolve by `methods`.
-fn unresolved<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods) -> Option<Feature> {
-    features(desc, methods).find(|f| f.value < f.minimum::<S>())
+/// The first feature `format` cannot resolve by `methods`.
+fn unresolved(format: &FormatInfo, desc: &SceneDesc<'_>, methods: &Methods) -> Option<Feature> {
+    features(desc, methods).find(|f| f.value < f.minimum_with(format))
 }
 
 /// Whether `value`, with [`RANGE_HEADROOM`], fits a format of this `range`.
