@@ -3,8 +3,8 @@
 
 use obscura::scalar::FormatSet;
 use obscura::{
-    BackgroundDesc, CameraDesc, CheckerDesc, I16F16, Item, LightDesc, MaterialDesc, ObjectDesc,
-    Remedy, Scene, SceneDesc, SceneError, ShapeDesc,
+    BackgroundDesc, CameraDesc, CheckerDesc, I16F16, Item, LightDesc, MaterialDesc, Methods,
+    ObjectDesc, Remedy, Scene, SceneDesc, SceneError, ShapeDesc, TriangleMethod,
 };
 
 type Small<S> = Scene<S, 4, 2, 4>;
@@ -523,5 +523,36 @@ fn messages_without_figures_keep_the_words_and_drop_the_numbers() {
             brief.starts_with(head) && brief.ends_with(tail),
             "{brief} / {full}"
         );
+    }
+}
+
+#[test]
+fn a_sliver_triangle_is_refused_as_too_thin_whatever_else_it_inflates() {
+    // 1 wide and a millionth high: its tolerance (the rounding of the distance it finds, over
+    // its area) would start rays far beyond the world, but the cause is its thinness.
+    for height in [1e-6, 1e-7] {
+        let objects = [triangle([
+            [-0.5, 1.0, 2.0],
+            [0.5, 1.0, 2.0],
+            [0.0, 1.0 + height, 2.0],
+        ])];
+        for triangle in [TriangleMethod::Cramer, TriangleMethod::Watertight] {
+            let methods = Methods {
+                triangle,
+                ..Methods::LECTURE
+            };
+            let error = Small::<I16F16>::build_with(&scene(&objects, &[]), methods).unwrap_err();
+            assert!(
+                matches!(
+                    error,
+                    SceneError::BelowResolution {
+                        remedy: Remedy::FatterTriangle,
+                        ..
+                    }
+                ),
+                "{triangle:?}: {error:?}"
+            );
+            assert!(error.to_string().contains("move a corner away"), "{error}");
+        }
     }
 }

@@ -59,12 +59,14 @@ impl Target {
     }
 
     /// The formats of each firmware image the chart runs: as many as fit the flash (the M0's
-    /// 256 KiB hold the fixed formats or the float formats, not both).
+    /// 256 KiB hold the 32-bit fixed formats, `i32f32` or the float formats, each with every
+    /// method variant).
     pub fn chart_images(self) -> &'static [&'static [Format]] {
         match self {
             Self::M4f => &[&Format::FIRMWARE],
             Self::M0 => &[
-                &[Format::I16f16, Format::I20f12, Format::I32f32],
+                &[Format::I16f16, Format::I20f12],
+                &[Format::I32f32],
                 &[Format::F32Approx, Format::F32],
             ],
         }

@@ -811,11 +811,18 @@ fn below_resolution(
 /// Proves that `format` holds the scene for `methods`, or says which value does not fit, the
 /// formats that would hold it, and a method that would where one does. (It takes the format's
 /// description rather than its type, so that a firmware with several formats holds one copy.)
+///
+/// A triangle too thin for the format is refused as such first: its tolerance, the rounding of
+/// the distance it finds, would also start its rays far off it, beyond the range.
 pub(super) fn check(
     format: &FormatInfo,
     desc: &SceneDesc<'_>,
     methods: &Methods,
 ) -> Result<(), SceneError> {
+    let thin = |f: &Feature| f.remedy == Remedy::FatterTriangle;
+    if let Some(f) = unresolved(format, desc, methods).filter(thin) {
+        return Err(below_resolution(format, &f, None));
+    }
     if let Some(m) = too_large(format, desc, methods) {
         return Err(out_of_range(format, &m));
     }
