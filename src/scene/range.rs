@@ -539,142 +539,14 @@ pub fn features<'a>(
         .iter()
         .enumerate()
         .flat_map(move |(i, object)| {
-            let item = Item::Object(i);
-            let feature = |quantity, value, terms, remedy| Feature {
-                item,
-                quantity,
-                value,
-                terms,
-                steps: MIN_FEATURE_STEPS,
-                remedy,
-            };
-            // The surface tolerance is a dead zone in front of every surface: the eye must stand
-            // well clear of it, or the tolerance bends every ray it sends there. The surface's
-            // own coordinates, rounded at their size, place it only so precisely.
-            let gap = clearance(object, Vec3::from_f32(eye));
-            let clearance = |value, reach: f64| {
-                feature(
-                    "the eye's distance from its surface, against the error with which a ray \
-                     from the eye finds the surface",
-                    value,
-                    locating(object, methods, reach, eye),
-                    Remedy::MoveEye,
-                )
-            };
-            match object.shape {
-                ShapeDesc::Sphere { center, radius } => {
-                    let r = f64::from(radius);
-                    let from_eye = distance(center, eye);
-                    // Seen from the eye the sphere must keep its shape; seen from anywhere in the
-                    // world (a secondary ray's origin) it must at least not vanish.
-                    let across_world = Feature {
-                        steps: 1.0,
-                        ..feature(
-                            "radius² seen from across the world",
-                            r * r,
-                            discriminant_error(methods.sphere, r, world + from_eye),
-                            Remedy::LargerSphere,
-                        )
-                    };
-                    [
-                        Some(feature(
-                            "radius² seen from the eye",
-                            r * r,
-                            discriminant_error(methods.sphere, r, from_eye),
-                            Remedy::LargerSphere,
-                        )),
-                        Some(across_world),
-                        Some(feature(
-                            "radius, against the surface tolerance",
-                            r,
-                            tolerance_terms(from_eye + r, Some(r)),
-                            Remedy::LargerSphere,
-                        )),
-                        Some(clearance(gap, from_eye + r)),
-                    ]
-                }
-                ShapeDesc::Plane { checker, point, .. } => {
-                    let reach = gap.max(distance(point, eye));
-                    let checker = checker.map(|checker| {
-                        let size = f64::from(checker.size);
-                        // Counted in squares, a coordinate errs by the rounding of the axes
-                        // (each 1/size, rounded at its own size) over the checker's reach, and
-                        // by its own rounding: that must stay within a sixteenth of a square.
-                        let reach = checker_reach(world, world);
-                        [
-                            feature(
-                                "checker square size",
-                                size,
-                                Terms::new(&[(1.0, world), (1.0, size)]),
-                                Remedy::LargerSquares,
-                            ),
-                            feature(
-                                "one checker square, against the rounding of 1/size over the world",
-                                1.0,
-                                Terms::new(&[
-                                    (3.0_f64.sqrt() * reach, 1.0 / size),
-                                    (1.0, reach / size + 1.0),
-                                ]),
-                                Remedy::LargerSquares,
-                            ),
-                        ]
-                    });
-                    let [square, reciprocal] =
-                        checker.map_or([None, None], |[a, b]| [Some(a), Some(b)]);
-                    [square, reciprocal, Some(clearance(gap, reach)), None]
-                }
-                ShapeDesc::Triangle { vertices } => {
-                    // The tests' determinants are twice the area seen along the ray; their
-                    // numerators err by the rounding of the unit direction times |s|·|e|, with s the
-                    // way from the ray's origin to a corner and e the longest edge.
-                    let corners = vertices.map(Vec3::from_f32);
-                    let (e1, e2) = (corners[1] - corners[0], corners[2] - corners[0]);
-                    let s = world + distance(vertices[0], eye);
-                    let longest = e1.length().max(e2.length());
-                    let area = e1.cross(e2).length();
-                    let reach = vertices
-                        .iter()
-                        .map(|&v| distance(v, eye))
-                        .fold(gap, f64::max);
-                    // Möller–Trumbore multiplies by 1/det, rounded at its size: the barycentric
-                    // coordinates err by its relative rounding, which must stay within a
-                    // sixteenth of the triangle.
-                    let reciprocal =
-                        (methods.triangle == TriangleMethod::MollerTrumbore).then(|| {
-                            feature(
-                                "Möller–Trumbore's 1/det, against its rounding",
-                                1.0 / area,
-                                Terms::new(&[(1.0, 1.0 / area)]),
-                                Remedy::SmallerTriangle,
-                            )
-                        });
-                    // Cramer's rule and Möller–Trumbore find t as a triple product (t·det, a
-                    // length times twice an area) over det: for a hit as near as the eye is, the
-                    // product must resolve against its rounding (the stored e1 × e2 rounded at
-                    // its size, times |s|, and its own).
-                    let product = (methods.triangle != TriangleMethod::Watertight).then(|| {
-                        feature(
-                            "t·det of a hit as near as the eye, against its rounding",
-                            gap * area,
-                            Terms::new(&[(3.0_f64.sqrt() * s, area), (1.0, gap * area)]),
-                            Remedy::LargerTriangle,
-                        )
-                    });
-                    [
-                        Some(feature(
-                            "twice the triangle's area",
-                            area,
-                            area_error(s, longest, area),
-                            Remedy::FatterTriangle,
-                        )),
-                        Some(clearance(gap, reach)),
-                        reciprocal,
-                        product,
-                    ]
-                }
-            }
-            .into_iter()
-            .flatten()
+            // Built when asked for, one at a time, so that the iterator holds no array of
+            // features: on a microcontroller a scene is built on the stack the tracer needs.
+            (0..OBJECT_FEATURES).filter_map(move |k| {
+                object_features(desc, methods, i, object)
+                    .into_iter()
+                    .nth(k)
+                    .flatten()
+            })
         });
     let lights = desc.lights.iter().enumerate().flat_map(move |(i, light)| {
         let item = Item::Light(i);
@@ -706,6 +578,152 @@ pub fn features<'a>(
         core::iter::once(level).chain(clear)
     });
     objects.chain(lights)
+}
+
+/// How many features [`object_features`] gives an object at most.
+const OBJECT_FEATURES: usize = 4;
+
+/// The features of object `i` of `desc`, by `methods` (see [`features`]).
+fn object_features(
+    desc: &SceneDesc<'_>,
+    methods: &Methods,
+    i: usize,
+    object: &ObjectDesc,
+) -> [Option<Feature>; OBJECT_FEATURES] {
+    let world = f64::from(desc.far);
+    let eye = desc.camera.eye;
+    let item = Item::Object(i);
+    let feature = |quantity, value, terms, remedy| Feature {
+        item,
+        quantity,
+        value,
+        terms,
+        steps: MIN_FEATURE_STEPS,
+        remedy,
+    };
+    // The surface tolerance is a dead zone in front of every surface: the eye must stand
+    // well clear of it, or the tolerance bends every ray it sends there. The surface's
+    // own coordinates, rounded at their size, place it only so precisely.
+    let gap = clearance(object, Vec3::from_f32(eye));
+    let clearance = |value, reach: f64| {
+        feature(
+            "the eye's distance from its surface, against the error with which a ray \
+             from the eye finds the surface",
+            value,
+            locating(object, methods, reach, eye),
+            Remedy::MoveEye,
+        )
+    };
+    match object.shape {
+        ShapeDesc::Sphere { center, radius } => {
+            let r = f64::from(radius);
+            let from_eye = distance(center, eye);
+            // Seen from the eye the sphere must keep its shape; seen from anywhere in the
+            // world (a secondary ray's origin) it must at least not vanish.
+            let across_world = Feature {
+                steps: 1.0,
+                ..feature(
+                    "radius² seen from across the world",
+                    r * r,
+                    discriminant_error(methods.sphere, r, world + from_eye),
+                    Remedy::LargerSphere,
+                )
+            };
+            [
+                Some(feature(
+                    "radius² seen from the eye",
+                    r * r,
+                    discriminant_error(methods.sphere, r, from_eye),
+                    Remedy::LargerSphere,
+                )),
+                Some(across_world),
+                Some(feature(
+                    "radius, against the surface tolerance",
+                    r,
+                    tolerance_terms(from_eye + r, Some(r)),
+                    Remedy::LargerSphere,
+                )),
+                Some(clearance(gap, from_eye + r)),
+            ]
+        }
+        ShapeDesc::Plane { checker, point, .. } => {
+            let reach = gap.max(distance(point, eye));
+            let checker = checker.map(|checker| {
+                let size = f64::from(checker.size);
+                // Counted in squares, a coordinate errs by the rounding of the axes
+                // (each 1/size, rounded at its own size) over the checker's reach, and
+                // by its own rounding: that must stay within a sixteenth of a square.
+                let reach = checker_reach(world, world);
+                [
+                    feature(
+                        "checker square size",
+                        size,
+                        Terms::new(&[(1.0, world), (1.0, size)]),
+                        Remedy::LargerSquares,
+                    ),
+                    feature(
+                        "one checker square, against the rounding of 1/size over the world",
+                        1.0,
+                        Terms::new(&[
+                            (3.0_f64.sqrt() * reach, 1.0 / size),
+                            (1.0, reach / size + 1.0),
+                        ]),
+                        Remedy::LargerSquares,
+                    ),
+                ]
+            });
+            let [square, reciprocal] = checker.map_or([None, None], |[a, b]| [Some(a), Some(b)]);
+            [square, reciprocal, Some(clearance(gap, reach)), None]
+        }
+        ShapeDesc::Triangle { vertices } => {
+            // The tests' determinants are twice the area seen along the ray; their
+            // numerators err by the rounding of the unit direction times |s|·|e|, with s the
+            // way from the ray's origin to a corner and e the longest edge.
+            let corners = vertices.map(Vec3::from_f32);
+            let (e1, e2) = (corners[1] - corners[0], corners[2] - corners[0]);
+            let s = world + distance(vertices[0], eye);
+            let longest = e1.length().max(e2.length());
+            let area = e1.cross(e2).length();
+            let reach = vertices
+                .iter()
+                .map(|&v| distance(v, eye))
+                .fold(gap, f64::max);
+            // Möller–Trumbore multiplies by 1/det, rounded at its size: the barycentric
+            // coordinates err by its relative rounding, which must stay within a
+            // sixteenth of the triangle.
+            let reciprocal = (methods.triangle == TriangleMethod::MollerTrumbore).then(|| {
+                feature(
+                    "Möller–Trumbore's 1/det, against its rounding",
+                    1.0 / area,
+                    Terms::new(&[(1.0, 1.0 / area)]),
+                    Remedy::SmallerTriangle,
+                )
+            });
+            // Cramer's rule and Möller–Trumbore find t as a triple product (t·det, a
+            // length times twice an area) over det: for a hit as near as the eye is, the
+            // product must resolve against its rounding (the stored e1 × e2 rounded at
+            // its size, times |s|, and its own).
+            let product = (methods.triangle != TriangleMethod::Watertight).then(|| {
+                feature(
+                    "t·det of a hit as near as the eye, against its rounding",
+                    gap * area,
+                    Terms::new(&[(3.0_f64.sqrt() * s, area), (1.0, gap * area)]),
+                    Remedy::LargerTriangle,
+                )
+            });
+            [
+                Some(feature(
+                    "twice the triangle's area",
+                    area,
+                    area_error(s, longest, area),
+                    Remedy::FatterTriangle,
+                )),
+                Some(clearance(gap, reach)),
+                reciprocal,
+                product,
+            ]
+        }
+    }
 }
 
 /// The error of a sphere's discriminant, for a ray whose origin is `f` from the centre.

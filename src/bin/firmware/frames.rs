@@ -9,7 +9,7 @@ use core::fmt;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use obscura::{
-    BiasMethod, Methods, RayMethod, RootMethod, Scalar, Scene, SceneDesc, SphereMethod,
+    BiasMethod, Methods, RayMethod, RootMethod, Scalar, Scene, SceneDesc, SceneError, SphereMethod,
     TriangleMethod, render_rows, scenes,
 };
 
@@ -156,26 +156,22 @@ fn render<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usiz
     // Hidden from the optimiser, so that no build folds a constant scene into the tracer: every
     // frame measures the same general code, whichever scenes and formats share the firmware.
     let desc = core::hint::black_box(desc);
-    let built =
-        Scene::<S, OBJECTS, LIGHTS, RAYS>::build_with(desc, job.methods).and_then(|scene| {
-            let camera = scene.camera(SIDE, SIDE)?;
-            Ok((scene, camera))
-        });
-    let (scene, camera) = match built {
-        Ok(built) => built,
-        // Without its figures: formatting floats would cost a quarter of the flash, and the
-        // host's build of the same scene and format says the same with them.
-        Err(error) if cfg!(feature = "chart") => {
-            return backend.refused(job, &error.without_figures());
-        }
-        Err(error) => return backend.failed(job, &error.without_figures()),
+    // The stack is measured over the whole job: building the scene proves its range in f64
+    // and takes more stack than many a frame.
+    stack::paint();
+    let scene = match Scene::<S, OBJECTS, LIGHTS, RAYS>::build_with(desc, job.methods) {
+        Ok(scene) => scene,
+        Err(error) => return refuse(backend, job, &error),
     };
-    let ((drawn, ticks), stack_bytes) = backend.frame(job, |display| {
+    let camera = match scene.camera(SIDE, SIDE) {
+        Ok(camera) => camera,
+        Err(error) => return refuse(backend, job, &error),
+    };
+    let (drawn, ticks) = backend.frame(job, |display| {
         let mut line = [Rgb565::BLACK; SIDE as usize];
-        stack::paint();
-        let measured = clock.measure(|| render_rows(&scene, &camera, 0..SIDE, &mut line, display));
-        (measured, stack::high_water())
+        clock.measure(|| render_rows(&scene, &camera, 0..SIDE, &mut line, display))
     });
+    let stack_bytes = stack::high_water();
     match drawn {
         Ok(()) => backend.report(&Report {
             job,
@@ -186,5 +182,16 @@ fn render<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usiz
             ),
         }),
         Err(error) => backend.failed(job, &error),
+    }
+}
+
+/// Reports a scene the firmware cannot build: without its figures, as formatting floats would
+/// cost a quarter of the flash, and the host's build of the same scene and format says the same
+/// with them. The chart firmware tries every method variant and expects some to be refused.
+fn refuse(backend: &mut impl Backend, job: &Job<'_>, error: &SceneError) {
+    if cfg!(feature = "chart") {
+        backend.refused(job, &error.without_figures());
+    } else {
+        backend.failed(job, &error.without_figures());
     }
 }
