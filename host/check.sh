@@ -9,9 +9,9 @@ step() { printf '\n==> %s\n' "$*"; }
 
 M4F=thumbv7em-none-eabihf
 M0=thumbv6m-none-eabi
-ALL_FRAMES=qemu,scene-whitted,scene-shapes,format-i16f16,format-i20f12,format-i32f32,format-f32-approx,format-f32,chart
-ALL_METHODS=qemu,scene-whitted,scene-shapes,format-i16f16,sphere-stable,triangle-watertight,sqrt-approx,rays-stepped,bias-exclude
-BOARD=st7789,scene-whitted,format-i16f16
+# The firmware's configuration (firmware_build in the host): every scene, format and method.
+EVERYTHING=(OBSCURA_SCENES=whitted,shapes OBSCURA_FORMATS=i16f16,i20f12,i32f32,f32-approx,f32
+    OBSCURA_VARIANTS=each)
 
 step "toolchain: rustfmt, clippy and the thumb targets"
 installed_components=$(rustup component list --installed)
@@ -38,33 +38,49 @@ qemu-system-arm --version | head -n 1
 step "format"
 cargo fmt --all -- --check
 
-step "clippy, host"
-cargo clippy --workspace --all-targets --locked -- -D warnings
+step "clippy, host (the core and the harness)"
+cargo clippy --all-targets --locked -- -D warnings
 
 step "clippy, core on a 32-bit target"
 cargo clippy -p obscura --target "$M0" --locked -- -D warnings
 
-step "clippy, firmware on both targets and the ST7789 board"
-cargo clippy --release --bin firmware --target "$M4F" --features "$ALL_FRAMES" --locked -- -D warnings
-cargo clippy --release --bin firmware --target "$M0" --features "$ALL_FRAMES" --locked -- -D warnings
-cargo clippy --release --bin firmware --target "$M4F" --features "$ALL_METHODS" --locked -- -D warnings
-cargo clippy --release --bin firmware --target "$M4F" --features "$BOARD" --locked -- -D warnings
+step "clippy, the firmware on both targets and the Black Pill"
+for target in "$M4F" "$M0"; do
+    env "${EVERYTHING[@]}" cargo clippy --release -p obscura-firmware --target "$target" --locked -- -D warnings
+done
+cargo clippy --release -p obscura-black-pill --target "$M4F" --locked -- -D warnings
 
 step "documentation"
-RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --quiet
+RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --locked --quiet
 
 for target in "$M4F" "$M0"; do
     step "no_std core for $target"
     cargo build -p obscura --release --target "$target" --locked
 done
 
-step "firmware for the ST7789 on an STM32F411 Black Pill"
-cargo build --release --bin firmware --target "$M4F" --features "$BOARD" --locked
+step "the library's dependencies: none of the firmware's"
+if cargo tree -p obscura -e normal --locked --prefix none | grep -E "cortex-m|stm32|mipidsi|obscura-"; then
+    echo "the obscura library depends on a firmware crate (above)" >&2
+    exit 1
+fi
+
+step "firmware for the ST7789 on an STM32F411 Black Pill, from a scene file"
+OBSCURA_SCENES=host/scenes/pyramid.toml cargo build --release -p obscura-black-pill --target "$M4F" --locked
+
+step "a scene the format cannot hold fails the firmware's build, at its line and column"
+if OBSCURA_SCENES=host/scenes/hostile/low-light.toml OBSCURA_FORMATS=i16f16 \
+    cargo build --release -p obscura-firmware --target "$M4F" --locked 2>target/refused.log; then
+    echo "the firmware built a scene i16f16 cannot hold" >&2
+    exit 1
+fi
+grep -F "low-light.toml:14:1: the scene cannot be built in i16f16" target/refused.log
 
 for target in m4f m0; do
     step "firmware under QEMU ($target), bit for bit against the host, within its budget"
     cargo run --release --locked -p obscura-host -- firmware --target "$target" \
         --scene whitted,shapes --format i16f16 --budget
+    cargo run --release --locked -p obscura-host -- firmware --target "$target" \
+        --scene host/scenes/pyramid.toml --format auto --budget
 done
 
 step "firmware under QEMU (m4f), the other formats and methods, bit for bit against the host"
@@ -77,4 +93,4 @@ step "fuzz: random scenes for 150 s from a fixed seed, held to every promise"
 cargo run --release --locked -p obscura-host -- fuzz --seconds 150 --seed 1 --out-dir target/fuzz
 
 step "tests"
-cargo test --workspace --locked
+cargo test --locked

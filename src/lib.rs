@@ -53,7 +53,9 @@ pub use desc::{
     BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc,
     ShapeDesc,
 };
-pub use methods::{BiasMethod, Methods, RayMethod, RootMethod, SphereMethod, TriangleMethod};
+pub use methods::{
+    BiasMethod, Methods, ParseMethodsError, RayMethod, RootMethod, SphereMethod, TriangleMethod,
+};
 pub use ray::Ray;
 pub use render::{RenderError, render_rows};
 pub use scalar::{F32Approx, I16F16, I20F12, I32F32, Scalar};

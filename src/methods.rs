@@ -233,9 +233,123 @@ impl fmt::Display for Methods {
     }
 }
 
+/// Methods spelled as their [`fmt::Display`] spells them, or only those that differ from the
+/// lecture's: `sphere=stable,bias=exclude` (commas or spaces between them), `lecture` or
+/// nothing for the lecture's own. Each question at most once.
+impl core::str::FromStr for Methods {
+    type Err = ParseMethodsError;
+
+    fn from_str(text: &str) -> Result<Self, ParseMethodsError> {
+        let mut methods = Self::LECTURE;
+        let mut seen = [false; 5];
+        for choice in text
+            .split([',', ' '])
+            .filter(|s| !s.is_empty() && *s != "lecture")
+        {
+            let (question, name) = choice
+                .split_once('=')
+                .ok_or(ParseMethodsError::NotAChoice)?;
+            let (index, known) = match question {
+                "sphere" => (0, set(&mut methods.sphere, name)),
+                "triangle" => (1, set(&mut methods.triangle, name)),
+                "sqrt" => (2, set(&mut methods.roots, name)),
+                "rays" => (3, set(&mut methods.rays, name)),
+                "bias" => (4, set(&mut methods.bias, name)),
+                _ => return Err(ParseMethodsError::UnknownQuestion),
+            };
+            let (Some(&asked), Some(seen)) = (QUESTIONS.get(index), seen.get_mut(index)) else {
+                return Err(ParseMethodsError::UnknownQuestion);
+            };
+            if !known {
+                return Err(ParseMethodsError::UnknownMethod(asked));
+            }
+            if core::mem::replace(seen, true) {
+                return Err(ParseMethodsError::Twice(asked.0));
+            }
+        }
+        Ok(methods)
+    }
+}
+
+/// Each question a method answers, with the names of its answers.
+const QUESTIONS: [(&str, &str); 5] = [
+    ("sphere", "quadratic or stable"),
+    ("triangle", "cramer, moller-trumbore or watertight"),
+    ("sqrt", "exact or approx"),
+    ("rays", "per-pixel or stepped"),
+    ("bias", "epsilon or exclude"),
+];
+
+/// Sets `method` to the one called `name`; whether there is one.
+fn set<M: MethodName + PartialEq>(method: &mut M, name: &str) -> bool {
+    M::from_name(name).map(|m| *method = m).is_some()
+}
+
+/// Why a text is not a choice of methods.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ParseMethodsError {
+    /// A choice without `=`.
+    NotAChoice,
+    /// A question other than sphere, triangle, sqrt, rays and bias.
+    UnknownQuestion,
+    /// An answer the question does not have: the question and its answers.
+    UnknownMethod((&'static str, &'static str)),
+    /// A question answered twice.
+    Twice(&'static str),
+}
+
+impl fmt::Display for ParseMethodsError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NotAChoice => {
+                f.write_str("methods are written question=method, e.g. sphere=stable,bias=exclude")
+            }
+            Self::UnknownQuestion => {
+                f.write_str("the questions are sphere, triangle, sqrt, rays and bias")
+            }
+            Self::UnknownMethod((question, answers)) => {
+                write!(f, "the {question} method is {answers}")
+            }
+            Self::Twice(question) => write!(f, "the {question} method is chosen twice"),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn methods_read_back_as_they_are_written() {
+        for methods in Methods::LECTURE.variants() {
+            let written = methods.to_string();
+            assert_eq!(written.parse::<Methods>(), Ok(methods), "{written}");
+        }
+        let stable = Methods {
+            sphere: SphereMethod::Stable,
+            bias: BiasMethod::Exclude,
+            ..Methods::LECTURE
+        };
+        assert_eq!("sphere=stable,bias=exclude".parse(), Ok(stable));
+        assert_eq!("lecture".parse(), Ok(Methods::LECTURE));
+        assert_eq!("".parse(), Ok(Methods::LECTURE));
+        assert_eq!(
+            "sphere".parse::<Methods>(),
+            Err(ParseMethodsError::NotAChoice)
+        );
+        assert_eq!(
+            "colour=red".parse::<Methods>(),
+            Err(ParseMethodsError::UnknownQuestion)
+        );
+        assert_eq!(
+            "rays=sideways".parse::<Methods>(),
+            Err(ParseMethodsError::UnknownMethod(QUESTIONS[3]))
+        );
+        assert_eq!(
+            "bias=exclude bias=epsilon".parse::<Methods>(),
+            Err(ParseMethodsError::Twice("bias"))
+        );
+    }
 
     fn round_trip<M: MethodName + PartialEq + fmt::Debug>() {
         for &(method, name) in M::ALL {

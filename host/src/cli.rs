@@ -244,7 +244,7 @@ pub struct FirmwareArgs {
     /// microbit).
     #[arg(long, value_enum)]
     pub target: Target,
-    /// Built-in scenes to render, in one firmware run.
+    /// Built-in scenes or scene files to render, in one firmware run.
     #[arg(long, value_delimiter = ',', default_value = "whitted")]
     pub scene: Vec<String>,
     /// Formats to render each scene in (all but f64, which stays on the host); `auto` is the

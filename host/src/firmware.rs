@@ -2,6 +2,7 @@
 //! build it for a set of scenes and formats, how to run it and read what it reports, and how
 //! much flash and RAM its image takes.
 
+use crate::firmware_build::Image;
 use crate::format::Format;
 use anyhow::{Context, Result, bail};
 use clap::ValueEnum;
@@ -94,28 +95,6 @@ impl Target {
     }
 }
 
-/// The cargo feature that makes the firmware compute in `format` (f64 stays on the host).
-pub fn firmware_format(format: Format) -> Result<&'static str> {
-    match format {
-        Format::I16f16 => Ok("format-i16f16"),
-        Format::I20f12 => Ok("format-i20f12"),
-        Format::I32f32 => Ok("format-i32f32"),
-        Format::F32Approx => Ok("format-f32-approx"),
-        Format::F32 => Ok("format-f32"),
-        Format::F64 => {
-            bail!("the firmware computes in i16f16, i20f12, i32f32, f32-approx or f32, not f64")
-        }
-    }
-}
-
-/// The cargo features that make the firmware use `methods` (none for the lecture's).
-pub fn method_features(methods: &Methods) -> Vec<String> {
-    crate::variant::changes(methods)
-        .into_iter()
-        .map(|(kind, name)| format!("{kind}-{name}"))
-        .collect()
-}
-
 /// The workspace the harness was built from, which holds the firmware's sources.
 pub fn workspace() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -153,24 +132,23 @@ pub fn check_prerequisites(target: Target) -> Result<()> {
     Ok(())
 }
 
-/// Builds the firmware for `target` with these cargo features (besides `qemu`), and returns the
-/// path of its ELF image.
-pub fn build(target: Target, features: &[String]) -> Result<PathBuf> {
+/// Builds the QEMU firmware for `target` to draw `image`, and returns the path of its ELF image.
+/// Its build script proves every scene in every format again (by the same code as the host).
+pub fn build(target: Target, image: &Image<'_>) -> Result<PathBuf> {
     let workspace = workspace();
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    let mut all = vec!["qemu".to_owned()];
-    all.extend_from_slice(features);
     let status = Command::new(cargo)
         .current_dir(&workspace)
         .args([
             "build",
             "--release",
+            "-p",
+            "obscura-firmware",
             "--bin",
-            "firmware",
-            "--target",
-            target.triple(),
+            "qemu",
         ])
-        .args(["--features", &all.join(",")])
+        .args(["--target", target.triple()])
+        .envs(image.environment())
         .status()
         .context("cannot run cargo")?;
     if !status.success() {
@@ -182,7 +160,7 @@ pub fn build(target: Target, features: &[String]) -> Result<PathBuf> {
     Ok(workspace
         .join("target")
         .join(target.triple())
-        .join("release/firmware"))
+        .join("release/qemu"))
 }
 
 /// One frame as the firmware reported it.
@@ -472,16 +450,5 @@ mod tests {
         // 168 MHz: a tick is 1000/168 ≈ 5.95 instructions; 16 MHz: 62.5.
         assert_eq!(Target::M4f.instructions(168), 1000);
         assert_eq!(Target::M0.instructions(16), 1000);
-    }
-
-    #[test]
-    fn f64_is_not_a_firmware_format() {
-        assert!(
-            firmware_format(Format::F64)
-                .unwrap_err()
-                .to_string()
-                .contains("not f64")
-        );
-        assert_eq!(firmware_format(Format::I16f16).unwrap(), "format-i16f16");
     }
 }

@@ -91,6 +91,18 @@ impl Format {
         self.run(Matter(methods, base, has_triangles))
     }
 
+    /// The core's type for the format, as Rust source (what a firmware computes in).
+    pub fn rust_type(self) -> &'static str {
+        match self {
+            Self::I16f16 => "obscura::I16F16",
+            Self::I20f12 => "obscura::I20F12",
+            Self::I32f32 => "obscura::I32F32",
+            Self::F32Approx => "obscura::F32Approx",
+            Self::F32 => "f32",
+            Self::F64 => "f64",
+        }
+    }
+
     /// Whether the format is fixed point (whose firmware frames must match the host's bit for
     /// bit, and which has fast approximate roots when it is 32 bits wide).
     pub fn is_fixed_point(self) -> bool {

@@ -1,56 +1,5 @@
-//! `obscura`: the desktop harness of the obscura ray tracer. It runs the very same `no_std` core
-//! as the firmware, writes PNGs, and measures each number format against an f64 reference.
+//! `obscura`: the desktop harness of the obscura ray tracer (`obscura_host::main`).
 
-mod analysis;
-mod canvas;
-mod checked;
-mod cli;
-mod commands;
-mod cost;
-mod firmware;
-mod format;
-mod fuzz;
-mod heatmap;
-mod metrics;
-mod output;
-mod owned;
-mod pareto;
-#[cfg(test)]
-mod peak;
-mod plot;
-mod quantized;
-#[cfg(test)]
-mod regressions;
-mod render;
-mod scene_file;
-mod stress;
-mod timing;
-mod variant;
-
-use clap::Parser;
-use std::process::ExitCode;
-
-fn main() -> ExitCode {
-    let cli = cli::Cli::parse();
-    // A command that does not catch an overflow itself (to say at which pixel of which scene)
-    // still ends with it as an error, never with a wrapped number.
-    let outcome = checked::catch(|| commands::run(cli.command).and_then(|()| Ok(output::flush()?)))
-        .unwrap_or_else(|overflowed| {
-            Err(anyhow::anyhow!(
-                "{overflowed}: the scene build's range proof missed it (a bug in obscura: please \
-             report it with the scene)"
-            ))
-        });
-    match outcome {
-        Ok(()) => ExitCode::SUCCESS,
-        // `obscura scenes | head -1`: the reader has what it wanted.
-        Err(error) if output::is_closed_pipe(&error) => ExitCode::SUCCESS,
-        Err(error) => {
-            eprintln!("error: {error:#}");
-            if let Some(place) = error.downcast_ref::<scene_file::Located>() {
-                eprintln!("{}", place.excerpt());
-            }
-            ExitCode::FAILURE
-        }
-    }
+fn main() -> std::process::ExitCode {
+    obscura_host::main()
 }

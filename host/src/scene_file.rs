@@ -204,6 +204,12 @@ fn wrong_in(value: &DeValue<'_>, span: Range<usize>, path: &str) -> Option<(Rang
 }
 
 impl NamedScene {
+    /// The file the scene was read from, if it was.
+    #[must_use]
+    pub fn path(&self) -> Option<&Path> {
+        self.source.as_ref().map(|source| source.path.as_path())
+    }
+
     /// `error`, where it is a refusal of this scene's build ([`SceneError`]) and the scene came
     /// from a file, placed at the line and column of the value at fault (or of its object,
     /// light or camera when the value is one the tracer computes).

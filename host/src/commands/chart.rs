@@ -6,6 +6,7 @@
 use crate::cli::ChartArgs;
 use crate::cost;
 use crate::firmware::{self, Target};
+use crate::firmware_build::Image;
 use crate::format::Format;
 use crate::metrics::accuracy;
 use crate::output::{self, say};
@@ -69,15 +70,13 @@ pub fn run(args: &ChartArgs) -> Result<()> {
     for &target in targets {
         firmware::check_prerequisites(target)?;
         for (i, formats) in target.chart_images().iter().enumerate() {
-            let mut features: Vec<String> = scenes::BUILT_IN
-                .iter()
-                .map(|s| format!("scene-{}", s.name))
-                .collect();
-            for &format in *formats {
-                features.push(firmware::firmware_format(format)?.to_owned());
-            }
-            features.push("chart".to_owned());
-            let elf = firmware::build(target, &features)?;
+            let image = Image {
+                scenes: scenes::BUILT_IN.iter().map(|s| s.name.to_owned()).collect(),
+                formats,
+                methods: Methods::LECTURE,
+                variants: true,
+            };
+            let elf = firmware::build(target, &image)?;
             let dir = args
                 .out_dir
                 .join("firmware")

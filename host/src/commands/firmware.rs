@@ -1,20 +1,18 @@
 //! `obscura firmware`: the firmware under QEMU against the host, bit for bit, and what it costs.
 
-use crate::analysis::{Analysis, Pick, pick};
 use crate::cli::{FirmwareArgs, FormatChoice};
 use crate::cost::Machine;
 use crate::firmware::{self, Target};
+use crate::firmware_build::{self, Configuration, Image};
 use crate::format::Format;
 use crate::heatmap::heatmap;
 use crate::output::{self, say};
-use crate::owned::OwnedScene;
-use crate::render::{Request, prepare};
+use crate::scene_file::{self, NamedScene};
 use anyhow::{Context, Result, bail};
 use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use image::RgbImage;
 use obscura::Methods;
-use obscura::scenes::BuiltIn;
 use serde::Serialize;
 use std::io;
 use std::path::Path;
@@ -41,48 +39,29 @@ struct Report {
 }
 
 /// The formats `args` ask for, `auto` resolved to the cheapest on the target that holds every
-/// scene as it is (a firmware's scenes are built in: it cannot rescale them) and is predicted to
-/// reach the target PSNR on each at the display's size.
-fn formats(args: &FirmwareArgs, scenes: &[&BuiltIn], methods: &Methods) -> Result<Vec<Format>> {
+/// scene as it is and reaches the target PSNR on each at the display's size
+/// ([`firmware_build::auto`]).
+fn formats(args: &FirmwareArgs, scenes: &[NamedScene], methods: Methods) -> Result<Vec<Format>> {
     let mut formats = Vec::new();
     for &choice in &args.format {
         let format = match choice {
             FormatChoice::Given(format) => format,
-            FormatChoice::Auto => auto_format(args, scenes, methods)?,
+            FormatChoice::Auto => {
+                let machine = Machine::from(args.target);
+                let format = firmware_build::auto(scenes, methods, machine, args.target_psnr)?;
+                eprintln!(
+                    "--format auto: {format} is the cheapest on {machine} that reaches {} dB on \
+                     every scene (measured on the host, whose frames are the firmware's)",
+                    args.target_psnr
+                );
+                format
+            }
         };
         if !formats.contains(&format) {
             formats.push(format);
         }
     }
     Ok(formats)
-}
-
-fn auto_format(args: &FirmwareArgs, scenes: &[&BuiltIn], methods: &Methods) -> Result<Format> {
-    let machine = Machine::from(args.target);
-    let size = (firmware::SIDE, firmware::SIDE);
-    let owned: Vec<OwnedScene> = scenes
-        .iter()
-        .map(|s| OwnedScene::from_desc(&s.desc))
-        .collect();
-    let analyses = owned
-        .iter()
-        .map(|scene| Analysis::of(scene, *methods, size.0, size.1))
-        .collect::<Result<Vec<_>>>()?;
-    let pairs: Vec<_> = owned.iter().zip(&analyses).collect();
-    let Pick {
-        format, psnr_db, ..
-    } = pick(&pairs, *methods, size, machine, args.target_psnr, false)?.with_context(|| {
-        format!(
-            "no firmware format holds every scene and reaches {} dB; `obscura analyze` says why",
-            args.target_psnr
-        )
-    })?;
-    eprintln!(
-        "--format auto: {format} is the cheapest on {machine} that reaches {} dB on every scene \
-         ({psnr_db:.1} dB at the least, measured on the host, whose frames are the firmware's)",
-        args.target_psnr
-    );
-    Ok(format)
 }
 
 /// How many differing pixels are listed when a frame does not match.
@@ -98,30 +77,35 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
     let scenes = args
         .scene
         .iter()
-        .map(|name| super::built_in(name))
+        .map(|name| scene_file::load(name))
         .collect::<Result<Vec<_>>>()?;
-    let formats = formats(args, &scenes, &methods)?;
-    let mut features: Vec<String> = scenes.iter().map(|s| format!("scene-{}", s.name)).collect();
-    for &format in &formats {
-        features.push(firmware::firmware_format(format)?.to_owned());
-    }
-    features.extend(firmware::method_features(&methods));
-    // The host builds every frame's scene first: what the firmware would refuse (by the same
-    // code), it refuses here, with the figures, before a build and a QEMU run.
-    for scene in &scenes {
-        for &format in &formats {
-            let request = Request {
-                desc: &scene.desc,
-                width: firmware::SIDE,
-                height: firmware::SIDE,
-                methods,
-            };
-            prepare(format, &request)
-                .with_context(|| format!("the firmware cannot draw {} in {format}", scene.name))?;
-        }
-    }
+    let formats = formats(args, &scenes, methods)?;
+    let configuration = Configuration {
+        scenes,
+        formats,
+        methods,
+        variants: false,
+    };
+    // What the firmware would refuse (by the same code), the host refuses here, with the
+    // figures, before a build and a QEMU run; the firmware's build proves it again.
+    configuration.check()?;
+    let Configuration {
+        scenes, formats, ..
+    } = configuration;
     firmware::check_prerequisites(target)?;
-    let elf = firmware::build(target, &features)?;
+    let image = Image {
+        scenes: scenes
+            .iter()
+            .map(|s| {
+                s.path()
+                    .map_or_else(|| s.name.clone(), |p| p.display().to_string())
+            })
+            .collect(),
+        formats: &formats,
+        methods,
+        variants: false,
+    };
+    let elf = firmware::build(target, &image)?;
     let size = firmware::image_size(&elf)?;
     let dir = args.out_dir.join(target.name());
     eprintln!("running {} under QEMU in {}", elf.display(), dir.display());
@@ -143,7 +127,7 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
                     )
                 })?;
             let (device, host, differing) =
-                firmware::compare_frame(&scene.desc, format, frame, &dir)?;
+                firmware::compare_frame(&scene.scene.desc(), format, frame, &dir)?;
             let stem = dir.join(&frame.file);
             crate::commands::save(&to_image(&device, frame.width), &stem.with_extension("png"))?;
             if !differing.is_empty() {
@@ -154,7 +138,7 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
                 let path = stem.with_extension("diff.png");
                 crate::commands::save(&diff, &path)?;
                 list_differences(
-                    scene.name,
+                    &scene.name,
                     format,
                     frame.width,
                     &differing,

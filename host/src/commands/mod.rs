@@ -17,7 +17,7 @@ use crate::owned::OwnedScene;
 use crate::scene_file::{self, NamedScene};
 use anyhow::{Result, bail};
 use obscura::Methods;
-use obscura::scenes::{self, BuiltIn};
+use obscura::scenes;
 
 /// Runs a subcommand.
 pub fn run(command: Command) -> Result<()> {
@@ -39,21 +39,6 @@ pub fn run(command: Command) -> Result<()> {
         Command::Chart(args) => chart::run(&args),
         Command::Stress(args) => stress::run(&args),
         Command::Fuzz(args) => fuzz::run(&args),
-    }
-}
-
-/// The built-in scene called `name`, or an error that lists the names there are (the
-/// firmware holds only those).
-pub fn built_in(name: &str) -> Result<&'static BuiltIn> {
-    match scenes::find(name) {
-        Some(scene) => Ok(scene),
-        None => {
-            let names: Vec<_> = scenes::BUILT_IN.iter().map(|s| s.name).collect();
-            bail!(
-                "there is no built-in scene `{name}` (a firmware holds only those): {}",
-                names.join(", ")
-            )
-        }
     }
 }
 

@@ -13,14 +13,13 @@
 //!
 //! The firmware then exits through semihosting: 0 when every frame was drawn, 1 otherwise, and
 //! 1 on a panic (panic-semihosting) or a hard fault.
+#![no_std]
+#![no_main]
 #![allow(
     unsafe_code,
     reason = "semihosting calls are raw system calls to the debugger"
 )]
 
-use crate::SIDE;
-use crate::clock::Clock;
-use crate::frames::{self, Backend, Job, Report};
 use core::fmt::{self, Write as _};
 use cortex_m_rt::{ExceptionFrame, exception};
 use cortex_m_semihosting::debug::{self, EXIT_FAILURE, EXIT_SUCCESS};
@@ -30,10 +29,14 @@ use embedded_graphics_core::prelude::*;
 use embedded_graphics_core::primitives::Rectangle;
 use obscura::Methods;
 use obscura::methods::MethodName;
+use obscura_firmware::SIDE;
+use obscura_firmware::clock::Clock;
+use obscura_firmware::frames::{self, Backend, Job, Report};
 use panic_semihosting as _;
 
-/// Renders every enabled frame, then exits QEMU with the outcome.
-pub fn run() -> ! {
+/// Renders every configured frame, then exits QEMU with the outcome.
+#[cortex_m_rt::entry]
+fn main() -> ! {
     let Some(peripherals) = cortex_m::Peripherals::take() else {
         exit(false);
     };

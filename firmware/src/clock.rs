@@ -26,6 +26,12 @@ pub struct Clock {
     _syst: SYST,
 }
 
+impl core::fmt::Debug for Clock {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("Clock").finish_non_exhaustive()
+    }
+}
+
 impl Clock {
     /// Starts SysTick on the core clock, wrapping every 2²⁴ ticks into an exception that
     /// extends the count.

@@ -1,6 +1,7 @@
-//! What the firmware renders: each enabled scene in each enabled format, by the methods the
-//! features choose (or, with `chart`, by each variant of them), with the scene's storage
-//! (objects, lights, ray stack) sized by const generics to exactly what it needs.
+//! What the firmware renders: each configured scene in each configured format, by the
+//! configured methods (or by each variant of them), with the scene's storage (objects, lights,
+//! ray stack) sized by const generics to exactly what it needs. The build script writes the
+//! list ([`render_all`]) from the configuration, having proven each scene in each format.
 
 use crate::SIDE;
 use crate::clock::Clock;
@@ -8,10 +9,7 @@ use crate::stack;
 use core::fmt;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use obscura::{
-    BiasMethod, Methods, RayMethod, RootMethod, Scalar, Scene, SceneDesc, SceneError, SphereMethod,
-    TriangleMethod, render_rows, scenes,
-};
+use obscura::{Methods, Scalar, Scene, SceneDesc, SceneError, render_rows};
 
 /// What a display back-end provides: a display to draw each frame on, and a place to say how
 /// it went.
@@ -30,6 +28,7 @@ pub trait Backend {
 }
 
 /// One frame to draw.
+#[derive(Debug)]
 pub struct Job<'a> {
     /// The scene's name.
     pub scene: &'a str,
@@ -40,6 +39,7 @@ pub struct Job<'a> {
 }
 
 /// The measurements of one frame.
+#[derive(Debug)]
 pub struct Report<'a> {
     /// What was drawn.
     pub job: &'a Job<'a>,
@@ -53,95 +53,39 @@ pub struct Report<'a> {
     pub fixed_storage_bytes: usize,
 }
 
-/// The methods the features choose; the lecture's where they choose none.
-const METHODS: Methods = Methods {
-    sphere: if cfg!(feature = "sphere-stable") {
-        SphereMethod::Stable
-    } else {
-        SphereMethod::Quadratic
-    },
-    triangle: if cfg!(feature = "triangle-watertight") {
-        TriangleMethod::Watertight
-    } else if cfg!(feature = "triangle-moller-trumbore") {
-        TriangleMethod::MollerTrumbore
-    } else {
-        TriangleMethod::Cramer
-    },
-    roots: if cfg!(feature = "sqrt-approx") {
-        RootMethod::Approx
-    } else {
-        RootMethod::Exact
-    },
-    rays: if cfg!(feature = "rays-stepped") {
-        RayMethod::Stepped
-    } else {
-        RayMethod::PerPixel
-    },
-    bias: if cfg!(feature = "bias-exclude") {
-        BiasMethod::Exclude
-    } else {
-        BiasMethod::Epsilon
-    },
-};
+pub use configured::render_all;
+
+/// The frames the build configured, as its script wrote them.
+mod configured {
+    include!(concat!(env!("OUT_DIR"), "/frames.rs"));
+}
 
 /// The host's capacities, against which the sized storage is reported.
 const FIXED_OBJECTS: usize = 64;
 const FIXED_LIGHTS: usize = 16;
 const FIXED_RAYS: usize = 16;
 
-/// Renders one scene in each enabled format, its capacities computed from the description.
-macro_rules! formats {
-    ($backend:expr, $clock:expr, $name:literal, $desc:path) => {{
-        const DESC: SceneDesc<'static> = $desc;
-        const OBJECTS: usize = DESC.objects.len();
-        const LIGHTS: usize = DESC.lights.len();
-        const RAYS: usize = DESC.max_depth as usize + 1;
-        #[cfg(feature = "format-i16f16")]
-        variants::<obscura::I16F16, OBJECTS, LIGHTS, RAYS>($backend, $clock, $name, &DESC);
-        #[cfg(feature = "format-i20f12")]
-        variants::<obscura::I20F12, OBJECTS, LIGHTS, RAYS>($backend, $clock, $name, &DESC);
-        #[cfg(feature = "format-i32f32")]
-        variants::<obscura::I32F32, OBJECTS, LIGHTS, RAYS>($backend, $clock, $name, &DESC);
-        #[cfg(feature = "format-f32-approx")]
-        variants::<obscura::F32Approx, OBJECTS, LIGHTS, RAYS>($backend, $clock, $name, &DESC);
-        #[cfg(feature = "format-f32")]
-        variants::<f32, OBJECTS, LIGHTS, RAYS>($backend, $clock, $name, &DESC);
-    }};
-}
-
-/// Renders each enabled scene in each enabled format.
-pub fn render_all(backend: &mut impl Backend, clock: &Clock) {
-    #[cfg(feature = "scene-whitted")]
-    formats!(backend, clock, "whitted", scenes::WHITTED);
-    #[cfg(feature = "scene-shapes")]
-    formats!(backend, clock, "shapes", scenes::SHAPES);
-}
-
-/// Renders a scene in format `S` by [`METHODS`], and with `chart` by each of its variants that
-/// makes sense ([`Methods::variants`], [`Methods::matter`]), none twice.
-fn variants<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
+/// Renders a scene in format `S` by each of `methods` that tells it apart from the first
+/// ([`Methods::matter`]): the first is the configured methods, the others its variants.
+pub(crate) fn variants<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
     backend: &mut impl Backend,
     clock: &Clock,
     name: &str,
     desc: &SceneDesc<'_>,
+    methods: &[Methods],
 ) {
-    let variants = METHODS.variants();
-    let chosen = if cfg!(feature = "chart") {
-        &variants[..]
-    } else {
-        &variants[..1]
+    let Some(base) = methods.first() else {
+        return;
     };
-    for (i, &methods) in chosen.iter().enumerate() {
-        let repeated = chosen
-            .get(..i)
-            .is_some_and(|earlier| earlier.contains(&methods));
-        if !repeated && methods.matter::<S>(&METHODS, desc.has_triangles()) {
+    let variants = methods.len() > 1;
+    for &m in methods {
+        if m.matter::<S>(base, desc.has_triangles()) {
             let job = Job {
                 scene: name,
                 format: S::NAME,
-                methods,
+                methods: m,
             };
-            render::<S, OBJECTS, LIGHTS, RAYS>(backend, clock, &job, desc);
+            render::<S, OBJECTS, LIGHTS, RAYS>(backend, clock, &job, desc, variants);
         }
     }
 }
@@ -152,6 +96,7 @@ fn render<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usiz
     clock: &Clock,
     job: &Job<'_>,
     desc: &SceneDesc<'_>,
+    variants: bool,
 ) {
     // Hidden from the optimiser, so that no build folds a constant scene into the tracer: every
     // frame measures the same general code, whichever scenes and formats share the firmware.
@@ -161,11 +106,11 @@ fn render<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usiz
     stack::paint();
     let scene = match Scene::<S, OBJECTS, LIGHTS, RAYS>::build_with(desc, job.methods) {
         Ok(scene) => scene,
-        Err(error) => return refuse(backend, job, &error),
+        Err(error) => return refuse(backend, job, &error, variants),
     };
     let camera = match scene.camera(SIDE, SIDE) {
         Ok(camera) => camera,
-        Err(error) => return refuse(backend, job, &error),
+        Err(error) => return refuse(backend, job, &error, variants),
     };
     let (drawn, ticks) = backend.frame(job, |display| {
         let mut line = [Rgb565::BLACK; SIDE as usize];
@@ -187,9 +132,9 @@ fn render<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usiz
 
 /// Reports a scene the firmware cannot build: without its figures, as formatting floats would
 /// cost a quarter of the flash, and the host's build of the same scene and format says the same
-/// with them. The chart firmware tries every method variant and expects some to be refused.
-fn refuse(backend: &mut impl Backend, job: &Job<'_>, error: &SceneError) {
-    if cfg!(feature = "chart") {
+/// with them. Among `variants` (what the chart compares) some are expected to be refused.
+fn refuse(backend: &mut impl Backend, job: &Job<'_>, error: &SceneError, variants: bool) {
+    if variants {
         backend.refused(job, &error.without_figures());
     } else {
         backend.failed(job, &error.without_figures());

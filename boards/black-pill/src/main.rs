@@ -1,5 +1,5 @@
 //! The hardware back-end: an ST7789 240×240 SPI display (the common 1.3" IPS module) on an
-//! STM32F411 "Black Pill", driven by mipidsi. Each enabled frame is drawn in turn, and its
+//! STM32F411 "Black Pill", driven by mipidsi. Each configured frame is drawn in turn, and its
 //! time (SysTick counts real core cycles here) is written across its bottom row; then the
 //! core sleeps.
 //!
@@ -16,9 +16,9 @@
 //!
 //! Modules without a chip-select pin listen all the time and need SPI mode 3; a module with
 //! CS has it tied to GND.
+#![no_std]
+#![no_main]
 
-use crate::clock::Clock;
-use crate::frames::{self, Backend, Job, Report};
 use core::fmt;
 use embedded_graphics::mono_font::{MonoTextStyleBuilder, ascii::FONT_6X10};
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
@@ -28,6 +28,8 @@ use embedded_hal_bus::spi::{ExclusiveDevice, NoDelay};
 use mipidsi::interface::SpiInterface;
 use mipidsi::models::ST7789;
 use mipidsi::options::ColorInversion;
+use obscura_firmware::clock::Clock;
+use obscura_firmware::frames::{self, Backend, Job, Report};
 use stm32f4xx_hal::gpio::{Output, PA2, PA3};
 use stm32f4xx_hal::pac::{self, SPI1};
 use stm32f4xx_hal::prelude::*;
@@ -46,8 +48,9 @@ type Panel = mipidsi::Display<
     PA2<Output>,
 >;
 
-/// Brings up the clocks, the SPI bus and the display, draws every enabled frame, and sleeps.
-pub fn run() -> ! {
+/// Brings up the clocks, the SPI bus and the display, draws every configured frame, and sleeps.
+#[cortex_m_rt::entry]
+fn main() -> ! {
     let (Some(dp), Some(cp)) = (pac::Peripherals::take(), cortex_m::Peripherals::take()) else {
         halt();
     };

@@ -1,0 +1,53 @@
+//! Configures the firmware from the environment (see `obscura_host::firmware_build` and the
+//! README): resolves and proves its scenes and formats with the host's own code, writes what it
+//! draws to `$OUT_DIR/frames.rs`, and hands the linker the memory map of the board it builds for
+//! (the workspace's `memory.x`).
+
+use obscura_host::firmware_build::{self, VARIABLES};
+use std::env;
+use std::fs;
+use std::path::{Path, PathBuf};
+
+fn main() {
+    let manifest = PathBuf::from(env::var_os("CARGO_MANIFEST_DIR").expect("cargo sets it"));
+    let workspace = manifest.parent().unwrap_or(&manifest);
+    let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
+    let target = env::var("TARGET").unwrap_or_default();
+    println!("cargo::rerun-if-changed=build.rs");
+    for (name, _) in VARIABLES {
+        println!("cargo::rerun-if-env-changed={name}");
+    }
+    match firmware_build::generate(workspace, &target) {
+        Ok(generated) => {
+            for input in &generated.inputs {
+                println!("cargo::rerun-if-changed={}", input.display());
+            }
+            fs::write(out.join("frames.rs"), generated.source).expect("OUT_DIR is writable");
+        }
+        Err(error) => {
+            let text = obscura_host::error_text(&error);
+            for line in text.strip_prefix("error: ").unwrap_or(&text).lines() {
+                println!("cargo::error={line}");
+            }
+            return;
+        }
+    }
+    if target.starts_with("thumbv") {
+        link(workspace, &out, &target);
+    }
+}
+
+/// The memory map: `memory.x` copied next to the build's other outputs and put on the linker's
+/// path (for this crate's binary and for the boards' crates, which depend on it), and
+/// cortex-m-rt's `link.x`, which includes it, for the `qemu` binary. On the Cortex-M0 that runs
+/// on QEMU's micro:bit, whose nRF51 map `memory.x` switches to.
+fn link(workspace: &Path, out: &Path, target: &str) {
+    let map = workspace.join("memory.x");
+    println!("cargo::rerun-if-changed={}", map.display());
+    fs::copy(&map, out.join("memory.x")).expect("memory.x is readable");
+    println!("cargo::rustc-link-search={}", out.display());
+    if target.starts_with("thumbv6m") {
+        println!("cargo::rustc-link-arg-bin=qemu=--defsym=__nrf51=1");
+    }
+    println!("cargo::rustc-link-arg-bins=-Tlink.x");
+}

@@ -1,0 +1,15 @@
+//! The obscura firmware's render loop, shared by every display it drives: the frames the build
+//! configured (each scene in each format, by the chosen methods; see `build.rs`), drawn at
+//! 240×240 RGB565 scanline by scanline through one line buffer into an embedded-graphics
+//! display, each reported with the SysTick ticks it took and the stack it used.
+//!
+//! The binaries are the displays: `qemu` (frames streamed to the host over semihosting) and
+//! `black-pill` (an ST7789 on an STM32F411).
+#![no_std]
+
+pub mod clock;
+pub mod frames;
+pub mod stack;
+
+/// The side of the square display, in pixels.
+pub const SIDE: u32 = 240;

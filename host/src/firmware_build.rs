@@ -1,0 +1,596 @@
+//! What the firmware's build script (`firmware/build.rs`) runs: it reads the firmware's
+//! configuration from the environment, resolves the scenes (built-in names or scene files) and
+//! the formats (`auto` by the host's own analysis, priced for the target), proves that each
+//! scene builds in each format by the chosen methods — with the host's code, so a refusal says
+//! what the host says, placed at the scene file's line and column — and writes the Rust source
+//! of what the firmware draws: each scene as const data, with capacities exactly its own.
+//!
+//! | variable | what | default |
+//! |---|---|---|
+//! | `OBSCURA_SCENES` | built-in scenes or scene files (relative to the workspace), comma-separated | `whitted` |
+//! | `OBSCURA_FORMATS` | formats, comma-separated; `auto` is the cheapest on the target that holds every scene as it is and reaches `OBSCURA_TARGET_PSNR` | `auto` |
+//! | `OBSCURA_TARGET_PSNR` | the PSNR against f64, in dB, that `auto` aims for | `40` |
+//! | `OBSCURA_METHODS` | the methods that differ from the lecture's, e.g. `sphere=stable,bias=exclude` | the lecture's |
+//! | `OBSCURA_VARIANTS` | `each`: also draw each variant that changes one method (what `obscura chart` measures) | none |
+
+use crate::analysis::{Analysis, Pick, pick};
+use crate::cli::FormatChoice;
+use crate::cost::Machine;
+use crate::firmware::SIDE;
+use crate::format::Format;
+use crate::render::{Request, prepare};
+use crate::scene_file::{self, NamedScene};
+use anyhow::{Context, Result, bail};
+use clap::ValueEnum;
+use obscura::{
+    BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, Methods, ObjectDesc,
+    SceneDesc, ShapeDesc,
+};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// The environment variables the configuration is read from, as (name, default).
+pub const VARIABLES: [(&str, &str); 5] = [
+    (SCENES, "whitted"),
+    (FORMATS, "auto"),
+    (TARGET_PSNR, "40"),
+    (METHODS, "lecture"),
+    (VARIANTS, "none"),
+];
+const SCENES: &str = "OBSCURA_SCENES";
+const FORMATS: &str = "OBSCURA_FORMATS";
+const TARGET_PSNR: &str = "OBSCURA_TARGET_PSNR";
+const METHODS: &str = "OBSCURA_METHODS";
+const VARIANTS: &str = "OBSCURA_VARIANTS";
+
+/// What a firmware draws: each scene in each format, by the methods (and with `variants`, by
+/// each variant that changes one of them).
+#[derive(Debug)]
+pub struct Configuration {
+    /// The scenes, in order.
+    pub scenes: Vec<NamedScene>,
+    /// The formats, in order, `auto` resolved.
+    pub formats: Vec<Format>,
+    /// The methods.
+    pub methods: Methods,
+    /// Whether each variant that changes one method is drawn too.
+    pub variants: bool,
+}
+
+/// What one firmware image is to draw, as the host asks its build for it.
+#[derive(Debug)]
+pub struct Image<'a> {
+    /// Built-in scenes' names, or scene files' paths.
+    pub scenes: Vec<String>,
+    /// The formats.
+    pub formats: &'a [Format],
+    /// The methods.
+    pub methods: Methods,
+    /// Whether each variant that changes one method is drawn too.
+    pub variants: bool,
+}
+
+impl Image<'_> {
+    /// The build script's environment for this image: every variable, so that none is
+    /// inherited from the caller's.
+    #[must_use]
+    pub fn environment(&self) -> [(&'static str, String); 5] {
+        [
+            (SCENES, self.scenes.join(",")),
+            (
+                FORMATS,
+                self.formats
+                    .iter()
+                    .map(|f| f.name())
+                    .collect::<Vec<_>>()
+                    .join(","),
+            ),
+            (TARGET_PSNR, "40".to_owned()),
+            (METHODS, self.methods.to_string()),
+            (
+                VARIANTS,
+                if self.variants { "each" } else { "none" }.to_owned(),
+            ),
+        ]
+    }
+}
+
+/// The firmware's Rust source, and the files it was made from (for the build script to watch).
+#[derive(Debug)]
+pub struct Generated {
+    /// The source: `render_all`, which draws every frame.
+    pub source: String,
+    /// The scene files read.
+    pub inputs: Vec<PathBuf>,
+}
+
+/// The machine whose cost `auto` is priced by, for a Rust target triple.
+#[must_use]
+pub fn machine(triple: &str) -> Machine {
+    if triple.starts_with("thumbv7em") {
+        Machine::M4f
+    } else if triple.starts_with("thumbv6m") {
+        Machine::M0
+    } else {
+        Machine::Host
+    }
+}
+
+/// The configuration the environment gives (`var` reads a variable), scene files found from
+/// `workspace`, `auto` priced for `machine`.
+///
+/// # Errors
+/// When a variable is malformed, a scene cannot be read, a format cannot hold a scene (said
+/// as the host says it, at the scene file's line and column), or `auto` finds no format.
+pub fn configure(
+    workspace: &Path,
+    machine: Machine,
+    var: impl Fn(&str) -> Option<String>,
+) -> Result<Configuration> {
+    let value = |name: &str| {
+        var(name)
+            .filter(|v| !v.trim().is_empty())
+            .unwrap_or_else(|| {
+                VARIABLES
+                    .iter()
+                    .find(|(n, _)| *n == name)
+                    .map_or_else(String::new, |(_, default)| (*default).to_owned())
+            })
+    };
+    let methods: Methods = value(METHODS)
+        .parse()
+        .map_err(|e| anyhow::anyhow!("{METHODS}: {e}"))?;
+    let variants = match value(VARIANTS).trim() {
+        "none" => false,
+        "each" => true,
+        other => bail!("{VARIANTS} is `none` or `each`, not `{other}`"),
+    };
+    let target_psnr: f64 = value(TARGET_PSNR)
+        .trim()
+        .parse()
+        .ok()
+        .filter(|psnr: &f64| psnr.is_finite() && *psnr > 0.0)
+        .with_context(|| format!("{TARGET_PSNR} is a PSNR in dB, such as 40"))?;
+    let scenes = value(SCENES)
+        .split(',')
+        .map(str::trim)
+        .map(|name| {
+            let path = workspace.join(name);
+            let name = if obscura::scenes::find(name).is_none() && path.is_file() {
+                path.to_string_lossy().into_owned()
+            } else {
+                name.to_owned()
+            };
+            scene_file::load(&name).context(SCENES)
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let mut formats = Vec::new();
+    for name in value(FORMATS).split(',').map(str::trim) {
+        let format = match FormatChoice::from_str(name, false) {
+            Ok(FormatChoice::Given(Format::F64)) | Err(_) => bail!(
+                "{FORMATS}: `{name}` is not a firmware format: {}, or auto",
+                Format::FIRMWARE.map(Format::name).join(", ")
+            ),
+            Ok(FormatChoice::Given(format)) => format,
+            Ok(FormatChoice::Auto) => auto(&scenes, methods, machine, target_psnr)?,
+        };
+        if !formats.contains(&format) {
+            formats.push(format);
+        }
+    }
+    let configuration = Configuration {
+        scenes,
+        formats,
+        methods,
+        variants,
+    };
+    // Variants are what the chart compares, refusals included; the methods asked for must
+    // hold every scene.
+    if !variants {
+        configuration.check()?;
+    }
+    Ok(configuration)
+}
+
+/// The cheapest format on `machine` that holds every scene as it is (a firmware's scenes are
+/// built in: it cannot rescale them) and reaches `target_psnr` on each at the display's size,
+/// measured on the host, whose frames are the firmware's.
+///
+/// # Errors
+/// When no format does, or a render fails.
+pub fn auto(
+    scenes: &[NamedScene],
+    methods: Methods,
+    machine: Machine,
+    target_psnr: f64,
+) -> Result<Format> {
+    let analyses = scenes
+        .iter()
+        .map(|named| {
+            Analysis::of(&named.scene, methods, SIDE, SIDE).map_err(|error| named.locate(error))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let pairs: Vec<_> = scenes.iter().map(|s| &s.scene).zip(&analyses).collect();
+    let Pick { format, .. } = pick(&pairs, methods, (SIDE, SIDE), machine, target_psnr, false)?
+        .with_context(|| {
+            format!(
+                "no firmware format holds every scene and reaches {target_psnr} dB; `obscura \
+                 analyze` says why"
+            )
+        })?;
+    Ok(format)
+}
+
+impl Configuration {
+    /// Proves that each scene builds in each format by the methods, as the firmware will build
+    /// it: what the firmware would refuse (by the same code), this refuses, with the figures.
+    ///
+    /// # Errors
+    /// The first refusal, placed in its scene file.
+    pub fn check(&self) -> Result<()> {
+        for named in &self.scenes {
+            let desc = named.scene.desc();
+            for &format in &self.formats {
+                let request = Request {
+                    desc: &desc,
+                    width: SIDE,
+                    height: SIDE,
+                    methods: self.methods,
+                };
+                prepare(format, &request).map_err(|error| match named.path() {
+                    // A scene file's refusal names the file, its line and its column.
+                    Some(_) => named.locate(error),
+                    None => error.context(format!("{} in {format}", named.name)),
+                })?;
+            }
+        }
+        Ok(())
+    }
+
+    /// The firmware's source: a function `render_all(backend, clock)` that draws each scene in
+    /// each format by calling the firmware's `frames::variants::<S, OBJECTS, LIGHTS, RAYS>(backend,
+    /// clock, name, &DESC, METHODS)`, with the scene as a const and
+    /// its capacities exactly its own.
+    #[must_use]
+    pub fn source(&self) -> String {
+        let mut out = String::new();
+        let methods: Vec<Methods> = if self.variants {
+            let mut all = Vec::new();
+            for m in self.methods.variants() {
+                if !all.contains(&m) {
+                    all.push(m);
+                }
+            }
+            all
+        } else {
+            vec![self.methods]
+        };
+        let _ = writeln!(
+            out,
+            "// Written by obscura_host::firmware_build for the configuration the environment \
+             gave the build; do not edit.\n"
+        );
+        let _ = writeln!(
+            out,
+            "/// Draws {} in {}, by {}.",
+            self.scenes
+                .iter()
+                .map(|s| s.name.as_str())
+                .collect::<Vec<_>>()
+                .join(", "),
+            self.formats
+                .iter()
+                .map(|f| f.name())
+                .collect::<Vec<_>>()
+                .join(", "),
+            if self.variants {
+                format!("{} and each variant that changes one method", self.methods)
+            } else {
+                self.methods.to_string()
+            }
+        );
+        let _ = writeln!(
+            out,
+            "pub fn render_all(backend: &mut impl crate::frames::Backend, clock: &crate::clock::Clock) {{"
+        );
+        let _ = writeln!(out, "    const METHODS: &[obscura::Methods] = &[");
+        for m in &methods {
+            let _ = writeln!(out, "        {},", methods_source(m));
+        }
+        let _ = writeln!(out, "    ];");
+        for named in &self.scenes {
+            let desc = named.scene.desc();
+            let _ = writeln!(out, "    {{");
+            let _ = writeln!(
+                out,
+                "        const DESC: obscura::SceneDesc<'static> = {};",
+                scene_source(&desc)
+            );
+            for &format in &self.formats {
+                let _ = writeln!(
+                    out,
+                    "        crate::frames::variants::<{}, {}, {}, {}>(backend, clock, {:?}, &DESC, METHODS);",
+                    format.rust_type(),
+                    desc.objects.len(),
+                    desc.lights.len(),
+                    usize::from(desc.max_depth) + 1,
+                    named.name
+                );
+            }
+            let _ = writeln!(out, "    }}");
+        }
+        let _ = writeln!(out, "}}");
+        out
+    }
+
+    /// The scene files the configuration read.
+    #[must_use]
+    pub fn inputs(&self) -> Vec<PathBuf> {
+        self.scenes
+            .iter()
+            .filter_map(|s| s.path().map(Path::to_path_buf))
+            .collect()
+    }
+}
+
+/// The configuration from the environment of a build script for `triple`, checked, and its
+/// source.
+///
+/// # Errors
+/// As [`configure`].
+pub fn generate(workspace: &Path, triple: &str) -> Result<Generated> {
+    let configuration = configure(workspace, machine(triple), |name| std::env::var(name).ok())?;
+    Ok(Generated {
+        source: configuration.source(),
+        inputs: configuration.inputs(),
+    })
+}
+
+/// `methods` as a Rust expression.
+fn methods_source(methods: &Methods) -> String {
+    let Methods {
+        sphere,
+        triangle,
+        roots,
+        rays,
+        bias,
+    } = methods;
+    format!(
+        "obscura::Methods {{ sphere: obscura::SphereMethod::{sphere:?}, triangle: \
+         obscura::TriangleMethod::{triangle:?}, roots: obscura::RootMethod::{roots:?}, rays: \
+         obscura::RayMethod::{rays:?}, bias: obscura::BiasMethod::{bias:?} }}"
+    )
+}
+
+/// `desc` as a Rust expression of type `SceneDesc<'static>`, every number exactly as it is.
+fn scene_source(desc: &SceneDesc<'_>) -> String {
+    let SceneDesc {
+        camera,
+        objects,
+        lights,
+        ambient,
+        background,
+        far,
+        max_depth,
+    } = desc;
+    let CameraDesc {
+        eye,
+        look_at,
+        up,
+        vfov_degrees,
+    } = camera;
+    let objects: Vec<String> = objects.iter().map(object_source).collect();
+    let lights: Vec<String> = lights
+        .iter()
+        .map(|LightDesc { position, colour }| {
+            format!(
+                "obscura::LightDesc {{ position: {}, colour: {} }}",
+                vector(position),
+                vector(colour)
+            )
+        })
+        .collect();
+    let background = match background {
+        BackgroundDesc::Solid(colour) => {
+            format!("obscura::BackgroundDesc::Solid({})", vector(colour))
+        }
+        BackgroundDesc::Gradient { horizon, zenith } => format!(
+            "obscura::BackgroundDesc::Gradient {{ horizon: {}, zenith: {} }}",
+            vector(horizon),
+            vector(zenith)
+        ),
+    };
+    format!(
+        "obscura::SceneDesc {{\n            camera: obscura::CameraDesc {{ eye: {}, look_at: {}, \
+         up: {}, vfov_degrees: {} }},\n            objects: &[\n{}            ],\n            \
+         lights: &[{}],\n            ambient: {},\n            background: {background},\n            \
+         far: {},\n            max_depth: {max_depth},\n        }}",
+        vector(eye),
+        vector(look_at),
+        vector(up),
+        number(*vfov_degrees),
+        objects
+            .iter()
+            .map(|o| format!("                {o},\n"))
+            .collect::<String>(),
+        lights.join(", "),
+        vector(ambient),
+        number(*far),
+    )
+}
+
+fn object_source(object: &ObjectDesc) -> String {
+    let ObjectDesc { shape, material } = object;
+    let shape = match shape {
+        ShapeDesc::Sphere { center, radius } => format!(
+            "obscura::ShapeDesc::Sphere {{ center: {}, radius: {} }}",
+            vector(center),
+            number(*radius)
+        ),
+        ShapeDesc::Plane {
+            point,
+            normal,
+            checker,
+        } => format!(
+            "obscura::ShapeDesc::Plane {{ point: {}, normal: {}, checker: {} }}",
+            vector(point),
+            vector(normal),
+            checker.map_or_else(
+                || "None".to_owned(),
+                |CheckerDesc { colour, size }| format!(
+                    "Some(obscura::CheckerDesc {{ colour: {}, size: {} }})",
+                    vector(&colour),
+                    number(size)
+                )
+            )
+        ),
+        ShapeDesc::Triangle { vertices } => format!(
+            "obscura::ShapeDesc::Triangle {{ vertices: [{}] }}",
+            vertices.iter().map(vector).collect::<Vec<_>>().join(", ")
+        ),
+    };
+    let MaterialDesc {
+        colour,
+        diffuse,
+        specular,
+        shininess,
+        reflection,
+        transmission,
+        ior,
+    } = material;
+    format!(
+        "obscura::ObjectDesc {{ shape: {shape}, material: obscura::MaterialDesc {{ colour: {}, \
+         diffuse: {}, specular: {}, shininess: {shininess}, reflection: {}, transmission: {}, \
+         ior: {} }} }}",
+        vector(colour),
+        number(*diffuse),
+        number(*specular),
+        number(*reflection),
+        number(*transmission),
+        number(*ior)
+    )
+}
+
+/// An `f32` literal that reads back as exactly `x` (Rust prints the shortest such digits).
+fn number(x: f32) -> String {
+    format!("{x:?}_f32")
+}
+
+fn vector(v: &[f32; 3]) -> String {
+    format!("[{}, {}, {}]", number(v[0]), number(v[1]), number(v[2]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn env<'a>(pairs: &'a [(&'a str, &'a str)]) -> impl Fn(&str) -> Option<String> + 'a {
+        |name| {
+            pairs
+                .iter()
+                .find(|(n, _)| *n == name)
+                .map(|(_, v)| (*v).to_owned())
+        }
+    }
+
+    fn workspace() -> PathBuf {
+        crate::firmware::workspace()
+    }
+
+    #[test]
+    fn numbers_are_written_so_that_they_read_back_exactly() {
+        for x in [
+            0.1_f32,
+            1e-6,
+            30.0,
+            -2.2,
+            f32::MIN_POSITIVE,
+            16_777_217.0,
+            3.4e38,
+        ] {
+            let text = number(x);
+            let back: f32 = text.trim_end_matches("_f32").parse().unwrap();
+            assert_eq!(back.to_bits(), x.to_bits(), "{text}");
+        }
+    }
+
+    #[test]
+    fn a_configuration_reads_scene_files_formats_and_methods() {
+        let configuration = configure(
+            &workspace(),
+            Machine::M4f,
+            env(&[
+                (SCENES, "whitted, host/scenes/marbles.toml"),
+                (FORMATS, "f32,i32f32,f32"),
+                (METHODS, "sphere=stable"),
+            ]),
+        )
+        .unwrap();
+        let names: Vec<_> = configuration
+            .scenes
+            .iter()
+            .map(|s| s.name.as_str())
+            .collect();
+        assert_eq!(names, ["whitted", "marbles"]);
+        assert_eq!(configuration.formats, [Format::F32, Format::I32f32]);
+        assert_eq!(
+            configuration.methods.to_string().split(' ').next(),
+            Some("sphere=stable")
+        );
+        assert_eq!(configuration.inputs().len(), 1);
+        let source = configuration.source();
+        assert!(
+            source.contains("crate::frames::variants::<f32, 5, 2, 5>(backend, clock, \"marbles\""),
+            "{source}"
+        );
+    }
+
+    #[test]
+    fn a_scene_the_format_cannot_hold_is_refused_at_its_line_and_column() {
+        let error = configure(
+            &workspace(),
+            Machine::M4f,
+            env(&[
+                (SCENES, "host/scenes/hostile/low-light.toml"),
+                (FORMATS, "i16f16"),
+            ]),
+        )
+        .unwrap_err();
+        let message = format!("{error:#}");
+        assert!(message.contains("low-light.toml:14:1"), "{message}");
+        assert!(
+            message.contains("move the light away from the surface"),
+            "{message}"
+        );
+    }
+
+    #[test]
+    fn malformed_variables_say_what_they_take() {
+        for (pairs, expected) in [
+            (&[(FORMATS, "f64")][..], "not a firmware format"),
+            (&[(FORMATS, "i17f15")][..], "not a firmware format"),
+            (
+                &[(METHODS, "sphere=round")][..],
+                "the sphere method is quadratic or stable",
+            ),
+            (&[(VARIANTS, "all")][..], "`none` or `each`"),
+            (&[(TARGET_PSNR, "loud")][..], "a PSNR in dB"),
+            (&[(SCENES, "no-such-scene")][..], "there is no scene"),
+        ] {
+            let error = configure(&workspace(), Machine::M4f, env(pairs)).unwrap_err();
+            let message = format!("{error:#}");
+            assert!(message.contains(expected), "{message}");
+        }
+    }
+
+    #[test]
+    fn auto_picks_by_the_target() {
+        let pick = |machine| {
+            configure(&workspace(), machine, env(&[(FORMATS, "auto")]))
+                .unwrap()
+                .formats
+        };
+        assert_eq!(pick(Machine::M4f), [Format::F32]);
+        assert_eq!(pick(Machine::M0), [Format::I16f16]);
+    }
+}

@@ -1,0 +1,68 @@
+//! The desktop harness of the obscura ray tracer: the `obscura` command ([`main`]), which runs
+//! the very same `no_std` core as the firmware, writes PNGs and measures each number format
+//! against an f64 reference; and what the firmware's build script takes from it
+//! ([`firmware_build`]): scene files, `--format auto` and the scene as const data.
+
+mod analysis;
+mod canvas;
+mod checked;
+mod cli;
+mod commands;
+mod cost;
+mod firmware;
+pub mod firmware_build;
+mod format;
+mod fuzz;
+mod heatmap;
+mod metrics;
+mod output;
+mod owned;
+mod pareto;
+#[cfg(test)]
+mod peak;
+mod plot;
+mod quantized;
+#[cfg(test)]
+mod regressions;
+mod render;
+mod scene_file;
+mod stress;
+mod timing;
+mod variant;
+
+use clap::Parser;
+use std::process::ExitCode;
+
+/// Runs the `obscura` command line on this process's arguments.
+#[must_use]
+pub fn main() -> ExitCode {
+    let cli = cli::Cli::parse();
+    // A command that does not catch an overflow itself (to say at which pixel of which scene)
+    // still ends with it as an error, never with a wrapped number.
+    let outcome = checked::catch(|| commands::run(cli.command).and_then(|()| Ok(output::flush()?)))
+        .unwrap_or_else(|overflowed| {
+            Err(anyhow::anyhow!(
+                "{overflowed}: the scene build's range proof missed it (a bug in obscura: please \
+             report it with the scene)"
+            ))
+        });
+    match outcome {
+        Ok(()) => ExitCode::SUCCESS,
+        // `obscura scenes | head -1`: the reader has what it wanted.
+        Err(error) if output::is_closed_pipe(&error) => ExitCode::SUCCESS,
+        Err(error) => {
+            eprintln!("{}", error_text(&error));
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// An error as the `obscura` command prints it: `error: ` and its chain, and where it is at a
+/// place in a scene file, that line with the place marked.
+#[must_use]
+pub fn error_text(error: &anyhow::Error) -> String {
+    match error.downcast_ref::<scene_file::Located>() {
+        Some(place) => format!("error: {error:#}\n{}", place.excerpt()),
+        None => format!("error: {error:#}"),
+    }
+}
