@@ -83,9 +83,10 @@ for target in m4f m0; do
         --scene host/scenes/pyramid.toml --format auto --budget
 done
 
-step "firmware under QEMU (m4f), the other formats and methods, bit for bit against the host"
+step "firmware under QEMU (m4f), the other formats, methods, row order and dither, bit for bit against the host"
 cargo run --release --locked -p obscura-host -- firmware --target m4f --scene whitted,shapes \
-    --format i16f16,i20f12 --sphere stable --triangle watertight --sqrt approx --rays stepped --bias exclude
+    --format i16f16,i20f12 --sphere stable --triangle watertight --sqrt approx --rays stepped --bias exclude \
+    --order progressive --dither ordered
 cargo run --release --locked -p obscura-host -- firmware --target m4f --scene whitted,shapes \
     --format i32f32,f32-approx,f32 --triangle moller-trumbore
 

@@ -64,18 +64,61 @@ impl<S: Scalar> Rgb<S> {
     /// the display's levels.
     #[must_use]
     pub fn quantize<C: DisplayColor>(self) -> C {
+        self.quantize_with(S::ratio(1, 2))
+    }
+
+    /// The colour on a display at pixel (`x`, `y`), by `dither`: rounded to the nearest level,
+    /// or with [`Dither::Ordered`] up or down by the pixel's threshold in a 4×4 Bayer matrix, so
+    /// that a gradient finer than the display's levels shows as a pattern of the two levels
+    /// around it rather than as bands. The threshold comes from the position alone, in
+    /// integers: the same pixel gets the same level in every format, on every machine.
+    #[must_use]
+    pub fn quantize_at<C: DisplayColor>(self, dither: Dither, x: u32, y: u32) -> C {
+        match dither {
+            Dither::None => self.quantize(),
+            Dither::Ordered => self.quantize_with(S::ratio(2 * bayer(x, y) + 1, 32)),
+        }
+    }
+
+    /// Each channel `floor(clamp(v, 0, 1) · max + threshold)`, with `threshold` in (0, 1).
+    fn quantize_with<C: DisplayColor>(self, threshold: S) -> C {
         C::from_channels(
-            quantize_channel(self.r, C::MAX_R),
-            quantize_channel(self.g, C::MAX_G),
-            quantize_channel(self.b, C::MAX_B),
+            quantize_channel(self.r, C::MAX_R, threshold),
+            quantize_channel(self.g, C::MAX_G, threshold),
+            quantize_channel(self.b, C::MAX_B, threshold),
         )
     }
 }
 
-/// `round(clamp(v, 0, 1) · max)`.
+/// How a colour is rounded to a display's levels.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Dither {
+    /// To the nearest level.
+    #[default]
+    None,
+    /// Up or down by an ordered (Bayer) threshold from the pixel's position.
+    Ordered,
+}
+
+impl crate::methods::MethodName for Dither {
+    const ALL: &'static [(Self, &'static str)] =
+        &[(Self::None, "none"), (Self::Ordered, "ordered")];
+}
+
+/// The 4×4 Bayer matrix's entry for pixel (`x`, `y`): 0 to 15, each once in every 4×4 block.
+fn bayer(x: u32, y: u32) -> i32 {
+    const MATRIX: [[i32; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
+    MATRIX
+        .get((y % 4) as usize)
+        .and_then(|row| row.get((x % 4) as usize))
+        .copied()
+        .unwrap_or(0)
+}
+
+/// `floor(clamp(v, 0, 1) · max + threshold)`.
 #[inline]
-fn quantize_channel<S: Scalar>(v: S, max: u8) -> u8 {
-    let scaled = v.clamp(S::ZERO, S::ONE) * S::from_int(i32::from(max)) + S::ratio(1, 2);
+fn quantize_channel<S: Scalar>(v: S, max: u8, threshold: S) -> u8 {
+    let scaled = v.clamp(S::ZERO, S::ONE) * S::from_int(i32::from(max)) + threshold;
     u8::try_from(scaled.floor_int().clamp(0, i32::from(max))).unwrap_or(max)
 }
 
@@ -121,6 +164,57 @@ display_color!(Rgb565, Bgr565, Rgb555, Rgb888, Bgr888);
 mod tests {
     use super::*;
     use crate::scalar::I16F16;
+
+    fn dither_stays_within_a_level<S: Scalar>() {
+        for i in 0..=256 {
+            let c = Rgb::<S>::from_f64([f64::from(i) / 256.0; 3]).unwrap();
+            let plain: Rgb565 = c.quantize();
+            let mut levels = [0_u32; 64];
+            for (x, y) in (0..4).flat_map(|y| (0..4).map(move |x| (x, y))) {
+                let dithered: Rgb565 = c.quantize_at(Dither::Ordered, x, y);
+                assert!(
+                    dithered.g().abs_diff(plain.g()) <= 1,
+                    "{} at {i}/256",
+                    S::NAME
+                );
+                assert!(
+                    dithered.r().abs_diff(plain.r()) <= 1,
+                    "{} at {i}/256",
+                    S::NAME
+                );
+                levels[usize::from(dithered.g())] += 1;
+                let again: Rgb565 = c.quantize_at(Dither::Ordered, x + 4, y + 8);
+                assert_eq!(again, dithered, "the pattern repeats every 4 pixels");
+            }
+            // Over a 4×4 block the levels average to the colour, within a 16th of a level.
+            let mean = levels
+                .iter()
+                .enumerate()
+                .map(|(level, &n)| level as f64 * f64::from(n))
+                .sum::<f64>()
+                / 16.0;
+            let exact = f64::from(i) / 256.0 * 63.0;
+            assert!(
+                (mean - exact).abs() <= 1.0 / 16.0 + 1e-9,
+                "{} at {i}/256: {mean} vs {exact}",
+                S::NAME
+            );
+        }
+    }
+
+    #[test]
+    fn an_ordered_dither_averages_to_the_colour_within_one_level_of_rounding() {
+        dither_stays_within_a_level::<I16F16>();
+        dither_stays_within_a_level::<f32>();
+        dither_stays_within_a_level::<f64>();
+    }
+
+    #[test]
+    fn no_dither_rounds_to_the_nearest_level() {
+        let c = Rgb::<f32>::from_f64([0.3, 0.6, 0.9]).unwrap();
+        let plain: Rgb565 = c.quantize();
+        assert_eq!(c.quantize_at::<Rgb565>(Dither::None, 3, 5), plain);
+    }
 
     fn quantize_every_format<S: Scalar>() {
         let c = Rgb::<S>::from_f64([0.5, 1.5, -0.2]).unwrap();

@@ -176,11 +176,23 @@ pub enum BackgroundDesc {
     /// One colour everywhere.
     Solid([f32; 3]),
     /// A sky: `horizon` for rays level with the ground or below, blending to `zenith` for a
-    /// ray straight up (the world's +y).
+    /// ray straight up, along `up`.
     Gradient {
         /// The colour at and below the horizon.
         horizon: [f32; 3],
         /// The colour straight up.
         zenith: [f32; 3],
+        /// The scene's up, where the zenith is (any length but zero): +y, or +z for a scene
+        /// modelled Z-up.
+        #[cfg_attr(feature = "serde", serde(default = "y_up"))]
+        up: [f32; 3],
     },
+}
+
+/// The world's +y: a gradient's up unless a scene says otherwise.
+pub const Y_UP: [f32; 3] = [0.0, 1.0, 0.0];
+
+#[cfg(feature = "serde")]
+fn y_up() -> [f32; 3] {
+    Y_UP
 }

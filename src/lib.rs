@@ -48,16 +48,16 @@ pub mod vec3;
 mod test_util;
 
 pub use camera::{Camera, MAX_IMAGE_SIDE};
-pub use color::{DisplayColor, Rgb};
+pub use color::{DisplayColor, Dither, Rgb};
 pub use desc::{
     BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc,
-    ShapeDesc,
+    ShapeDesc, Y_UP,
 };
 pub use methods::{
     BiasMethod, Methods, ParseMethodsError, RayMethod, RootMethod, SphereMethod, TriangleMethod,
 };
 pub use ray::Ray;
-pub use render::{RenderError, render_rows};
+pub use render::{Presentation, RenderError, RowOrder, render_frame, render_rows};
 pub use scalar::{F32Approx, I16F16, I20F12, I32F32, Scalar};
 pub use scene::{Item, Remedy, Scene, SceneError};
 pub use shade::Sample;

@@ -24,6 +24,8 @@ pub enum Background<S> {
         horizon: Rgb<S>,
         /// Zenith minus horizon.
         rise: Rgb<S>,
+        /// The unit vector straight up.
+        up: Vec3<S>,
     },
 }
 
@@ -33,7 +35,7 @@ impl<S: Scalar> Background<S> {
     pub fn colour(&self, dir: Vec3<S>) -> Rgb<S> {
         match *self {
             Self::Solid(colour) => colour,
-            Self::Gradient { horizon, rise } => horizon + rise.scale(dir.y.max(S::ZERO)),
+            Self::Gradient { horizon, rise, up } => horizon + rise.scale(dir.dot(up).max(S::ZERO)),
         }
     }
 }

@@ -1,8 +1,10 @@
 //! The scanline renderer: traces a range of rows into a line buffer and sends each finished row
-//! to an embedded-graphics [`DrawTarget`] as one rectangle. It needs no frame buffer.
+//! to an embedded-graphics [`DrawTarget`] as one rectangle. It needs no frame buffer. A whole
+//! frame ([`render_frame`]) can go to the display in a progressive order and dithered
+//! ([`Presentation`]).
 
-use crate::camera::Camera;
-use crate::color::DisplayColor;
+use crate::camera::{Camera, Row};
+use crate::color::{DisplayColor, Dither};
 use crate::scalar::Scalar;
 use crate::scene::Scene;
 use core::fmt;
@@ -93,15 +95,130 @@ where
         let row = camera
             .row(y)
             .ok_or(RenderError::RowsOutOfRange { end, height })?;
-        for (pixel, ray) in line.iter_mut().zip(row.rays()) {
-            *pixel = scene.trace(ray).colour.quantize();
-        }
-        // Both fit i32: they are at most MAX_IMAGE_SIDE.
-        let top = i32::try_from(y).unwrap_or(i32::MAX);
-        let row = Rectangle::new(Point::new(0, top), Size::new(width, 1));
-        target
-            .fill_contiguous(&row, line.iter().copied())
-            .map_err(RenderError::Target)?;
+        trace_row(scene, &row, y, Dither::None, line);
+        draw(target, line, y, 1)?;
+    }
+    Ok(())
+}
+
+/// Traces `row` (row `y` of the image) into `line`, each pixel quantised by `dither`.
+fn trace_row<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
+    row: &Row<S>,
+    y: u32,
+    dither: Dither,
+    line: &mut [C],
+) where
+    S: Scalar,
+    C: DisplayColor,
+{
+    for ((x, pixel), ray) in (0..).zip(line.iter_mut()).zip(row.rays()) {
+        *pixel = scene.trace(ray).colour.quantize_at(dither, x, y);
+    }
+}
+
+/// Sends `line` to `rows` rows of `target` from row `y` down, as one rectangle.
+fn draw<C: DisplayColor, D: DrawTarget<Color = C>>(
+    target: &mut D,
+    line: &[C],
+    y: u32,
+    rows: u32,
+) -> Result<(), RenderError<D::Error>> {
+    // All fit i32 and u32: they are at most MAX_IMAGE_SIDE.
+    let top = i32::try_from(y).unwrap_or(i32::MAX);
+    let width = u32::try_from(line.len()).unwrap_or(u32::MAX);
+    let area = Rectangle::new(Point::new(0, top), Size::new(width, rows));
+    let pixels = line
+        .iter()
+        .copied()
+        .cycle()
+        .take(line.len() * rows as usize);
+    target
+        .fill_contiguous(&area, pixels)
+        .map_err(RenderError::Target)
+}
+
+/// How a frame goes to the display: in which order its rows are traced, and how its colours
+/// are rounded to the display's levels.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Presentation {
+    /// The order of the rows.
+    pub order: RowOrder,
+    /// The rounding of the colours.
+    pub dither: Dither,
+}
+
+/// The order in which a frame's rows are traced and drawn.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum RowOrder {
+    /// Top to bottom.
+    #[default]
+    TopDown,
+    /// Every 8th row first, each drawn as a block down to the next, then the rows halfway
+    /// between them as blocks of 4, then of 2, then the rest: a coarse picture of the whole
+    /// frame after an eighth of it, finer with each pass. Each row is traced once, and the
+    /// final frame is the top-down one.
+    Progressive,
+}
+
+impl crate::methods::MethodName for RowOrder {
+    const ALL: &'static [(Self, &'static str)] = &[
+        (Self::TopDown, "top-down"),
+        (Self::Progressive, "progressive"),
+    ];
+}
+
+impl RowOrder {
+    /// The rows to trace, in order, each with how many rows from it down its pixels fill.
+    pub fn rows(self, height: u32) -> impl Iterator<Item = (u32, u32)> {
+        // Passes as (first row, step, block).
+        const TOP_DOWN: &[(u32, usize, u32)] = &[(0, 1, 1)];
+        const PROGRESSIVE: &[(u32, usize, u32)] = &[(0, 8, 8), (4, 8, 4), (2, 4, 2), (1, 2, 1)];
+        let passes = match self {
+            Self::TopDown => TOP_DOWN,
+            Self::Progressive => PROGRESSIVE,
+        };
+        passes.iter().flat_map(move |&(first, step, block)| {
+            (first..height)
+                .step_by(step)
+                .map(move |y| (y, block.min(height - y)))
+        })
+    }
+}
+
+/// Renders the whole image that `camera` sees of `scene` onto `target`, its rows in
+/// `presentation`'s order and its colours rounded by its dither, through `line`, which must
+/// hold a row.
+///
+/// # Errors
+/// [`RenderError`] for a short line buffer or a failing target.
+pub fn render_frame<S, C, D, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
+    camera: &Camera<S>,
+    presentation: Presentation,
+    line: &mut [C],
+    target: &mut D,
+) -> Result<(), RenderError<D::Error>>
+where
+    S: Scalar,
+    C: DisplayColor,
+    D: DrawTarget<Color = C>,
+{
+    let (width, height) = (camera.width(), camera.height());
+    let too_small = RenderError::LineBufferTooSmall {
+        needed: width,
+        got: line.len(),
+    };
+    let line = usize::try_from(width)
+        .ok()
+        .and_then(|w| line.get_mut(..w))
+        .ok_or(too_small)?;
+    for (y, rows) in presentation.order.rows(height) {
+        let row = camera
+            .row(y)
+            .ok_or(RenderError::RowsOutOfRange { end: y + 1, height })?;
+        trace_row(scene, &row, y, presentation.dither, line);
+        draw(target, line, y, rows)?;
     }
     Ok(())
 }

@@ -106,6 +106,7 @@ pub const WHITTED: SceneDesc<'static> = SceneDesc {
     lights: &WHITTED_LIGHTS,
     ambient: [0.12, 0.12, 0.14],
     background: BackgroundDesc::Gradient {
+        up: crate::desc::Y_UP,
         horizon: [0.55, 0.72, 0.98],
         zenith: [0.12, 0.3, 0.8],
     },

@@ -1,18 +1,21 @@
 //! The scanline renderer through a recording display: every pixel exactly once, row by row,
-//! each row as one rectangle; and its errors.
+//! each row as one rectangle; a progressive frame and a dithered one; and its errors.
 
 use core::convert::Infallible;
 use embedded_graphics::mock_display::MockDisplay;
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
-use obscura::{I16F16, RenderError, Scene, render_rows, scenes};
+use obscura::{
+    Dither, I16F16, Presentation, RenderError, RowOrder, Scene, render_frame, render_rows, scenes,
+};
 
 /// A display that records what it is sent.
 struct Recorder {
     size: Size,
     rectangles: Vec<Rectangle>,
     writes: Vec<u32>,
+    pixels: Vec<Rgb565>,
 }
 
 impl Recorder {
@@ -21,6 +24,7 @@ impl Recorder {
             size: Size::new(width, height),
             rectangles: Vec::new(),
             writes: vec![0; (width * height) as usize],
+            pixels: vec![Rgb565::BLACK; (width * height) as usize],
         }
     }
 }
@@ -46,8 +50,10 @@ impl DrawTarget for Recorder {
     ) -> Result<(), Infallible> {
         self.rectangles.push(*area);
         let mut count = 0;
-        for (point, _) in area.points().zip(colours) {
-            self.writes[(point.y as u32 * self.size.width + point.x as u32) as usize] += 1;
+        for (point, colour) in area.points().zip(colours) {
+            let i = (point.y as u32 * self.size.width + point.x as u32) as usize;
+            self.writes[i] += 1;
+            self.pixels[i] = colour;
             count += 1;
         }
         assert_eq!(
@@ -129,4 +135,94 @@ fn short_line_buffer_and_rows_beyond_the_image_are_refused() {
         display.rectangles.is_empty(),
         "nothing drawn before the error"
     );
+}
+
+/// `whitted` rendered whole at `width × height` by `presentation` into a recorder.
+fn frame(width: u32, height: u32, presentation: Presentation) -> Recorder {
+    let scene = SmallScene::build(&scenes::WHITTED).unwrap();
+    let camera = scene.camera(width, height).unwrap();
+    let mut display = Recorder::new(width, height);
+    let mut line = vec![Rgb565::BLACK; width as usize];
+    render_frame(&scene, &camera, presentation, &mut line, &mut display).unwrap();
+    display
+}
+
+#[test]
+fn a_progressive_frame_ends_as_the_top_down_one() {
+    for (width, height) in [(40, 24), (37, 29), (8, 3)] {
+        let progressive = Presentation {
+            order: RowOrder::Progressive,
+            ..Presentation::default()
+        };
+        let top_down = frame(width, height, Presentation::default());
+        let drawn = frame(width, height, progressive);
+        assert_eq!(drawn.pixels, top_down.pixels, "{width}x{height}");
+        assert!(top_down.writes.iter().all(|&n| n == 1));
+        // Each row is traced once: each rectangle starts at a row of its own.
+        let mut tops: Vec<_> = drawn.rectangles.iter().map(|r| r.top_left.y).collect();
+        tops.sort_unstable();
+        assert_eq!(
+            tops,
+            (0..height as i32).collect::<Vec<_>>(),
+            "{width}x{height}"
+        );
+    }
+}
+
+#[test]
+fn each_pass_draws_a_pixel_at_most_once_and_the_first_draws_them_all() {
+    let height = 21_u32;
+    let rows: Vec<_> = RowOrder::Progressive.rows(height).collect();
+    // The passes are where the step between rows changes: the rows 0, 8, 16; 4, 12, 20; ...
+    let passes: [&[u32]; 4] = [
+        &[0, 8, 16],
+        &[4, 12, 20],
+        &[2, 6, 10, 14, 18],
+        &[1, 3, 5, 7, 9, 11, 13, 15, 17, 19],
+    ];
+    let mut at = 0;
+    for (pass, expected) in passes.iter().enumerate() {
+        let mut covered = vec![0_u32; height as usize];
+        for &(y, block) in &rows[at..at + expected.len()] {
+            for row in y..y + block {
+                covered[row as usize] += 1;
+            }
+        }
+        let ys: Vec<_> = rows[at..at + expected.len()]
+            .iter()
+            .map(|&(y, _)| y)
+            .collect();
+        assert_eq!(&ys, expected, "pass {pass}");
+        assert!(
+            covered.iter().all(|&n| n <= 1),
+            "pass {pass} draws a row twice"
+        );
+        if pass == 0 {
+            assert!(
+                covered.iter().all(|&n| n == 1),
+                "the first pass covers the frame"
+            );
+        }
+        at += expected.len();
+    }
+    assert_eq!(at, rows.len(), "every row once");
+    assert_eq!(rows.iter().map(|&(y, _)| y).max(), Some(height - 1));
+}
+
+#[test]
+fn a_dithered_frame_is_deterministic_and_within_a_level_of_the_plain_one() {
+    let dithered = Presentation {
+        dither: Dither::Ordered,
+        ..Presentation::default()
+    };
+    let plain = frame(48, 32, Presentation::default());
+    let once = frame(48, 32, dithered);
+    let again = frame(48, 32, dithered);
+    assert_eq!(once.pixels, again.pixels);
+    assert_ne!(once.pixels, plain.pixels, "the sky's gradient is dithered");
+    for (d, p) in once.pixels.iter().zip(&plain.pixels) {
+        assert!(
+            d.r().abs_diff(p.r()) <= 1 && d.g().abs_diff(p.g()) <= 1 && d.b().abs_diff(p.b()) <= 1
+        );
+    }
 }

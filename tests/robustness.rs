@@ -147,6 +147,7 @@ fn random_scenes_build_or_are_refused_and_render_without_panicking() {
             background: BackgroundDesc::Gradient {
                 horizon: r.colour(),
                 zenith: r.colour(),
+                up: r.point(1.0),
             },
             far: r.wild(extent * 4.0),
             max_depth: (r.next() * 5.0) as u8,

@@ -9,7 +9,7 @@ use crate::stack;
 use core::fmt;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use obscura::{Methods, Scalar, Scene, SceneDesc, SceneError, render_rows};
+use obscura::{Methods, Presentation, Scalar, Scene, SceneDesc, SceneError, render_frame};
 
 /// What a display back-end provides: a display to draw each frame on, and a place to say how
 /// it went.
@@ -36,6 +36,8 @@ pub struct Job<'a> {
     pub format: &'a str,
     /// The methods.
     pub methods: Methods,
+    /// The order of its rows and its dither.
+    pub presentation: Presentation,
 }
 
 /// The measurements of one frame.
@@ -73,6 +75,7 @@ pub(crate) fn variants<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, con
     name: &str,
     desc: &SceneDesc<'_>,
     methods: &[Methods],
+    presentation: Presentation,
 ) {
     let Some(base) = methods.first() else {
         return;
@@ -84,6 +87,7 @@ pub(crate) fn variants<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, con
                 scene: name,
                 format: S::NAME,
                 methods: m,
+                presentation,
             };
             render::<S, OBJECTS, LIGHTS, RAYS>(backend, clock, &job, desc, variants);
         }
@@ -114,7 +118,7 @@ fn render<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usiz
     };
     let (drawn, ticks) = backend.frame(job, |display| {
         let mut line = [Rgb565::BLACK; SIDE as usize];
-        clock.measure(|| render_rows(&scene, &camera, 0..SIDE, &mut line, display))
+        clock.measure(|| render_frame(&scene, &camera, job.presentation, &mut line, display))
     });
     let stack_bytes = stack::high_water();
     match drawn {

@@ -6,7 +6,9 @@ use crate::format::Format;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use obscura::methods::MethodName;
-use obscura::{BiasMethod, Methods, RayMethod, RootMethod, SphereMethod, TriangleMethod};
+use obscura::{
+    BiasMethod, Dither, Methods, RayMethod, RootMethod, RowOrder, SphereMethod, TriangleMethod,
+};
 use std::path::PathBuf;
 
 /// Ray traces in fixed point the way a microcontroller would, and measures what that costs
@@ -256,6 +258,13 @@ pub struct FirmwareArgs {
     pub target_psnr: f64,
     #[command(flatten)]
     pub methods: MethodArgs,
+    /// The order of the rows on the display: top-down, or progressive (every 8th row first,
+    /// each as a block down to the next; the final frame is the same).
+    #[arg(long, value_parser = method::<RowOrder>(), default_value = "top-down")]
+    pub order: RowOrder,
+    /// The rounding to RGB565: none, or ordered (a 4×4 Bayer dither, the same on host and MCU).
+    #[arg(long, value_parser = method::<Dither>(), default_value = "none")]
+    pub dither: Dither,
     /// Also write the figures as JSON (an array, one object per frame) to this file.
     #[arg(long)]
     pub json: Option<PathBuf>,

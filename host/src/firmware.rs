@@ -7,8 +7,8 @@ use crate::format::Format;
 use anyhow::{Context, Result, bail};
 use clap::ValueEnum;
 use object::{Object, ObjectSection, SectionFlags, SectionKind};
-use obscura::Methods;
 use obscura::methods::MethodName;
+use obscura::{Methods, Presentation};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -172,6 +172,8 @@ pub struct Frame {
     pub format: String,
     /// The methods.
     pub methods: Methods,
+    /// The order of its rows and its dither.
+    pub presentation: Presentation,
     /// The image width.
     pub width: u32,
     /// The image height.
@@ -242,7 +244,7 @@ pub fn run(target: Target, elf: &Path, dir: &Path, timeout: Duration) -> Result<
         .collect()
 }
 
-/// Parses `frame scene=… format=… methods=…/…/…/…/… width=… height=… ticks=… stack_bytes=…
+/// Parses `frame scene=… format=… methods=…/…/…/…/… dither=… order=… width=… height=… ticks=… stack_bytes=…
 /// storage_bytes=… fixed_storage_bytes=… file=…`.
 fn parse_frame(line: &str) -> Result<Frame> {
     let field = |key: &str| {
@@ -262,6 +264,10 @@ fn parse_frame(line: &str) -> Result<Frame> {
         scene: field("scene")?.to_owned(),
         format: field("format")?.to_owned(),
         methods: parse_methods(field("methods")?)?,
+        presentation: Presentation {
+            dither: named(field("dither")?)?,
+            order: named(field("order")?)?,
+        },
         width: u32::try_from(number("width")?)?,
         height: u32::try_from(number("height")?)?,
         ticks: number("ticks")?,
@@ -269,6 +275,20 @@ fn parse_frame(line: &str) -> Result<Frame> {
         storage_bytes: number("storage_bytes")?,
         fixed_storage_bytes: number("fixed_storage_bytes")?,
         file: field("file")?.to_owned(),
+    })
+}
+
+/// The choice called `name`.
+fn named<M: MethodName + PartialEq>(name: &str) -> Result<M> {
+    M::from_name(name).with_context(|| {
+        format!(
+            "`{name}` is not one of {}",
+            M::ALL
+                .iter()
+                .map(|(_, n)| *n)
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
     })
 }
 
@@ -337,7 +357,7 @@ pub fn compare_frame(
         height: frame.height,
         methods: frame.methods,
     };
-    let host = crate::render::prepare(format, &request)?.rgb565_frame()?;
+    let host = crate::render::prepare(format, &request)?.rgb565_frame(frame.presentation)?;
     let device = read_frame(&dir.join(&frame.file), host.len())?;
     let differing = (0..host.len()).filter(|&i| host[i] != device[i]).collect();
     Ok((device, host, differing))
@@ -420,7 +440,7 @@ mod tests {
     #[test]
     fn frame_lines_parse_and_bad_ones_say_why() {
         let line = "frame scene=whitted format=i16f16 methods=stable/cramer/exact/per-pixel/exclude \
-                    width=240 height=240 ticks=22633551 stack_bytes=4568 storage_bytes=488 \
+                    dither=ordered order=progressive width=240 height=240 ticks=22633551 stack_bytes=4568 storage_bytes=488 \
                     fixed_storage_bytes=9000 file=whitted-i16f16.rgb565";
         let frame = parse_frame(line).unwrap();
         assert_eq!(frame.scene, "whitted");
@@ -439,6 +459,13 @@ mod tests {
             ..Methods::LECTURE
         };
         assert_eq!(frame.methods, expected);
+        assert_eq!(
+            frame.presentation,
+            Presentation {
+                dither: obscura::Dither::Ordered,
+                order: obscura::RowOrder::Progressive
+            }
+        );
         assert!(parse_methods("stable/cramer").is_err());
         assert!(parse_methods("stable/cramer/exact/per-pixel/sideways").is_err());
         let error = parse_frame("frame scene=whitted").unwrap_err().to_string();

@@ -12,6 +12,8 @@
 //! | `OBSCURA_TARGET_PSNR` | the PSNR against f64, in dB, that `auto` aims for | `40` |
 //! | `OBSCURA_METHODS` | the methods that differ from the lecture's, e.g. `sphere=stable,bias=exclude` | the lecture's |
 //! | `OBSCURA_VARIANTS` | `each`: also draw each variant that changes one method (what `obscura chart` measures) | none |
+//! | `OBSCURA_ORDER` | the order of the rows: `top-down`, or `progressive` (every 8th row first, as blocks) | `top-down` |
+//! | `OBSCURA_DITHER` | the rounding to RGB565: `none`, or `ordered` (a 4×4 Bayer dither) | `none` |
 
 use crate::analysis::{Analysis, Pick, pick};
 use crate::cli::FormatChoice;
@@ -22,26 +24,31 @@ use crate::render::{Request, prepare};
 use crate::scene_file::{self, NamedScene};
 use anyhow::{Context, Result, bail};
 use clap::ValueEnum;
+use obscura::methods::MethodName;
 use obscura::{
     BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, Methods, ObjectDesc,
-    SceneDesc, ShapeDesc,
+    Presentation, SceneDesc, ShapeDesc,
 };
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 /// The environment variables the configuration is read from, as (name, default).
-pub const VARIABLES: [(&str, &str); 5] = [
+pub const VARIABLES: [(&str, &str); 7] = [
     (SCENES, "whitted"),
     (FORMATS, "auto"),
     (TARGET_PSNR, "40"),
     (METHODS, "lecture"),
     (VARIANTS, "none"),
+    (ORDER, "top-down"),
+    (DITHER, "none"),
 ];
 const SCENES: &str = "OBSCURA_SCENES";
 const FORMATS: &str = "OBSCURA_FORMATS";
 const TARGET_PSNR: &str = "OBSCURA_TARGET_PSNR";
 const METHODS: &str = "OBSCURA_METHODS";
 const VARIANTS: &str = "OBSCURA_VARIANTS";
+const ORDER: &str = "OBSCURA_ORDER";
+const DITHER: &str = "OBSCURA_DITHER";
 
 /// What a firmware draws: each scene in each format, by the methods (and with `variants`, by
 /// each variant that changes one of them).
@@ -55,6 +62,8 @@ pub struct Configuration {
     pub methods: Methods,
     /// Whether each variant that changes one method is drawn too.
     pub variants: bool,
+    /// The order of the rows and the dither.
+    pub presentation: Presentation,
 }
 
 /// What one firmware image is to draw, as the host asks its build for it.
@@ -68,13 +77,15 @@ pub struct Image<'a> {
     pub methods: Methods,
     /// Whether each variant that changes one method is drawn too.
     pub variants: bool,
+    /// The order of the rows and the dither.
+    pub presentation: Presentation,
 }
 
 impl Image<'_> {
     /// The build script's environment for this image: every variable, so that none is
     /// inherited from the caller's.
     #[must_use]
-    pub fn environment(&self) -> [(&'static str, String); 5] {
+    pub fn environment(&self) -> [(&'static str, String); 7] {
         [
             (SCENES, self.scenes.join(",")),
             (
@@ -91,6 +102,8 @@ impl Image<'_> {
                 VARIANTS,
                 if self.variants { "each" } else { "none" }.to_owned(),
             ),
+            (ORDER, self.presentation.order.name().to_owned()),
+            (DITHER, self.presentation.dither.name().to_owned()),
         ]
     }
 }
@@ -145,6 +158,10 @@ pub fn configure(
         "each" => true,
         other => bail!("{VARIANTS} is `none` or `each`, not `{other}`"),
     };
+    let presentation = Presentation {
+        order: choice(ORDER, &value(ORDER))?,
+        dither: choice(DITHER, &value(DITHER))?,
+    };
     let target_psnr: f64 = value(TARGET_PSNR)
         .trim()
         .parse()
@@ -183,6 +200,7 @@ pub fn configure(
         formats,
         methods,
         variants,
+        presentation,
     };
     // Variants are what the chart compares, refusals included; the methods asked for must
     // hold every scene.
@@ -190,6 +208,18 @@ pub fn configure(
         configuration.check()?;
     }
     Ok(configuration)
+}
+
+/// The choice `text` names for `variable`, or an error listing the choices.
+fn choice<M: MethodName + PartialEq>(variable: &str, text: &str) -> Result<M> {
+    M::from_name(text.trim()).with_context(|| {
+        let names: Vec<_> = M::ALL.iter().map(|(_, name)| *name).collect();
+        format!(
+            "{variable} is {}, not `{}`",
+            names.join(" or "),
+            text.trim()
+        )
+    })
 }
 
 /// The cheapest format on `machine` that holds every scene as it is (a firmware's scenes are
@@ -240,7 +270,10 @@ impl Configuration {
                 prepare(format, &request).map_err(|error| match named.path() {
                     // A scene file's refusal names the file, its line and its column.
                     Some(_) => named.locate(error),
-                    None => error.context(format!("{} in {format}", named.name)),
+                    None => error.context(format!(
+                        "the firmware cannot draw {} in {format}",
+                        named.name
+                    )),
                 })?;
             }
         }
@@ -298,6 +331,12 @@ impl Configuration {
             let _ = writeln!(out, "        {},", methods_source(m));
         }
         let _ = writeln!(out, "    ];");
+        let Presentation { order, dither } = self.presentation;
+        let _ = writeln!(
+            out,
+            "    const PRESENTATION: obscura::Presentation = obscura::Presentation {{ order: \
+             obscura::RowOrder::{order:?}, dither: obscura::Dither::{dither:?} }};"
+        );
         for named in &self.scenes {
             let desc = named.scene.desc();
             let _ = writeln!(out, "    {{");
@@ -309,7 +348,8 @@ impl Configuration {
             for &format in &self.formats {
                 let _ = writeln!(
                     out,
-                    "        crate::frames::variants::<{}, {}, {}, {}>(backend, clock, {:?}, &DESC, METHODS);",
+                    "        crate::frames::variants::<{}, {}, {}, {}>(backend, clock, {:?}, &DESC, METHODS, \
+                     PRESENTATION);",
                     format.rust_type(),
                     desc.objects.len(),
                     desc.lights.len(),
@@ -394,10 +434,15 @@ fn scene_source(desc: &SceneDesc<'_>) -> String {
         BackgroundDesc::Solid(colour) => {
             format!("obscura::BackgroundDesc::Solid({})", vector(colour))
         }
-        BackgroundDesc::Gradient { horizon, zenith } => format!(
-            "obscura::BackgroundDesc::Gradient {{ horizon: {}, zenith: {} }}",
+        BackgroundDesc::Gradient {
+            horizon,
+            zenith,
+            up,
+        } => format!(
+            "obscura::BackgroundDesc::Gradient {{ horizon: {}, zenith: {}, up: {} }}",
             vector(horizon),
-            vector(zenith)
+            vector(zenith),
+            vector(up)
         ),
     };
     format!(
@@ -575,6 +620,11 @@ mod tests {
             ),
             (&[(VARIANTS, "all")][..], "`none` or `each`"),
             (&[(TARGET_PSNR, "loud")][..], "a PSNR in dB"),
+            (
+                &[(DITHER, "floyd")][..],
+                "OBSCURA_DITHER is none or ordered, not `floyd`",
+            ),
+            (&[(ORDER, "bottom-up")][..], "top-down or progressive"),
             (&[(SCENES, "no-such-scene")][..], "there is no scene"),
         ] {
             let error = configure(&workspace(), Machine::M4f, env(pairs)).unwrap_err();

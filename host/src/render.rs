@@ -4,12 +4,16 @@
 use crate::checked::{self, Overflowed};
 use crate::format::{Format, FormatJob};
 use anyhow::{Context, Result, anyhow};
+use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::{IntoStorage, Rgb565, Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
 use image::RgbImage;
 use indicatif::{ProgressBar, ProgressStyle};
 use obscura::camera::Row;
-use obscura::{Camera, Methods, RootMethod, Scalar, Scene, SceneDesc, SceneError, render_rows};
+use obscura::{
+    Camera, Methods, Presentation, RootMethod, Scalar, Scene, SceneDesc, SceneError, render_frame,
+    render_rows,
+};
 use rayon::prelude::*;
 use std::convert::Infallible;
 use std::io::IsTerminal;
@@ -168,20 +172,40 @@ impl<S: Scalar> Prepared<S> {
         )
     }
 
-    /// The frame in RGB565, as a display receives it, rendered on one thread through the same
-    /// scanline renderer as the firmware's.
+    /// The frame in RGB565, as a display receives it by `presentation` (its rows' order and its
+    /// dither), rendered on one thread through the same scanline renderer as the firmware's.
     ///
     /// # Errors
     /// As [`Self::render`].
-    pub fn rgb565_frame(&self) -> Result<Vec<u16>> {
+    pub fn rgb565_frame(&self, presentation: Presentation) -> Result<Vec<u16>> {
         let (width, height) = (self.camera.width(), self.camera.height());
         let mut frame = Rgb565Frame {
             width,
             pixels: vec![0; (width * height) as usize],
         };
         let mut line = vec![Rgb565::BLACK; width as usize];
-        for y in 0..height {
-            self.render_row(y, &mut line, &mut frame)?;
+        let drawn = checked::catch(|| {
+            render_frame(
+                &self.scene,
+                &self.camera,
+                presentation,
+                &mut line,
+                &mut frame,
+            )
+        });
+        match drawn {
+            Ok(drawn) => drawn.map_err(|error| anyhow!("{error}"))?,
+            Err(overflowed) => {
+                let y = (0..height)
+                    .find(|&y| {
+                        let row = self.camera.row(y);
+                        row.into_iter()
+                            .flat_map(Row::rays)
+                            .any(|ray| checked::catch(|| self.scene.trace(ray)).is_err())
+                    })
+                    .unwrap_or(0);
+                return Err(self.overflow_at(y, overflowed));
+            }
         }
         Ok(frame.pixels)
     }
@@ -246,7 +270,7 @@ pub trait AnyFormat: Sync {
     /// See [`Prepared::object_map`].
     fn object_map(&self) -> Result<Vec<Option<usize>>>;
     /// See [`Prepared::rgb565_frame`].
-    fn rgb565_frame(&self) -> Result<Vec<u16>>;
+    fn rgb565_frame(&self, presentation: Presentation) -> Result<Vec<u16>>;
 }
 
 impl<S: Scalar> AnyFormat for Prepared<S> {
@@ -256,8 +280,8 @@ impl<S: Scalar> AnyFormat for Prepared<S> {
     fn object_map(&self) -> Result<Vec<Option<usize>>> {
         Prepared::object_map(self)
     }
-    fn rgb565_frame(&self) -> Result<Vec<u16>> {
-        Prepared::rgb565_frame(self)
+    fn rgb565_frame(&self, presentation: Presentation) -> Result<Vec<u16>> {
+        Prepared::rgb565_frame(self, presentation)
     }
 }
 
@@ -321,6 +345,17 @@ impl DrawTarget for RowTarget<'_> {
 }
 
 /// A frame of raw RGB565 values, row after row.
+/// An RGB565 frame (`width` pixels a row) as an RGB888 image, each channel scaled to 8 bits
+/// with rounding, as a display shows it.
+pub fn rgb565_image(frame: &[u16], width: u32) -> RgbImage {
+    let height = u32::try_from(frame.len()).unwrap_or(0) / width.max(1);
+    RgbImage::from_fn(width, height, |x, y| {
+        let raw = frame.get((y * width + x) as usize).copied().unwrap_or(0);
+        let colour = Rgb888::from(Rgb565::from(RawU16::new(raw)));
+        image::Rgb([colour.r(), colour.g(), colour.b()])
+    })
+}
+
 struct Rgb565Frame {
     width: u32,
     pixels: Vec<u16>,

@@ -174,8 +174,14 @@ fn bad_arguments_fail_with_a_clear_message() {
             "PSNR in dB",
         ),
         (
-            &["firmware", "--target", "m0", "--scene", "marbles.toml"],
-            "a firmware holds only those",
+            &[
+                "firmware",
+                "--target",
+                "m0",
+                "--scene",
+                "no-such-scene.toml",
+            ],
+            "there is no scene `no-such-scene.toml`",
         ),
         (&["render", "whitted", "--size", "512"], "WIDTHxHEIGHT"),
         (&["render", "whitted", "--size", "0x10"], "1 to 8192"),
@@ -271,6 +277,21 @@ fn firmware_refuses_what_it_cannot_draw_before_building() {
     assert!(!output.status.success());
     let message = stderr(&output);
     assert!(message.contains("f32-approx"), "{message}");
+    // A scene file's refusal is placed at its line and column, the line shown.
+    let low_light = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/hostile/low-light.toml");
+    let output = Command::new(env!("CARGO_BIN_EXE_obscura"))
+        .args(["firmware", "--target", "m0", "--scene", low_light])
+        .args(["--format", "i16f16"])
+        .env("PATH", scratch("no-cargo"))
+        .output()
+        .unwrap();
+    assert!(!output.status.success());
+    let message = stderr(&output);
+    assert!(
+        message.contains("low-light.toml:14:1: the scene cannot be built in i16f16")
+            && message.contains("14 | [[lights]]"),
+        "{message}"
+    );
 }
 
 #[test]

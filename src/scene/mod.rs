@@ -223,12 +223,27 @@ impl<S: Scalar> Converter<S> {
             BackgroundDesc::Solid(c) => {
                 Background::Solid(self.colour(Item::Scene, "background.solid", c)?)
             }
-            BackgroundDesc::Gradient { horizon, zenith } => Background::Gradient {
+            BackgroundDesc::Gradient {
+                horizon,
+                zenith,
+                up,
+            } => Background::Gradient {
                 horizon: self.colour(Item::Scene, "background.gradient.horizon", horizon)?,
                 rise: self.colour_f64(
                     Item::Scene,
                     "background.gradient.zenith − horizon",
                     Vec3::from_f32(zenith) - Vec3::from_f32(horizon),
+                )?,
+                // Validation guarantees a non-zero up.
+                up: self.vector(
+                    Item::Scene,
+                    "background.gradient.up",
+                    Vec3::from_f32(up)
+                        .direction()
+                        .ok_or(SceneError::ZeroLength {
+                            item: Item::Scene,
+                            field: "background.gradient.up",
+                        })?,
                 )?,
             },
         };

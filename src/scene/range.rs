@@ -477,9 +477,9 @@ fn colour_sum(desc: &SceneDesc<'_>) -> f64 {
     let local = f64::from(brightest(desc.ambient)) + lights;
     let background = match desc.background {
         BackgroundDesc::Solid(c) => f64::from(brightest(c)),
-        BackgroundDesc::Gradient { horizon, zenith } => {
-            f64::from(brightest(horizon)) + f64::from(brightest(zenith))
-        }
+        BackgroundDesc::Gradient {
+            horizon, zenith, ..
+        } => f64::from(brightest(horizon)) + f64::from(brightest(zenith)),
     };
     (f64::from(desc.max_depth) + 1.0) * local.max(background)
 }

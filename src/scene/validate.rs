@@ -13,9 +13,20 @@ pub(super) fn validate(desc: &SceneDesc<'_>) -> Result<Frame, SceneError> {
     colour(Item::Scene, "ambient", desc.ambient)?;
     match desc.background {
         BackgroundDesc::Solid(c) => colour(Item::Scene, "background.solid", c)?,
-        BackgroundDesc::Gradient { horizon, zenith } => {
+        BackgroundDesc::Gradient {
+            horizon,
+            zenith,
+            up,
+        } => {
             colour(Item::Scene, "background.gradient.horizon", horizon)?;
             colour(Item::Scene, "background.gradient.zenith", zenith)?;
+            finite(Item::Scene, "background.gradient.up", &up)?;
+            if Vec3::from_f32(up).length() == 0.0 {
+                return Err(SceneError::ZeroLength {
+                    item: Item::Scene,
+                    field: "background.gradient.up",
+                });
+            }
         }
     }
     let frame = camera(&desc.camera)?;

@@ -5,7 +5,7 @@
 //!
 //! ```text
 //! frame scene=whitted format=i16f16 methods=quadratic/cramer/exact/per-pixel/epsilon
-//!   width=240 height=240 ticks=… stack_bytes=… storage_bytes=… fixed_storage_bytes=… file=…
+//!   dither=none order=top-down width=240 height=240 ticks=… stack_bytes=… storage_bytes=… fixed_storage_bytes=… file=…
 //! ```
 //!
 //! A chart variant the scene build refuses is a line `refused scene=… format=… methods=…
@@ -78,10 +78,12 @@ impl Backend for Host {
     fn report(&mut self, r: &Report<'_>) {
         let job = r.job;
         hprintln!(
-            "frame scene={} format={} methods={} width={SIDE} height={SIDE} ticks={} stack_bytes={} storage_bytes={} fixed_storage_bytes={} file={}",
+            "frame scene={} format={} methods={} dither={} order={} width={SIDE} height={SIDE} ticks={} stack_bytes={} storage_bytes={} fixed_storage_bytes={} file={}",
             job.scene,
             job.format,
             Path(job),
+            job.presentation.dither.name(),
+            job.presentation.order.name(),
             r.ticks,
             r.stack_bytes,
             r.storage_bytes,

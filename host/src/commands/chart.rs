@@ -16,8 +16,8 @@ use crate::render::{AnyFormat, Request, all_cores, prepare, prepare_reference};
 use crate::timing::interleaved_median_ms;
 use crate::variant;
 use anyhow::{Context, Result, bail};
-use obscura::Methods;
 use obscura::scenes::{self, BuiltIn};
+use obscura::{Methods, Presentation};
 use std::collections::HashMap;
 use std::io;
 use std::path::Path;
@@ -75,6 +75,7 @@ pub fn run(args: &ChartArgs) -> Result<()> {
                 formats,
                 methods: Methods::LECTURE,
                 variants: true,
+                presentation: Presentation::default(),
             };
             let elf = firmware::build(target, &image)?;
             let dir = args

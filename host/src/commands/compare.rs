@@ -5,10 +5,12 @@ use crate::format::Format;
 use crate::heatmap::heatmap;
 use crate::metrics::{Accuracy, accuracy};
 use crate::output::{self, say};
-use crate::render::{Request, all_cores, prepare, prepare_reference};
+use crate::render::{Request, all_cores, prepare, prepare_reference, rgb565_image};
 use crate::scene_file::NamedScene;
 use crate::timing::interleaved_median_ms;
 use anyhow::{Context, Result};
+use obscura::methods::MethodName;
+use obscura::{Dither, Presentation};
 use serde::Serialize;
 use std::io;
 
@@ -29,6 +31,11 @@ pub struct Report {
     pub ms_per_frame: f64,
     pub reference_ms_per_frame: f64,
     pub runs: u16,
+    /// The frame as an RGB565 display shows it, each colour rounded to the nearest level:
+    /// its PSNR against f64 (`null` when identical).
+    pub rgb565_psnr_db: f64,
+    /// The same with the ordered dither ([`obscura::Dither::Ordered`]).
+    pub rgb565_dithered_psnr_db: f64,
 }
 
 pub fn run(args: &CompareArgs) -> Result<()> {
@@ -86,18 +93,28 @@ fn compare(args: &CompareArgs, named: &NamedScene) -> Result<()> {
     let diff_path = args.out_dir.join("diff.png");
     super::save(&heatmap(&image, &truth), &diff_path)?;
 
+    let objects = contender.object_map()?;
     let Accuracy {
         psnr_db,
         mean_abs_error,
         max_abs_error,
         differing_pixels_pct,
         object_mismatch_pct,
-    } = accuracy(
-        &image,
-        &truth,
-        &contender.object_map()?,
-        &baseline.object_map()?,
-    );
+    } = accuracy(&image, &truth, &objects, &baseline.object_map()?);
+    // As an RGB565 display shows it, rounded to the nearest level and dithered.
+    let mut rgb565 = Vec::new();
+    for dither in [Dither::None, Dither::Ordered] {
+        let presentation = Presentation {
+            dither,
+            ..Presentation::default()
+        };
+        let frame = rgb565_image(&contender.rgb565_frame(presentation)?, width);
+        let path = args
+            .out_dir
+            .join(format!("{format}-rgb565-dither-{}.png", dither.name()));
+        super::save(&frame, &path)?;
+        rgb565.push((accuracy(&frame, &truth, &objects, &objects).psnr_db, path));
+    }
     let report = Report {
         format: format.name(),
         reference: reference.name(),
@@ -112,8 +129,18 @@ fn compare(args: &CompareArgs, named: &NamedScene) -> Result<()> {
         ms_per_frame: times[0],
         reference_ms_per_frame: times[1],
         runs: args.runs,
+        rgb565_psnr_db: rgb565[0].0,
+        rgb565_dithered_psnr_db: rgb565[1].0,
     };
     print_table(&report)?;
+    say!(
+        "as an RGB565 display shows it: {:.2} dB against f64 rounded to the nearest level, {:.2} dB \
+         with the ordered dither (wrote {} and {})",
+        report.rgb565_psnr_db,
+        report.rgb565_dithered_psnr_db,
+        rgb565[0].1.display(),
+        rgb565[1].1.display()
+    )?;
     say!(
         "wrote {}, {} and {} (diff: largest channel error per pixel, log scale, legend below)",
         files[0].0.display(),

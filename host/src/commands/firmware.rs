@@ -7,12 +7,11 @@ use crate::firmware_build::{self, Configuration, Image};
 use crate::format::Format;
 use crate::heatmap::heatmap;
 use crate::output::{self, say};
+use crate::render::rgb565_image;
 use crate::scene_file::{self, NamedScene};
 use anyhow::{Context, Result, bail};
-use embedded_graphics::pixelcolor::raw::RawU16;
-use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
-use image::RgbImage;
-use obscura::Methods;
+use obscura::methods::MethodName;
+use obscura::{Methods, Presentation};
 use serde::Serialize;
 use std::io;
 use std::path::Path;
@@ -25,6 +24,8 @@ struct Report {
     scene: String,
     format: String,
     methods: String,
+    order: &'static str,
+    dither: &'static str,
     width: u32,
     height: u32,
     identical: bool,
@@ -45,6 +46,10 @@ fn formats(args: &FirmwareArgs, scenes: &[NamedScene], methods: Methods) -> Resu
     let mut formats = Vec::new();
     for &choice in &args.format {
         let format = match choice {
+            FormatChoice::Given(Format::F64) => bail!(
+                "the firmware computes in {}, not f64 (which stays on the host)",
+                Format::FIRMWARE.map(Format::name).join(", ")
+            ),
             FormatChoice::Given(format) => format,
             FormatChoice::Auto => {
                 let machine = Machine::from(args.target);
@@ -74,6 +79,10 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
     }
     let target = args.target;
     let methods = args.methods.methods();
+    let presentation = Presentation {
+        order: args.order,
+        dither: args.dither,
+    };
     let scenes = args
         .scene
         .iter()
@@ -85,6 +94,7 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
         formats,
         methods,
         variants: false,
+        presentation,
     };
     // What the firmware would refuse (by the same code), the host refuses here, with the
     // figures, before a build and a QEMU run; the firmware's build proves it again.
@@ -104,6 +114,7 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
         formats: &formats,
         methods,
         variants: false,
+        presentation,
     };
     let elf = firmware::build(target, &image)?;
     let size = firmware::image_size(&elf)?;
@@ -118,7 +129,10 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
             let frame = frames
                 .iter()
                 .find(|f| {
-                    f.scene == scene.name && f.format == format.name() && f.methods == methods
+                    f.scene == scene.name
+                        && f.format == format.name()
+                        && f.methods == methods
+                        && f.presentation == presentation
                 })
                 .with_context(|| {
                     format!(
@@ -129,11 +143,14 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
             let (device, host, differing) =
                 firmware::compare_frame(&scene.scene.desc(), format, frame, &dir)?;
             let stem = dir.join(&frame.file);
-            crate::commands::save(&to_image(&device, frame.width), &stem.with_extension("png"))?;
+            crate::commands::save(
+                &rgb565_image(&device, frame.width),
+                &stem.with_extension("png"),
+            )?;
             if !differing.is_empty() {
                 let diff = heatmap(
-                    &to_image(&device, frame.width),
-                    &to_image(&host, frame.width),
+                    &rgb565_image(&device, frame.width),
+                    &rgb565_image(&host, frame.width),
                 );
                 let path = stem.with_extension("diff.png");
                 crate::commands::save(&diff, &path)?;
@@ -157,6 +174,8 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
                 scene: frame.scene.clone(),
                 format: frame.format.clone(),
                 methods: methods.to_string(),
+                order: presentation.order.name(),
+                dither: presentation.dither.name(),
                 width: frame.width,
                 height: frame.height,
                 identical: differing.is_empty(),
@@ -205,16 +224,6 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
         );
     }
     Ok(())
-}
-
-/// An RGB565 frame as an RGB888 image, each channel scaled to 8 bits with rounding.
-fn to_image(frame: &[u16], width: u32) -> RgbImage {
-    let height = u32::try_from(frame.len()).unwrap_or(0) / width.max(1);
-    RgbImage::from_fn(width, height, |x, y| {
-        let raw = RawU16::new(frame[(y * width + x) as usize]);
-        let colour = Rgb888::from(Rgb565::from(raw));
-        image::Rgb([colour.r(), colour.g(), colour.b()])
-    })
 }
 
 fn list_differences(
@@ -269,7 +278,12 @@ fn print_table(target: Target, reports: &[Report]) -> io::Result<()> {
         )?;
     }
     if let Some(first) = reports.first() {
-        say!("methods: {}", first.methods)?;
+        say!(
+            "methods: {}; rows {}; dither {}",
+            first.methods,
+            first.order,
+            first.dither
+        )?;
     }
     say!(
         "(instructions, not cycles: QEMU counts one per instruction and models no wait states or \

@@ -5,7 +5,7 @@
 
 use crate::owned::OwnedScene;
 use obscura::{
-    BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, ObjectDesc, ShapeDesc,
+    BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, ObjectDesc, ShapeDesc, Y_UP,
 };
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
@@ -144,6 +144,7 @@ impl Generator {
             BackgroundDesc::Gradient {
                 horizon: self.bright(),
                 zenith: self.bright(),
+                up: Y_UP,
             }
         };
         let scene = OwnedScene {
@@ -161,6 +162,13 @@ impl Generator {
             max_depth: self.0.random_range(0..=MAX_DEPTH),
         };
         let size = self.size();
+        // Drawn last, so that every other draw is what it was before scenes had an up.
+        let mut scene = scene;
+        if let BackgroundDesc::Gradient { up, .. } = &mut scene.background {
+            if self.chance(0.5) {
+                *up = f32s(self.direction());
+            }
+        }
         Generated { scene, size }
     }
 

@@ -9,7 +9,7 @@ use anyhow::Result;
 use obscura::methods::MethodName;
 use obscura::{
     BackgroundDesc, BiasMethod, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, Methods,
-    ObjectDesc, Scalar, SceneDesc, ShapeDesc,
+    ObjectDesc, Scalar, SceneDesc, ShapeDesc, Y_UP,
 };
 
 pub const CASE: Case = Case {
@@ -85,6 +85,7 @@ impl FormatJob for Job {
                 lights: &LIGHTS,
                 ambient: [0.15; 3],
                 background: BackgroundDesc::Gradient {
+                    up: Y_UP,
                     horizon: [0.6, 0.7, 0.9],
                     zenith: [0.1, 0.2, 0.6],
                 },
