@@ -35,11 +35,23 @@ if ! command -v qemu-system-arm >/dev/null; then
 fi
 qemu-system-arm --version | head -n 1
 
+step "SDL2, for obscura preview's window"
+if ! dpkg -s libsdl2-dev >/dev/null 2>&1; then
+    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
+        apt-get update -qq
+        DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends libsdl2-dev
+    else
+        echo "libsdl2-dev is missing; install it with: sudo apt-get install libsdl2-dev" >&2
+        exit 1
+    fi
+fi
+
 step "format"
 cargo fmt --all -- --check
 
-step "clippy, host (the core and the harness)"
+step "clippy, host (the core and the harness, with and without the preview's window)"
 cargo clippy --all-targets --locked -- -D warnings
+cargo clippy -p obscura-host --all-targets --features window --locked -- -D warnings
 
 step "clippy, core on a 32-bit target"
 cargo clippy -p obscura --target "$M0" --locked -- -D warnings
@@ -89,6 +101,14 @@ cargo run --release --locked -p obscura-host -- firmware --target m4f --scene wh
     --order progressive --dither ordered
 cargo run --release --locked -p obscura-host -- firmware --target m4f --scene whitted,shapes \
     --format i32f32,f32-approx,f32 --triangle moller-trumbore
+
+step "the preview, headless, against the firmware's frame under QEMU, byte for byte"
+cargo run --release --locked -p obscura-host -- firmware --target m4f \
+    --scene host/scenes/pyramid.toml --format i16f16 --order progressive --dither ordered
+cargo run --release --locked -p obscura-host --features window -- preview \
+    host/scenes/pyramid.toml --format i16f16 --order progressive --dither ordered --headless \
+    -o target/preview.png
+cmp target/preview.png out/firmware/m4f/pyramid-i16f16-quadratic-cramer-exact-per-pixel-epsilon.png
 
 step "fuzz: random scenes for 150 s from a fixed seed, held to every promise"
 cargo run --release --locked -p obscura-host -- fuzz --seconds 150 --seed 1 --out-dir target/fuzz

@@ -24,7 +24,7 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// List the built-in scenes (all but `firmware` take a scene file as well).
+    /// List the built-in scenes (every command takes a scene file as well).
     Scenes,
     /// Range analysis of a scene: its extents and finest features, the bits each method needs,
     /// which formats hold it, the PSNR each is predicted to reach, and the cheapest that meets
@@ -39,6 +39,9 @@ pub enum Command {
     /// Build the firmware, run it under QEMU, and check its frames against the host's, bit for
     /// bit; report instructions, stack, flash and RAM.
     Firmware(FirmwareArgs),
+    /// Run the firmware's render loop on the desktop: the display's size, RGB565, its row order
+    /// and dither, live in a window (or, with --headless, the final frame as a PNG).
+    Preview(PreviewArgs),
     /// Chart speed against accuracy for every format and method variant, on both scenes.
     Chart(ChartArgs),
     /// Run the stress cases where methods fail, each ending in a verdict.
@@ -278,6 +281,37 @@ pub struct FirmwareArgs {
     /// the M0), RAM with the measured stack ≤ 16 KiB on both.
     #[arg(long)]
     pub budget: bool,
+}
+
+/// `obscura preview`.
+#[derive(Debug, Args)]
+pub struct PreviewArgs {
+    /// A built-in scene or a scene file.
+    pub scene: String,
+    /// The microcontroller whose firmware is previewed: its pace, and `auto`'s pick.
+    #[arg(long, value_enum, default_value = "m4f")]
+    pub target: Target,
+    /// The format; `auto` is the cheapest on the target that holds the scene and reaches
+    /// --target-psnr, as the firmware's build picks it.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub format: FormatChoice,
+    /// The PSNR against f64, in dB, that `--format auto` aims for.
+    #[arg(long, default_value_t = 40.0, value_parser = parse_psnr)]
+    pub target_psnr: f64,
+    #[command(flatten)]
+    pub methods: MethodArgs,
+    /// The order of the rows: top-down, or progressive (every 8th row first, as blocks).
+    #[arg(long, value_parser = method::<RowOrder>(), default_value = "progressive")]
+    pub order: RowOrder,
+    /// The rounding to RGB565: none, or ordered (a 4×4 Bayer dither).
+    #[arg(long, value_parser = method::<Dither>(), default_value = "ordered")]
+    pub dither: Dither,
+    /// No window: write the final frame as a PNG and exit (for CI, where there is no display).
+    #[arg(long)]
+    pub headless: bool,
+    /// Where the final frame is written (always with --headless; in a window, when it closes).
+    #[arg(short, long, default_value = "out/preview.png")]
+    pub output: PathBuf,
 }
 
 /// `obscura chart`.

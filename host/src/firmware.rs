@@ -357,7 +357,8 @@ pub fn compare_frame(
         height: frame.height,
         methods: frame.methods,
     };
-    let host = crate::render::prepare(format, &request)?.rgb565_frame(frame.presentation)?;
+    let host = crate::render::prepare(format, &request)?
+        .rgb565_frame(frame.presentation, &mut |_, _| {})?;
     let device = read_frame(&dir.join(&frame.file), host.len())?;
     let differing = (0..host.len()).filter(|&i| host[i] != device[i]).collect();
     Ok((device, host, differing))

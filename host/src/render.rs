@@ -7,6 +7,7 @@ use anyhow::{Context, Result, anyhow};
 use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::{IntoStorage, Rgb565, Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
 use image::RgbImage;
 use indicatif::{ProgressBar, ProgressStyle};
 use obscura::camera::Row;
@@ -17,6 +18,7 @@ use obscura::{
 use rayon::prelude::*;
 use std::convert::Infallible;
 use std::io::IsTerminal;
+use std::ops::Range;
 
 /// Every core of this machine: the threads of a render that is not timed.
 pub fn all_cores() -> usize {
@@ -177,11 +179,14 @@ impl<S: Scalar> Prepared<S> {
     ///
     /// # Errors
     /// As [`Self::render`].
-    pub fn rgb565_frame(&self, presentation: Presentation) -> Result<Vec<u16>> {
+    /// `watch` sees the frame after each rectangle the renderer sends it, with the rows it
+    /// covered: what a display shows as the frame builds up.
+    pub fn rgb565_frame(&self, presentation: Presentation, watch: Watch<'_>) -> Result<Vec<u16>> {
         let (width, height) = (self.camera.width(), self.camera.height());
         let mut frame = Rgb565Frame {
             width,
             pixels: vec![0; (width * height) as usize],
+            watch,
         };
         let mut line = vec![Rgb565::BLACK; width as usize];
         let drawn = checked::catch(|| {
@@ -270,7 +275,7 @@ pub trait AnyFormat: Sync {
     /// See [`Prepared::object_map`].
     fn object_map(&self) -> Result<Vec<Option<usize>>>;
     /// See [`Prepared::rgb565_frame`].
-    fn rgb565_frame(&self, presentation: Presentation) -> Result<Vec<u16>>;
+    fn rgb565_frame(&self, presentation: Presentation, watch: Watch<'_>) -> Result<Vec<u16>>;
 }
 
 impl<S: Scalar> AnyFormat for Prepared<S> {
@@ -280,8 +285,8 @@ impl<S: Scalar> AnyFormat for Prepared<S> {
     fn object_map(&self) -> Result<Vec<Option<usize>>> {
         Prepared::object_map(self)
     }
-    fn rgb565_frame(&self, presentation: Presentation) -> Result<Vec<u16>> {
-        Prepared::rgb565_frame(self, presentation)
+    fn rgb565_frame(&self, presentation: Presentation, watch: Watch<'_>) -> Result<Vec<u16>> {
+        Prepared::rgb565_frame(self, presentation, watch)
     }
 }
 
@@ -356,12 +361,16 @@ pub fn rgb565_image(frame: &[u16], width: u32) -> RgbImage {
     })
 }
 
-struct Rgb565Frame {
+/// What watches an RGB565 frame build up: called with the frame so far and the rows just drawn.
+pub type Watch<'a> = &'a mut dyn FnMut(&[u16], Range<u32>);
+
+struct Rgb565Frame<'a> {
     width: u32,
     pixels: Vec<u16>,
+    watch: Watch<'a>,
 }
 
-impl OriginDimensions for Rgb565Frame {
+impl OriginDimensions for Rgb565Frame<'_> {
     fn size(&self) -> Size {
         Size::new(
             self.width,
@@ -370,7 +379,7 @@ impl OriginDimensions for Rgb565Frame {
     }
 }
 
-impl DrawTarget for Rgb565Frame {
+impl DrawTarget for Rgb565Frame<'_> {
     type Color = Rgb565;
     type Error = Infallible;
 
@@ -387,6 +396,21 @@ impl DrawTarget for Rgb565Frame {
                 }
             }
         }
+        Ok(())
+    }
+
+    /// As the default, then shows `watch` the rows drawn.
+    fn fill_contiguous<I>(&mut self, area: &Rectangle, colours: I) -> Result<(), Infallible>
+    where
+        I: IntoIterator<Item = Rgb565>,
+    {
+        self.draw_iter(
+            area.points()
+                .zip(colours)
+                .map(|(point, colour)| Pixel(point, colour)),
+        )?;
+        let top = u32::try_from(area.top_left.y).unwrap_or(0);
+        (self.watch)(&self.pixels, top..top + area.size.height);
         Ok(())
     }
 }

@@ -522,3 +522,29 @@ fn fuzz_tries_a_given_number_of_scenes_and_tallies_them() {
     assert!(tally["builds"].as_u64().unwrap() >= 6 * 5, "{tally}");
     assert_eq!(tally["findings"].as_array().unwrap().len(), 0, "{tally}");
 }
+
+#[test]
+fn preview_writes_the_display_frame_headless_and_says_when_it_has_no_window() {
+    let path = scratch("preview").join("frame.png");
+    let output = obscura(&[
+        "preview",
+        "whitted",
+        "--format",
+        "i16f16",
+        "--headless",
+        "-o",
+        path.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let frame = image::open(&path).unwrap();
+    assert_eq!((frame.width(), frame.height()), (240, 240));
+    if !cfg!(feature = "window") {
+        let output = obscura(&["preview", "whitted", "-o", path.to_str().unwrap()]);
+        assert!(!output.status.success());
+        assert!(
+            stderr(&output).contains("--headless"),
+            "{}",
+            stderr(&output)
+        );
+    }
+}

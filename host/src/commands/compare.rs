@@ -108,7 +108,10 @@ fn compare(args: &CompareArgs, named: &NamedScene) -> Result<()> {
             dither,
             ..Presentation::default()
         };
-        let frame = rgb565_image(&contender.rgb565_frame(presentation)?, width);
+        let frame = rgb565_image(
+            &contender.rgb565_frame(presentation, &mut |_, _| {})?,
+            width,
+        );
         let path = args
             .out_dir
             .join(format!("{format}-rgb565-dither-{}.png", dither.name()));

@@ -6,6 +6,7 @@ mod chart;
 mod compare;
 mod firmware;
 mod fuzz;
+mod preview;
 mod render;
 mod stress;
 
@@ -36,6 +37,7 @@ pub fn run(command: Command) -> Result<()> {
         Command::Compare(args) => compare::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::Firmware(args) => firmware::run(&args),
+        Command::Preview(args) => preview::run(&args),
         Command::Chart(args) => chart::run(&args),
         Command::Stress(args) => stress::run(&args),
         Command::Fuzz(args) => fuzz::run(&args),
