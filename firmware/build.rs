@@ -1,7 +1,7 @@
 //! Configures the firmware from the environment (see `obscura_host::firmware_build` and the
 //! README): resolves and proves its scenes and formats with the host's own code, writes what it
-//! draws to `$OUT_DIR/frames.rs`, and hands the linker the memory map of the board it builds for
-//! (the workspace's `memory.x`).
+//! draws to `$OUT_DIR/frames.rs`, and puts the workspace's `memory.x` on the linker's path for
+//! the boards' binaries.
 
 use obscura_host::firmware_build::{self, VARIABLES};
 use std::env;
@@ -33,21 +33,16 @@ fn main() {
         }
     }
     if target.starts_with("thumbv") {
-        link(workspace, &out, &target);
+        link(workspace, &out);
     }
 }
 
 /// The memory map: `memory.x` copied next to the build's other outputs and put on the linker's
-/// path (for this crate's binary and for the boards' crates, which depend on it), and
-/// cortex-m-rt's `link.x`, which includes it, for the `qemu` binary. On the Cortex-M0 that runs
-/// on QEMU's micro:bit, whose nRF51 map `memory.x` switches to.
-fn link(workspace: &Path, out: &Path, target: &str) {
+/// path, for the binaries under `boards/`, which depend on this crate (each hands the linker
+/// cortex-m-rt's `link.x`, which includes it, and says which board's map to take).
+fn link(workspace: &Path, out: &Path) {
     let map = workspace.join("memory.x");
     println!("cargo::rerun-if-changed={}", map.display());
     fs::copy(&map, out.join("memory.x")).expect("memory.x is readable");
     println!("cargo::rustc-link-search={}", out.display());
-    if target.starts_with("thumbv6m") {
-        println!("cargo::rustc-link-arg-bin=qemu=--defsym=__nrf51=1");
-    }
-    println!("cargo::rustc-link-arg-bins=-Tlink.x");
 }

@@ -56,11 +56,12 @@ cargo clippy -p obscura-host --all-targets --features window --locked -- -D warn
 step "clippy, core on a 32-bit target"
 cargo clippy -p obscura --target "$M0" --locked -- -D warnings
 
-step "clippy, the firmware on both targets and the Black Pill"
+step "clippy, the firmware on both targets and the two boards"
 for target in "$M4F" "$M0"; do
-    env "${EVERYTHING[@]}" cargo clippy --release -p obscura-firmware --target "$target" --locked -- -D warnings
+    env "${EVERYTHING[@]}" cargo clippy --release -p obscura-firmware -p obscura-qemu --target "$target" --locked -- -D warnings
 done
 cargo clippy --release -p obscura-black-pill --target "$M4F" --locked -- -D warnings
+cargo clippy --release -p obscura-pico --target "$M0" --locked -- -D warnings
 
 step "documentation"
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --locked --quiet
@@ -76,8 +77,9 @@ if cargo tree -p obscura -e normal --locked --prefix none | grep -E "cortex-m|st
     exit 1
 fi
 
-step "firmware for the ST7789 on an STM32F411 Black Pill, from a scene file"
+step "firmware for the ST7789 on an STM32F411 Black Pill and on a Raspberry Pi Pico, from a scene file"
 OBSCURA_SCENES=host/scenes/pyramid.toml cargo build --release -p obscura-black-pill --target "$M4F" --locked
+OBSCURA_SCENES=host/scenes/pyramid.toml cargo build --release -p obscura-pico --target "$M0" --locked
 
 step "a scene the format cannot hold fails the firmware's build, at its line and column"
 if OBSCURA_SCENES=host/scenes/hostile/low-light.toml OBSCURA_FORMATS=i16f16 \

@@ -57,7 +57,9 @@ pub use methods::{
     BiasMethod, Methods, ParseMethodsError, RayMethod, RootMethod, SphereMethod, TriangleMethod,
 };
 pub use ray::Ray;
-pub use render::{Presentation, RenderError, RowOrder, render_frame, render_rows};
+pub use render::{
+    Presentation, RenderError, RowOrder, render_frame, render_rows, send_row, trace_row,
+};
 pub use scalar::{F32Approx, I16F16, I20F12, I32F32, Scalar};
 pub use scene::{Item, Remedy, Scene, SceneError};
 pub use shade::Sample;

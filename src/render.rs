@@ -57,6 +57,21 @@ impl<E: fmt::Debug> fmt::Display for RenderError<E> {
 
 impl<E: fmt::Debug> core::error::Error for RenderError<E> {}
 
+impl RenderError<core::convert::Infallible> {
+    /// The same error, as one of a renderer whose target fails with `E` (tracing a row alone
+    /// draws nothing, so it never fails for its target).
+    #[must_use]
+    pub fn for_target<E>(self) -> RenderError<E> {
+        match self {
+            Self::LineBufferTooSmall { needed, got } => {
+                RenderError::LineBufferTooSmall { needed, got }
+            }
+            Self::RowsOutOfRange { end, height } => RenderError::RowsOutOfRange { end, height },
+            Self::Target(never) => match never {},
+        }
+    }
+}
+
 /// Renders `rows` of the image that `camera` sees of `scene`, top to bottom. Row y of the image
 /// goes to row y of `target` (pixels (0, y) to (width − 1, y)), through `line`, which must hold
 /// a row.
@@ -95,14 +110,14 @@ where
         let row = camera
             .row(y)
             .ok_or(RenderError::RowsOutOfRange { end, height })?;
-        trace_row(scene, &row, y, Dither::None, line);
-        draw(target, line, y, 1)?;
+        trace_into(scene, &row, y, Dither::None, line);
+        send_row(target, line, y, 1)?;
     }
     Ok(())
 }
 
 /// Traces `row` (row `y` of the image) into `line`, each pixel quantised by `dither`.
-fn trace_row<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
+fn trace_into<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
     scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
     row: &Row<S>,
     y: u32,
@@ -117,8 +132,12 @@ fn trace_row<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
     }
 }
 
-/// Sends `line` to `rows` rows of `target` from row `y` down, as one rectangle.
-fn draw<C: DisplayColor, D: DrawTarget<Color = C>>(
+/// Sends `line` to `rows` rows of `target` from row `y` down, as one rectangle: a traced row,
+/// or in a progressive frame the block it stands for.
+///
+/// # Errors
+/// [`RenderError::Target`] when the target fails.
+pub fn send_row<C: DisplayColor, D: DrawTarget<Color = C>>(
     target: &mut D,
     line: &[C],
     y: u32,
@@ -136,6 +155,40 @@ fn draw<C: DisplayColor, D: DrawTarget<Color = C>>(
     target
         .fill_contiguous(&area, pixels)
         .map_err(RenderError::Target)
+}
+
+/// Traces row `y` of the image that `camera` sees of `scene` into `line` (its first `width`
+/// pixels), each pixel rounded by `dither`, without drawing it: for a renderer that shares a
+/// frame's rows among cores and sends them itself ([`send_row`]).
+///
+/// # Errors
+/// [`RenderError`] for a short line buffer or a row beyond the image.
+pub fn trace_row<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
+    camera: &Camera<S>,
+    y: u32,
+    dither: Dither,
+    line: &mut [C],
+) -> Result<(), RenderError<core::convert::Infallible>>
+where
+    S: Scalar,
+    C: DisplayColor,
+{
+    let width = camera.width();
+    let too_small = RenderError::LineBufferTooSmall {
+        needed: width,
+        got: line.len(),
+    };
+    let line = usize::try_from(width)
+        .ok()
+        .and_then(|w| line.get_mut(..w))
+        .ok_or(too_small)?;
+    let row = camera.row(y).ok_or(RenderError::RowsOutOfRange {
+        end: y.saturating_add(1),
+        height: camera.height(),
+    })?;
+    trace_into(scene, &row, y, dither, line);
+    Ok(())
 }
 
 /// How a frame goes to the display: in which order its rows are traced, and how its colours
@@ -217,8 +270,8 @@ where
         let row = camera
             .row(y)
             .ok_or(RenderError::RowsOutOfRange { end: y + 1, height })?;
-        trace_row(scene, &row, y, presentation.dither, line);
-        draw(target, line, y, rows)?;
+        trace_into(scene, &row, y, presentation.dither, line);
+        send_row(target, line, y, rows)?;
     }
     Ok(())
 }

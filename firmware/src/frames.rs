@@ -9,15 +9,39 @@ use crate::stack;
 use core::fmt;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use obscura::{Methods, Presentation, Scalar, Scene, SceneDesc, SceneError, render_frame};
+use obscura::{
+    Camera, Methods, Presentation, RenderError, Scalar, Scene, SceneDesc, SceneError, render_frame,
+};
+
+/// What goes wrong drawing a frame on `B`'s display.
+pub type FrameError<B> = RenderError<<<B as Backend>::Display as DrawTarget>::Error>;
 
 /// What a display back-end provides: a display to draw each frame on, and a place to say how
 /// it went.
 pub trait Backend {
     /// The display.
     type Display: DrawTarget<Color = Rgb565, Error: fmt::Debug>;
-    /// Lets `draw` draw the frame of `job`.
-    fn frame<R>(&mut self, job: &Job<'_>, draw: impl FnOnce(&mut Self::Display) -> R) -> R;
+    /// Readies the display for the frame of `job`.
+    fn begin(&mut self, job: &Job<'_>);
+    /// The display.
+    fn display(&mut self) -> &mut Self::Display;
+    /// Ends the frame begun.
+    fn end(&mut self) {}
+    /// Traces the frame `camera` sees of `scene` and sends it to the display in the order and
+    /// dither of `presentation`: by default on this core, through one line buffer
+    /// ([`render_frame`]). A board with a second core shares the rows between them.
+    ///
+    /// # Errors
+    /// When the display fails.
+    fn draw_frame<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
+        &mut self,
+        scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
+        camera: &Camera<S>,
+        presentation: Presentation,
+    ) -> Result<(), FrameError<Self>> {
+        let mut line = [Rgb565::BLACK; SIDE as usize];
+        render_frame(scene, camera, presentation, &mut line, self.display())
+    }
     /// Reports a finished frame.
     fn report(&mut self, report: &Report<'_>);
     /// Reports a frame that could not be drawn, and why.
@@ -116,10 +140,9 @@ fn render<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usiz
         Ok(camera) => camera,
         Err(error) => return refuse(backend, job, &error, variants),
     };
-    let (drawn, ticks) = backend.frame(job, |display| {
-        let mut line = [Rgb565::BLACK; SIDE as usize];
-        clock.measure(|| render_frame(&scene, &camera, job.presentation, &mut line, display))
-    });
+    backend.begin(job);
+    let (drawn, ticks) = clock.measure(|| backend.draw_frame(&scene, &camera, job.presentation));
+    backend.end();
     let stack_bytes = stack::high_water();
     match drawn {
         Ok(()) => backend.report(&Report {

@@ -3,12 +3,13 @@
 //! 240×240 RGB565 scanline by scanline through one line buffer into an embedded-graphics
 //! display, each reported with the SysTick ticks it took and the stack it used.
 //!
-//! The binaries are the displays: `qemu` (frames streamed to the host over semihosting) and
-//! `black-pill` (an ST7789 on an STM32F411).
+//! Its binary `qemu` streams the frames to the host over semihosting; the boards' crates
+//! (`boards/`) draw them on a real display ([`screen::Screen`]).
 #![no_std]
 
 pub mod clock;
 pub mod frames;
+pub mod screen;
 pub mod stack;
 
 /// The side of the square display, in pixels.

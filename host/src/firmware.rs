@@ -139,14 +139,7 @@ pub fn build(target: Target, image: &Image<'_>) -> Result<PathBuf> {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
     let status = Command::new(cargo)
         .current_dir(&workspace)
-        .args([
-            "build",
-            "--release",
-            "-p",
-            "obscura-firmware",
-            "--bin",
-            "qemu",
-        ])
+        .args(["build", "--release", "-p", "obscura-qemu"])
         .args(["--target", target.triple()])
         .envs(image.environment())
         .status()
@@ -160,7 +153,7 @@ pub fn build(target: Target, image: &Image<'_>) -> Result<PathBuf> {
     Ok(workspace
         .join("target")
         .join(target.triple())
-        .join("release/qemu"))
+        .join("release/obscura-qemu"))
 }
 
 /// One frame as the firmware reported it.

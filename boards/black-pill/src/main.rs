@@ -19,34 +19,22 @@
 #![no_std]
 #![no_main]
 
-use core::fmt;
-use embedded_graphics::mono_font::{MonoTextStyleBuilder, ascii::FONT_6X10};
-use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
-use embedded_graphics::prelude::*;
-use embedded_graphics::text::{Baseline, Text};
-use embedded_hal_bus::spi::{ExclusiveDevice, NoDelay};
+use embedded_hal_bus::spi::ExclusiveDevice;
 use mipidsi::interface::SpiInterface;
 use mipidsi::models::ST7789;
 use mipidsi::options::ColorInversion;
 use obscura_firmware::clock::Clock;
-use obscura_firmware::frames::{self, Backend, Job, Report};
-use stm32f4xx_hal::gpio::{Output, PA2, PA3};
-use stm32f4xx_hal::pac::{self, SPI1};
+use obscura_firmware::frames;
+use obscura_firmware::screen::Screen;
+use stm32f4xx_hal::pac;
 use stm32f4xx_hal::prelude::*;
 use stm32f4xx_hal::rcc::Config;
-use stm32f4xx_hal::spi::{Mode, Phase, Polarity, Spi};
+use stm32f4xx_hal::spi::{Mode, Phase, Polarity};
 
 /// The Black Pill's crystal, and the core clock and SPI clock the firmware runs them at.
 const HSE_MHZ: u32 = 25;
 const SYSCLK_MHZ: u32 = 100;
 const SPI_MHZ: u32 = 50;
-
-/// The display as mipidsi drives it over SPI1, with no chip select.
-type Panel = mipidsi::Display<
-    SpiInterface<'static, ExclusiveDevice<Spi<SPI1, true>, NoChipSelect, NoDelay>, PA3<Output>>,
-    ST7789,
-    PA2<Output>,
->;
 
 /// Brings up the clocks, the SPI bus and the display, draws every configured frame, and sleeps.
 #[cortex_m_rt::entry]
@@ -86,7 +74,11 @@ fn main() -> ! {
         .init(&mut delay);
     let Ok(panel) = panel else { halt() };
     let clock = Clock::start(cp.SYST);
-    frames::render_all(&mut Board { panel }, &clock);
+    let mut screen = Screen {
+        display: panel,
+        core_mhz: SYSCLK_MHZ,
+    };
+    frames::render_all(&mut screen, &clock);
     halt();
 }
 
@@ -100,62 +92,6 @@ fn halt() -> ! {
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo<'_>) -> ! {
     halt();
-}
-
-/// The board with its display.
-struct Board {
-    panel: Panel,
-}
-
-impl Backend for Board {
-    type Display = Panel;
-
-    fn frame<R>(&mut self, _job: &Job<'_>, draw: impl FnOnce(&mut Panel) -> R) -> R {
-        draw(&mut self.panel)
-    }
-
-    fn report(&mut self, r: &Report<'_>) {
-        let ms = r.ticks / (u64::from(SYSCLK_MHZ) * 1000);
-        let (scene, format) = (r.job.scene, r.job.format);
-        let (stack, storage, fixed) = (r.stack_bytes, r.storage_bytes, r.fixed_storage_bytes);
-        let white = Rgb565::WHITE;
-        self.caption(1, format_args!("{scene} {format}: {ms} ms"), white);
-        self.caption(
-            0,
-            format_args!("stack {stack} B, scene {storage} B ({fixed})"),
-            white,
-        );
-    }
-
-    fn failed(&mut self, job: &Job<'_>, why: &dyn fmt::Display) {
-        self.caption(
-            1,
-            format_args!("{} {}:", job.scene, job.format),
-            Rgb565::RED,
-        );
-        self.caption(0, format_args!("{why}"), Rgb565::RED);
-    }
-
-    fn refused(&mut self, job: &Job<'_>, why: &dyn fmt::Display) {
-        self.failed(job, why);
-    }
-}
-
-impl Board {
-    /// Writes one line of text across the display, `line` lines up from the bottom.
-    fn caption(&mut self, line_from_bottom: i32, text: fmt::Arguments<'_>, colour: Rgb565) {
-        let mut line = heapless::String::<64>::new();
-        // A longer line is cut: the display shows 40 characters anyway.
-        let _ = fmt::write(&mut line, text);
-        let style = MonoTextStyleBuilder::new()
-            .font(&FONT_6X10)
-            .text_color(colour)
-            .background_color(Rgb565::BLACK)
-            .build();
-        let bottom_left = Point::new(2, 239 - 10 * line_from_bottom);
-        let _ =
-            Text::with_baseline(&line, bottom_left, style, Baseline::Bottom).draw(&mut self.panel);
-    }
 }
 
 /// The chip select of a module that has none: always selected.

@@ -41,7 +41,10 @@ fn main() -> ! {
         exit(false);
     };
     let clock = Clock::start(peripherals.SYST);
-    let mut host = Host { all_drawn: true };
+    let mut host = Host {
+        all_drawn: true,
+        file: FrameFile { handle: None },
+    };
     frames::render_all(&mut host, &clock);
     exit(host.all_drawn);
 }
@@ -63,16 +66,23 @@ unsafe fn HardFault(frame: &ExceptionFrame) -> ! {
 /// The host at the other end of the debugger.
 struct Host {
     all_drawn: bool,
+    /// The frame being drawn.
+    file: FrameFile,
 }
 
 impl Backend for Host {
     type Display = FrameFile;
 
-    fn frame<R>(&mut self, job: &Job<'_>, draw: impl FnOnce(&mut FrameFile) -> R) -> R {
-        let mut file = FrameFile::create(job);
-        let result = draw(&mut file);
-        file.close();
-        result
+    fn begin(&mut self, job: &Job<'_>) {
+        self.file = FrameFile::create(job);
+    }
+
+    fn display(&mut self) -> &mut FrameFile {
+        &mut self.file
+    }
+
+    fn end(&mut self) {
+        self.file.close();
     }
 
     fn report(&mut self, r: &Report<'_>) {
@@ -187,8 +197,9 @@ impl FrameFile {
         }
     }
 
-    fn close(self) {
-        if let Some(handle) = self.handle {
+    /// Closes the file; the frame is then a file with no handle, which draws nothing.
+    fn close(&mut self) {
+        if let Some(handle) = self.handle.take() {
             // SAFETY: CLOSE takes the handle OPEN returned, once.
             unsafe { syscall!(CLOSE, handle) };
         }
