@@ -110,7 +110,7 @@ cargo run --release --locked -p obscura-host -- firmware --target m4f \
 cargo run --release --locked -p obscura-host --features window -- preview \
     host/scenes/pyramid.toml --format i16f16 --order progressive --dither ordered --headless \
     -o target/preview.png
-cmp target/preview.png out/firmware/m4f/pyramid-i16f16-quadratic-cramer-exact-per-pixel-epsilon.png
+cmp target/preview.png out/firmware/m4f/pyramid-i16f16-lecture.png
 
 step "fuzz: random scenes for 150 s from a fixed seed, held to every promise"
 cargo run --release --locked -p obscura-host -- fuzz --seconds 150 --seed 1 --out-dir target/fuzz

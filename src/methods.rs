@@ -218,24 +218,49 @@ impl MethodName for BiasMethod {
         &[(Self::Epsilon, "epsilon"), (Self::Exclude, "exclude")];
 }
 
-/// `sphere=quadratic triangle=cramer sqrt=exact rays=per-pixel bias=epsilon`.
-impl fmt::Display for Methods {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "sphere={} triangle={} sqrt={} rays={} bias={}",
-            self.sphere.name(),
-            self.triangle.name(),
-            self.roots.name(),
-            self.rays.name(),
-            self.bias.name()
-        )
+impl Methods {
+    /// Each method that differs from the lecture's, as (question, name): `("sphere", "stable")`.
+    pub fn changes(&self) -> impl Iterator<Item = (&'static str, &'static str)> {
+        let base = Self::LECTURE;
+        [
+            (self.sphere != base.sphere, "sphere", self.sphere.name()),
+            (
+                self.triangle != base.triangle,
+                "triangle",
+                self.triangle.name(),
+            ),
+            (self.roots != base.roots, "sqrt", self.roots.name()),
+            (self.rays != base.rays, "rays", self.rays.name()),
+            (self.bias != base.bias, "bias", self.bias.name()),
+        ]
+        .into_iter()
+        .filter(|&(differs, _, _)| differs)
+        .map(|(_, question, name)| (question, name))
     }
 }
 
-/// Methods spelled as their [`fmt::Display`] spells them, or only those that differ from the
-/// lecture's: `sphere=stable,bias=exclude` (commas or spaces between them), `lecture` or
-/// nothing for the lecture's own. Each question at most once.
+/// The one spelling of a choice of methods, everywhere (the command line's reports, the
+/// firmware's configuration, its reports over QEMU, frame files, the chart's CSV): `lecture`
+/// for the lecture's own, otherwise each method that differs from it, in the order sphere,
+/// triangle, sqrt, rays, bias: `sphere=stable,bias=exclude`. [`core::str::FromStr`] reads it
+/// back.
+impl fmt::Display for Methods {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut changes = self.changes().peekable();
+        if changes.peek().is_none() {
+            return f.write_str("lecture");
+        }
+        for (i, (question, name)) in changes.enumerate() {
+            let separator = if i == 0 { "" } else { "," };
+            write!(f, "{separator}{question}={name}")?;
+        }
+        Ok(())
+    }
+}
+
+/// Methods spelled as their [`fmt::Display`] spells them (`lecture`, `sphere=stable,bias=exclude`),
+/// or with the lecture's own spelled out too, commas or spaces between them; nothing is the
+/// lecture's. Each question at most once.
 impl core::str::FromStr for Methods {
     type Err = ParseMethodsError;
 
@@ -331,6 +356,12 @@ mod tests {
             ..Methods::LECTURE
         };
         assert_eq!("sphere=stable,bias=exclude".parse(), Ok(stable));
+        assert_eq!(stable.to_string(), "sphere=stable,bias=exclude");
+        assert_eq!(Methods::LECTURE.to_string(), "lecture");
+        assert_eq!(
+            "sphere=stable triangle=cramer bias=exclude".parse(),
+            Ok(stable)
+        );
         assert_eq!("lecture".parse(), Ok(Methods::LECTURE));
         assert_eq!("".parse(), Ok(Methods::LECTURE));
         assert_eq!(
@@ -399,9 +430,6 @@ mod tests {
     #[test]
     fn the_lecture_is_the_default() {
         assert_eq!(Methods::default(), Methods::LECTURE);
-        assert_eq!(
-            Methods::LECTURE.to_string(),
-            "sphere=quadratic triangle=cramer sqrt=exact rays=per-pixel bias=epsilon"
-        );
+        assert_eq!(Methods::LECTURE.to_string(), "lecture");
     }
 }

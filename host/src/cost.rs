@@ -5,7 +5,6 @@
 
 use crate::firmware::Target;
 use crate::format::Format;
-use crate::variant;
 use clap::ValueEnum;
 use obscura::Methods;
 use obscura::scenes::{BUILT_IN, BuiltIn};
@@ -127,7 +126,7 @@ pub fn cost(
     methods: &Methods,
     has_triangles: bool,
 ) -> Option<f64> {
-    let label = variant::label(methods);
+    let label = methods.to_string();
     let on = |scene: &BuiltIn| {
         let matters = format.methods_matter(methods, &Methods::LECTURE, scene.desc.has_triangles());
         let of = |variant: &str| {

@@ -237,7 +237,7 @@ pub fn run(target: Target, elf: &Path, dir: &Path, timeout: Duration) -> Result<
         .collect()
 }
 
-/// Parses `frame scene=… format=… methods=…/…/…/…/… dither=… order=… width=… height=… ticks=… stack_bytes=…
+/// Parses `frame scene=… format=… methods=… dither=… order=… width=… height=… ticks=… stack_bytes=…
 /// storage_bytes=… fixed_storage_bytes=… file=…`.
 fn parse_frame(line: &str) -> Result<Frame> {
     let field = |key: &str| {
@@ -256,7 +256,9 @@ fn parse_frame(line: &str) -> Result<Frame> {
     Ok(Frame {
         scene: field("scene")?.to_owned(),
         format: field("format")?.to_owned(),
-        methods: parse_methods(field("methods")?)?,
+        methods: field("methods")?
+            .parse()
+            .map_err(|e| anyhow::anyhow!("{e} in `{line}`"))?,
         presentation: Presentation {
             dither: named(field("dither")?)?,
             order: named(field("order")?)?,
@@ -282,24 +284,6 @@ fn named<M: MethodName + PartialEq>(name: &str) -> Result<M> {
                 .collect::<Vec<_>>()
                 .join(", ")
         )
-    })
-}
-
-/// Parses `quadratic/cramer/exact/per-pixel/epsilon`.
-pub fn parse_methods(text: &str) -> Result<Methods> {
-    let mut names = text.split('/');
-    let mut next = || {
-        names
-            .next()
-            .with_context(|| format!("too few methods in `{text}`"))
-    };
-    let unknown = || format!("an unknown method in `{text}`");
-    Ok(Methods {
-        sphere: MethodName::from_name(next()?).with_context(unknown)?,
-        triangle: MethodName::from_name(next()?).with_context(unknown)?,
-        roots: MethodName::from_name(next()?).with_context(unknown)?,
-        rays: MethodName::from_name(next()?).with_context(unknown)?,
-        bias: MethodName::from_name(next()?).with_context(unknown)?,
     })
 }
 
@@ -433,7 +417,7 @@ mod tests {
 
     #[test]
     fn frame_lines_parse_and_bad_ones_say_why() {
-        let line = "frame scene=whitted format=i16f16 methods=stable/cramer/exact/per-pixel/exclude \
+        let line = "frame scene=whitted format=i16f16 methods=sphere=stable,bias=exclude \
                     dither=ordered order=progressive width=240 height=240 ticks=22633551 stack_bytes=4568 storage_bytes=488 \
                     fixed_storage_bytes=9000 file=whitted-i16f16.rgb565";
         let frame = parse_frame(line).unwrap();
@@ -460,8 +444,12 @@ mod tests {
                 order: obscura::RowOrder::Progressive
             }
         );
-        assert!(parse_methods("stable/cramer").is_err());
-        assert!(parse_methods("stable/cramer/exact/per-pixel/sideways").is_err());
+        let sideways = line.replace("bias=exclude", "rays=sideways");
+        let error = parse_frame(&sideways).unwrap_err().to_string();
+        assert!(
+            error.contains("the rays method is per-pixel or stepped"),
+            "{error}"
+        );
         let error = parse_frame("frame scene=whitted").unwrap_err().to_string();
         assert!(error.contains("no format"), "{error}");
     }

@@ -28,7 +28,6 @@ mod render;
 mod scene_file;
 mod stress;
 mod timing;
-mod variant;
 
 use clap::Parser;
 use std::process::ExitCode;

@@ -4,8 +4,7 @@
 //! standard output:
 //!
 //! ```text
-//! frame scene=whitted format=i16f16 methods=quadratic/cramer/exact/per-pixel/epsilon
-//!   dither=none order=top-down width=240 height=240 ticks=… stack_bytes=… storage_bytes=… fixed_storage_bytes=… file=…
+//! frame scene=whitted format=i16f16 methods=lecture dither=none order=top-down width=240 height=240 ticks=… stack_bytes=… storage_bytes=… fixed_storage_bytes=… file=…
 //! ```
 //!
 //! A chart variant the scene build refuses is a line `refused scene=… format=… methods=…
@@ -27,7 +26,6 @@ use cortex_m_semihosting::{hprintln, nr, syscall};
 use embedded_graphics_core::pixelcolor::{IntoStorage, Rgb565};
 use embedded_graphics_core::prelude::*;
 use embedded_graphics_core::primitives::Rectangle;
-use obscura::Methods;
 use obscura::methods::MethodName;
 use obscura_firmware::SIDE;
 use obscura_firmware::clock::Clock;
@@ -91,7 +89,7 @@ impl Backend for Host {
             "frame scene={} format={} methods={} dither={} order={} width={SIDE} height={SIDE} ticks={} stack_bytes={} storage_bytes={} fixed_storage_bytes={} file={}",
             job.scene,
             job.format,
-            Path(job),
+            job.methods,
             job.presentation.dither.name(),
             job.presentation.order.name(),
             r.ticks,
@@ -108,7 +106,7 @@ impl Backend for Host {
             "error scene={} format={} methods={} message={why}",
             job.scene,
             job.format,
-            Path(job)
+            job.methods
         );
     }
 
@@ -117,45 +115,19 @@ impl Backend for Host {
             "refused scene={} format={} methods={} message={why}",
             job.scene,
             job.format,
-            Path(job)
+            job.methods
         );
     }
 }
 
-/// The methods' names, in the order sphere, triangle, roots, rays, bias.
-fn names(m: Methods) -> [&'static str; 5] {
-    [
-        m.sphere.name(),
-        m.triangle.name(),
-        m.roots.name(),
-        m.rays.name(),
-        m.bias.name(),
-    ]
-}
-
-/// The methods of a job as `quadratic/cramer/exact/per-pixel/epsilon`.
-struct Path<'a>(&'a Job<'a>);
-
-impl fmt::Display for Path<'_> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        for (i, name) in names(self.0.methods).iter().enumerate() {
-            let separator = if i == 0 { "" } else { "/" };
-            write!(f, "{separator}{name}")?;
-        }
-        Ok(())
-    }
-}
-
-/// The frame file's name: `SCENE-FORMAT-METHOD-…-METHOD.rgb565`.
+/// The frame file's name: `SCENE-FORMAT-METHODS.rgb565`, the methods as they are spelled
+/// everywhere (`lecture`, `sphere=stable,bias=exclude`).
 struct FileName<'a>(&'a Job<'a>);
 
 impl fmt::Display for FileName<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}-{}", self.0.scene, self.0.format)?;
-        for name in names(self.0.methods) {
-            write!(f, "-{name}")?;
-        }
-        f.write_str(".rgb565")
+        let job = self.0;
+        write!(f, "{}-{}-{}.rgb565", job.scene, job.format, job.methods)
     }
 }
 

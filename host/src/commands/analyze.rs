@@ -16,7 +16,7 @@ fn analyze(args: &AnalyzeArgs, named: &NamedScene) -> Result<()> {
     let size @ (width, height) = args.size;
     let methods = args.methods.methods();
     let analysis = Analysis::of(&named.scene, methods, width, height)?;
-    say!("# {} by {methods}\n", named.name)?;
+    say!("# {} by methods {methods}\n", named.name)?;
     print_extents(&analysis.extents)?;
     print_bits(&analysis.bits)?;
     say!(

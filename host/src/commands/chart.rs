@@ -14,7 +14,6 @@ use crate::pareto;
 use crate::plot::{self, SpeedPoint};
 use crate::render::{AnyFormat, Request, all_cores, prepare, prepare_reference};
 use crate::timing::interleaved_median_ms;
-use crate::variant;
 use anyhow::{Context, Result, bail};
 use obscura::scenes::{self, BuiltIn};
 use obscura::{Methods, Presentation};
@@ -145,9 +144,7 @@ pub fn run(args: &ChartArgs) -> Result<()> {
         let label = || {
             format!(
                 "{} in {} by {}",
-                variant.scene.name,
-                variant.format,
-                variant::label(&variant.methods)
+                variant.scene.name, variant.format, variant.methods
             )
         };
         let image = contender.render(threads, None).with_context(label)?;
@@ -176,7 +173,7 @@ pub fn run(args: &ChartArgs) -> Result<()> {
         .map(|((v, acc), ms)| SpeedPoint {
             scene: v.scene.name.to_owned(),
             format: v.format.name().to_owned(),
-            variant: variant::label(&v.methods),
+            variant: v.methods.to_string(),
             m4f_instructions_per_pixel: costs
                 .get(&(Target::M4f, v.scene.name, v.format, v.methods))
                 .copied(),
@@ -214,7 +211,7 @@ pub fn run(args: &ChartArgs) -> Result<()> {
             "refused: {} in {} by {}: {reason}",
             v.scene.name,
             v.format,
-            variant::label(&v.methods)
+            v.methods.to_string()
         )?;
     }
     print_recommendations(&measured, &points)?;
@@ -379,7 +376,7 @@ fn print_recommendations(measured: &[&Variant], points: &[SpeedPoint]) -> io::Re
         }
         match best {
             Some((_, format, methods)) => {
-                say!("  {name}: {format} by {}", variant::label(&methods))?;
+                say!("  {name}: {format} by {}", methods)?;
             }
             None => say!("  {name}: no measurement")?,
         }

@@ -63,7 +63,13 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
         presentation.dither.name(),
         frame_time.map_or_else(
             || "no chart figure to pace it by".to_owned(),
-            |t| format!("about {:.1} s a frame, by the chart", t.as_secs_f64())
+            |t| {
+                format!(
+                    "about {:.1} s a frame, by the chart's instructions per pixel on the \
+                     built-in scene most like it",
+                    t.as_secs_f64()
+                )
+            }
         )
     )?;
     let pixels = if args.headless {

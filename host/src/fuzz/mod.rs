@@ -29,7 +29,6 @@ use crate::format::Format;
 use crate::metrics::{Accuracy, accuracy};
 use crate::owned::OwnedScene;
 use crate::render::{Request, exact_roots, prepare, prepare_reference};
-use crate::variant;
 use anyhow::{Context, Result};
 use image::RgbImage;
 use obscura::methods::MethodName;
@@ -449,7 +448,7 @@ fn write_reproducer(dir: &Path, scene: &OwnedScene, finding: &Finding) -> Result
         "fuzz-{}-{}-{}.toml",
         finding.seed,
         finding.format,
-        variant::label(&finding.methods).replace([',', '='], "-")
+        finding.methods.to_string().replace([',', '='], "-")
     );
     let path = dir.join(name);
     let body = toml::to_string(scene).context("the scene cannot be written as TOML")?;
