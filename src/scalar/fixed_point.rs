@@ -20,6 +20,7 @@ use super::isqrt::{
     MANTISSA_BITS, MANTISSA_SCALE, ROOT_SCALE, RootPair, isqrt_u64, root_pair, rsqrt_fixed,
     rsqrt_mantissa,
 };
+use super::kernels::{mul_i32_wide, mul_u32_wide};
 use core::cmp::Ordering;
 use core::fmt;
 use core::hash::Hash;
@@ -161,14 +162,14 @@ pub trait WideBits: Copy + Ord {
 }
 
 macro_rules! wide_bits {
-    ($($bits:ident => $wide:ident, fast: $fast:literal, root_error: $root_error:expr, roots: $sqrt:path, $rsqrt:path, $normalize:path);*) => {$(
+    ($($bits:ident => $wide:ident, mul: $mul:path, fast: $fast:literal, root_error: $root_error:expr, roots: $sqrt:path, $rsqrt:path, $normalize:path);*) => {$(
         impl WideBits for $bits {
             type Wide = $wide;
             const FAST_ROOTS: bool = $fast;
             const ROOT_ERROR: f64 = $root_error;
             #[inline]
             fn wide_mul(self, rhs: Self) -> $wide {
-                <$wide>::from(self) * <$wide>::from(rhs)
+                $mul(self, rhs)
             }
             #[inline]
             fn wide_add(a: $wide, b: $wide) -> ($wide, bool) {
@@ -220,10 +221,16 @@ macro_rules! wide_bits {
     )*};
 }
 wide_bits!(
-    i32 => i64, fast: true, root_error: 0.0, roots: sqrt_raw_32, rsqrt_raw_32, normalize_raw_32;
+    i32 => i64, mul: mul_i32_wide, fast: true, root_error: 0.0, roots: sqrt_raw_32, rsqrt_raw_32, normalize_raw_32;
     // The root pair keeps about 30 bits, short of the 64-bit formats' fraction.
-    i64 => i128, fast: false, root_error: 1.0 / (1_u64 << 29) as f64, roots: sqrt_raw_64, rsqrt_raw_64, normalize_raw_64
+    i64 => i128, mul: mul_i64_wide, fast: false, root_error: 1.0 / (1_u64 << 29) as f64, roots: sqrt_raw_64, rsqrt_raw_64, normalize_raw_64
 );
+
+/// a·b exactly, for the 64-bit format (in 128 bits, a library call on every 32-bit machine).
+#[inline]
+fn mul_i64_wide(a: i64, b: i64) -> i128 {
+    i128::from(a) * i128::from(b)
+}
 
 /// The 32-bit formats' unit vectors. With y = Σvᵢ² exact in u64 (each below 2⁶², three below
 /// 2⁶⁴) and its [`RootPair`] (1/√y = z·2^(s − 62), √y = r·2^−(30 + s)): the unit vector's raw
@@ -233,7 +240,7 @@ wide_bits!(
 fn normalize_raw_32(v: [i32; 3], frac: u32, fast: bool) -> Option<([i32; 3], i32)> {
     let y: u64 = v
         .iter()
-        .map(|&c| u64::from(c.unsigned_abs()) * u64::from(c.unsigned_abs()))
+        .map(|&c| mul_u32_wide(c.unsigned_abs(), c.unsigned_abs()))
         .sum();
     if y == 0 {
         return None;

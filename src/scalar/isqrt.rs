@@ -11,7 +11,11 @@
 //!
 //! Then √y = m·z·2^(32 − k) and 1/√y = z·2^(k − 32), and the two routines scale accordingly.
 //! [`isqrt_u64`] finishes by stepping to the exact ⌊√y⌋, so its result is the mathematical one;
-//! [`rsqrt_fixed`] rounds. Both are integer arithmetic, so every target computes the same bits.
+//! [`rsqrt_fixed`] rounds. Both are integer arithmetic, so every target computes the same bits;
+//! every product has operands below 2³², which the Cortex-M0 multiplies without a library call
+//! ([`mul_u64_small`]).
+
+use super::kernels::mul_u64_small;
 
 /// ⌊2³⁰ / √((i + 64.5) / 256)⌋ = ⌊√(2⁶⁹ / (2i + 129))⌋: 1/√m in Q2.30 at the middle of each
 /// of the 192 intervals of m's top eight bits (64..256, as m ≥ ¼).
@@ -68,9 +72,9 @@ fn rsqrt_q30(y: u64, steps: u32) -> (u64, u64, u32) {
     let mut z = u64::from(RSQRT_SEEDS.get(index).copied().unwrap_or(1 << 30));
     for _ in 0..steps {
         // z < 2³¹ and m·z² < 3·2⁶², so every product fits u64.
-        let z_squared = (z * z) >> 30;
-        let m_z_squared = (m * z_squared) >> 32;
-        z = (z * ((3 << 30) - m_z_squared)) >> 31;
+        let z_squared = mul_u64_small(z, z) >> 30;
+        let m_z_squared = mul_u64_small(m, z_squared) >> 32;
+        z = mul_u64_small(z, (3 << 30) - m_z_squared) >> 31;
     }
     (m, z, shift)
 }
@@ -90,12 +94,13 @@ pub fn isqrt_u64(y: u64, fast: bool) -> u64 {
         return 0;
     }
     let (m, z, shift) = rsqrt_q30(y, steps(fast));
-    let mut root = ((m * z) >> 30) >> (shift / 2);
+    let mut root = (mul_u64_small(m, z) >> 30) >> (shift / 2);
     if !fast {
-        while root * root > y {
+        // root < 2³¹, so its square and its successor's fit u32 products.
+        while mul_u64_small(root, root) > y {
             root -= 1;
         }
-        while (root + 1) * (root + 1) <= y {
+        while mul_u64_small(root + 1, root + 1) <= y {
             root += 1;
         }
     }
@@ -161,7 +166,7 @@ pub fn root_pair(y: u64, fast: bool) -> RootPair {
     RootPair {
         inverse,
         // m < 2³² and z < 2³¹.
-        root: m * inverse,
+        root: mul_u64_small(m, inverse),
         s: shift / 2,
     }
 }

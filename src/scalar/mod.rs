@@ -18,6 +18,7 @@ mod approx;
 mod fixed_point;
 mod float;
 mod isqrt;
+mod kernels;
 
 pub use approx::F32Approx;
 pub use fixed_point::{Fx, I16F16, I20F12, I32F32, Operation, Overflow, Proven, WideBits};
