@@ -20,7 +20,7 @@ use super::isqrt::{
     MANTISSA_BITS, MANTISSA_SCALE, ROOT_SCALE, RootPair, isqrt_u64, root_pair, rsqrt_fixed,
     rsqrt_mantissa,
 };
-use super::kernels::{mul_i32_wide, mul_u32_wide};
+use super::kernels::{div_i32_fixed, mul_i32_wide, mul_u32_wide};
 use core::cmp::Ordering;
 use core::fmt;
 use core::hash::Hash;
@@ -133,6 +133,10 @@ pub trait WideBits: Copy + Ord {
     fn wide_mul(self, rhs: Self) -> Self::Wide;
     /// The sum of two products, and whether it wrapped.
     fn wide_add(a: Self::Wide, b: Self::Wide) -> (Self::Wide, bool);
+    /// self·2^frac / rhs truncated towards zero, or `None` when rhs is zero or the quotient
+    /// does not fit (what `fixed`'s `checked_div` gives, without a 64-bit division where the
+    /// machine lacks one).
+    fn div_fixed(self, rhs: Self, frac: u32) -> Option<Self>;
     /// `wide / 2^frac` rounded to nearest (ties up), and whether it wrapped.
     fn narrow(wide: Self::Wide, frac: u32) -> (Self, bool);
     /// `wide / 2^frac` rounded to nearest (ties up), saturated to `Self`.
@@ -162,7 +166,7 @@ pub trait WideBits: Copy + Ord {
 }
 
 macro_rules! wide_bits {
-    ($($bits:ident => $wide:ident, mul: $mul:path, fast: $fast:literal, root_error: $root_error:expr, roots: $sqrt:path, $rsqrt:path, $normalize:path);*) => {$(
+    ($($bits:ident => $wide:ident, mul: $mul:path, div: $div:path, fast: $fast:literal, root_error: $root_error:expr, roots: $sqrt:path, $rsqrt:path, $normalize:path);*) => {$(
         impl WideBits for $bits {
             type Wide = $wide;
             const FAST_ROOTS: bool = $fast;
@@ -170,6 +174,10 @@ macro_rules! wide_bits {
             #[inline]
             fn wide_mul(self, rhs: Self) -> $wide {
                 $mul(self, rhs)
+            }
+            #[inline]
+            fn div_fixed(self, rhs: Self, frac: u32) -> Option<Self> {
+                $div(self, rhs, frac)
             }
             #[inline]
             fn wide_add(a: $wide, b: $wide) -> ($wide, bool) {
@@ -221,15 +229,24 @@ macro_rules! wide_bits {
     )*};
 }
 wide_bits!(
-    i32 => i64, mul: mul_i32_wide, fast: true, root_error: 0.0, roots: sqrt_raw_32, rsqrt_raw_32, normalize_raw_32;
+    i32 => i64, mul: mul_i32_wide, div: div_i32_fixed, fast: true, root_error: 0.0, roots: sqrt_raw_32, rsqrt_raw_32, normalize_raw_32;
     // The root pair keeps about 30 bits, short of the 64-bit formats' fraction.
-    i64 => i128, mul: mul_i64_wide, fast: false, root_error: 1.0 / (1_u64 << 29) as f64, roots: sqrt_raw_64, rsqrt_raw_64, normalize_raw_64
+    i64 => i128, mul: mul_i64_wide, div: div_i64_fixed, fast: false, root_error: 1.0 / (1_u64 << 29) as f64, roots: sqrt_raw_64, rsqrt_raw_64, normalize_raw_64
 );
 
 /// a·b exactly, for the 64-bit format (in 128 bits, a library call on every 32-bit machine).
 #[inline]
 fn mul_i64_wide(a: i64, b: i64) -> i128 {
     i128::from(a) * i128::from(b)
+}
+
+/// a·2^frac / b truncated towards zero, for the 64-bit format (in 128 bits).
+#[inline]
+fn div_i64_fixed(a: i64, b: i64, frac: u32) -> Option<i64> {
+    if b == 0 {
+        return None;
+    }
+    i64::try_from((i128::from(a) << frac) / i128::from(b)).ok()
 }
 
 /// The 32-bit formats' unit vectors. With y = Σvᵢ² exact in u64 (each below 2⁶², three below
@@ -405,8 +422,8 @@ where
     /// true quotient (zero for 0/0).
     #[inline]
     fn div(self, rhs: Self) -> Self {
-        match self.0.checked_div(rhs.0) {
-            Some(q) => Self::new(q),
+        match self.0.to_bits().div_fixed(rhs.0.to_bits(), F::FRAC_NBITS) {
+            Some(q) => Self::new(F::from_bits(q)),
             None => {
                 let sign = if rhs.0 == F::ZERO {
                     self.0.cmp(&F::ZERO)
@@ -577,6 +594,33 @@ const fn fixed_name<F: Fixed>() -> &'static str {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_64_bit_formats_division_is_fixeds() {
+        use fixed::types::I32F32 as Raw;
+        let edges = [
+            0,
+            1,
+            -1,
+            2,
+            -2,
+            1 << 32,
+            -(1 << 32),
+            i64::MAX,
+            i64::MIN,
+            i64::MAX - 1,
+        ];
+        let sweep = (0..500_i64).map(|i| i.wrapping_mul(0x9E37_79B9_7F4A_7C15_u64 as i64));
+        let all: Vec<i64> = edges.into_iter().chain(sweep).collect();
+        for &a in &all {
+            for &b in &all {
+                let expected = Raw::from_bits(a)
+                    .checked_div(Raw::from_bits(b))
+                    .map(Raw::to_bits);
+                assert_eq!(div_i64_fixed(a, b, 32), expected, "{a} / {b}");
+            }
+        }
+    }
 
     fn fx(x: f64) -> I16F16 {
         I16F16::from_f64(x).unwrap()

@@ -3,6 +3,10 @@
 //! Cortex-M4F (`smull`) or a PC, but the Cortex-M0 has no such multiply, and for `i64::from(a) *
 //! i64::from(b)` its compiler calls `__aeabi_lmul`, a full 64×64 product. There it is made from
 //! four 16×16→32 partial products (`muls` each), which is the exact product again.
+//!
+//! A 32-bit format's quotient a·2^f / b is a 64-by-32-bit division, for which every 32-bit
+//! compiler calls `__aeabi_ldivmod`, a full 64-by-64 division. [`div_u64_u32`] divides by 32-bit
+//! steps instead (the M4F's `udiv`, one library call each on the M0), with the same quotient.
 
 /// a·b exactly.
 #[inline(always)]
@@ -58,9 +62,101 @@ fn mul_u32_partial(a: u32, b: u32) -> u64 {
     (u64::from(a1 * b1) << 32) + (middle << 16) + u64::from(a0 * b0)
 }
 
+/// ⌊n / d⌋ for d > 0, or `None` when it does not fit 32 bits: long division in 16-bit digits by
+/// 32-bit divisions (Warren, Hacker's Delight, 2nd ed., §9-4, `divlu`).
+#[inline]
+pub fn div_u64_u32(n: u64, d: u32) -> Option<u32> {
+    const DIGIT: u32 = 1 << 16;
+    let (high, low) = ((n >> 32) as u32, n as u32);
+    if d == 0 || high >= d {
+        return None;
+    }
+    // Normalise: the divisor's top bit set, the dividend shifted alike (it still fits, as
+    // high < d).
+    let s = d.leading_zeros();
+    let d = d << s;
+    let (d1, d0) = (d >> 16, d & 0xFFFF);
+    let high = if s == 0 {
+        high
+    } else {
+        (high << s) | (low >> (32 - s))
+    };
+    let low = low << s;
+    let (n1, n0) = (low >> 16, low & 0xFFFF);
+    // Each quotient digit, estimated from the top digits and corrected at most twice.
+    let digit = |upper: u32, next: u32| {
+        let mut q = upper / d1;
+        let mut r = upper - q * d1;
+        while q >= DIGIT || mul_u32_wide(q, d0) > (u64::from(r) << 16) + u64::from(next) {
+            q -= 1;
+            r += d1;
+            if r >= DIGIT {
+                break;
+            }
+        }
+        q
+    };
+    let q1 = digit(high, n1);
+    let middle = high
+        .wrapping_mul(DIGIT)
+        .wrapping_add(n1)
+        .wrapping_sub(q1.wrapping_mul(d));
+    let q0 = digit(middle, n0);
+    Some(q1 * DIGIT + q0)
+}
+
+/// a·2^`frac` / b truncated towards zero, for the 32-bit formats' division, or `None` when b is
+/// zero or the quotient does not fit (as `fixed`'s `checked_div`).
+#[inline]
+pub fn div_i32_fixed(a: i32, b: i32, frac: u32) -> Option<i32> {
+    let quotient = div_u64_u32(u64::from(a.unsigned_abs()) << frac, b.unsigned_abs())?;
+    if (a < 0) == (b < 0) {
+        i32::try_from(quotient).ok()
+    } else {
+        0_i32.checked_sub_unsigned(quotient)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn long_division_is_the_exact_quotient() {
+        let all = operands();
+        for &d in &all {
+            for &a in &all {
+                for shift in [0, 12, 16, 31, 32] {
+                    let n = u64::from(a) << shift;
+                    let exact = if d == 0 {
+                        None
+                    } else {
+                        u32::try_from(n / u64::from(d)).ok()
+                    };
+                    assert_eq!(div_u64_u32(n, d), exact, "{n} / {d}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn fixed_division_is_the_formats_own() {
+        use fixed::types::{I16F16, I20F12};
+        let all = operands();
+        for &a in &all {
+            for &b in &all {
+                let (a, b) = (a as i32, b as i32);
+                let expected = I16F16::from_bits(a)
+                    .checked_div(I16F16::from_bits(b))
+                    .map(I16F16::to_bits);
+                assert_eq!(div_i32_fixed(a, b, 16), expected, "{a} / {b} in I16F16");
+                let expected = I20F12::from_bits(a)
+                    .checked_div(I20F12::from_bits(b))
+                    .map(I20F12::to_bits);
+                assert_eq!(div_i32_fixed(a, b, 12), expected, "{a} / {b} in I20F12");
+            }
+        }
+    }
 
     /// Operands at every edge of the range and in between: 0, ±1, powers of two and their
     /// neighbours, the extremes, and a sweep by a large odd step.
