@@ -83,9 +83,9 @@ impl<S: Scalar> Rgb<S> {
     /// Each channel `floor(clamp(v, 0, 1) · max + threshold)`, with `threshold` in (0, 1).
     fn quantize_with<C: DisplayColor>(self, threshold: S) -> C {
         C::from_channels(
-            quantize_channel(self.r, C::MAX_R, threshold),
-            quantize_channel(self.g, C::MAX_G, threshold),
-            quantize_channel(self.b, C::MAX_B, threshold),
+            self.r.quantize(C::MAX_R, threshold),
+            self.g.quantize(C::MAX_G, threshold),
+            self.b.quantize(C::MAX_B, threshold),
         )
     }
 }
@@ -113,13 +113,6 @@ fn bayer(x: u32, y: u32) -> i32 {
         .and_then(|row| row.get((x % 4) as usize))
         .copied()
         .unwrap_or(0)
-}
-
-/// `floor(clamp(v, 0, 1) · max + threshold)`.
-#[inline]
-fn quantize_channel<S: Scalar>(v: S, max: u8, threshold: S) -> u8 {
-    let scaled = v.clamp(S::ZERO, S::ONE) * S::from_int(i32::from(max)) + threshold;
-    u8::try_from(scaled.floor_int().clamp(0, i32::from(max))).unwrap_or(max)
 }
 
 impl<S: Scalar> Add for Rgb<S> {

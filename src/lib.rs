@@ -53,6 +53,8 @@ pub use desc::{
     BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc,
     ShapeDesc, Y_UP,
 };
+/// The `fixed` crate, whose types give [`Fx`] its binary point: `Fx<fixed::types::I12F20>`.
+pub use fixed;
 pub use methods::{
     BiasMethod, Methods, ParseMethodsError, RayMethod, RootMethod, SphereMethod, TriangleMethod,
 };
@@ -60,7 +62,8 @@ pub use ray::Ray;
 pub use render::{
     Presentation, RenderError, RowOrder, render_frame, render_rows, send_row, trace_row,
 };
-pub use scalar::{F32Approx, I16F16, I20F12, I32F32, Scalar};
+pub use scalar::names as formats;
+pub use scalar::{F32Approx, Fx, I16F16, I20F12, I32F32, Scalar};
 pub use scene::{Item, Remedy, Scene, SceneError};
 pub use shade::Sample;
 pub use vec3::Vec3;

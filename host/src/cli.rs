@@ -10,6 +10,7 @@ use obscura::{
     BiasMethod, Dither, Methods, RayMethod, RootMethod, RowOrder, SphereMethod, TriangleMethod,
 };
 use std::path::PathBuf;
+use std::sync::LazyLock;
 
 /// Ray traces in fixed point the way a microcontroller would, and measures what that costs
 /// against a floating-point reference.
@@ -124,15 +125,11 @@ pub enum FormatChoice {
 
 impl ValueEnum for FormatChoice {
     fn value_variants<'a>() -> &'a [Self] {
-        &[
-            Self::Given(Format::I16f16),
-            Self::Given(Format::I20f12),
-            Self::Given(Format::I32f32),
-            Self::Given(Format::F32Approx),
-            Self::Given(Format::F32),
-            Self::Given(Format::F64),
-            Self::Auto,
-        ]
+        static CHOICES: LazyLock<Vec<FormatChoice>> = LazyLock::new(|| {
+            let given = Format::ALL.iter().copied().map(FormatChoice::Given);
+            given.chain([FormatChoice::Auto]).collect()
+        });
+        &CHOICES
     }
 
     fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {

@@ -161,7 +161,7 @@ mod tests {
 
     #[test]
     fn the_committed_chart_prices_every_firmware_format_on_every_machine() {
-        for format in Format::FIRMWARE {
+        for &format in Format::FIRMWARE {
             for machine in Machine::ALL {
                 for triangles in [false, true] {
                     let cost = cost(machine, format, &Methods::LECTURE, triangles);

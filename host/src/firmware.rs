@@ -59,18 +59,30 @@ impl Target {
         }
     }
 
-    /// The formats of each firmware image the chart runs: as many as fit the flash (the M0's
-    /// 256 KiB hold the 32-bit fixed formats, `i32f32` or the float formats, each with every
-    /// method variant).
-    pub fn chart_images(self) -> &'static [&'static [Format]] {
-        match self {
-            Self::M4f => &[&Format::FIRMWARE],
-            Self::M0 => &[
-                &[Format::I16f16, Format::I20f12],
-                &[Format::I32f32],
-                &[Format::F32Approx, Format::F32],
-            ],
-        }
+    /// The formats of each firmware image the chart runs, every one with every method
+    /// variant: formats of one kind (32-bit fixed, 64-bit fixed, float) together, as many as
+    /// fit the flash (on the M0's 256 KiB, two 32-bit fixed formats, or `i32f32` alone, or
+    /// the two f32 formats).
+    pub fn chart_images(self) -> Vec<Vec<Format>> {
+        let of_kind = |kind: fn(&Format) -> bool| -> Vec<Format> {
+            Format::FIRMWARE.iter().copied().filter(kind).collect()
+        };
+        // Each kind, and how many of it the M0's flash holds.
+        let kinds = [
+            (of_kind(|f| f.is_fixed_32()), 2),
+            (of_kind(|f| f.is_fixed_point() && !f.is_fixed_32()), 1),
+            (of_kind(|f| !f.is_fixed_point()), 2),
+        ];
+        kinds
+            .iter()
+            .flat_map(|(formats, on_m0)| {
+                let per_image = match self {
+                    Self::M4f => 6,
+                    Self::M0 => *on_m0,
+                };
+                formats.chunks(per_image).map(<[Format]>::to_vec)
+            })
+            .collect()
     }
 
     /// What a firmware for this microcontroller may occupy: on the M4F a quarter of the F411's

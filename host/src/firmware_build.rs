@@ -186,7 +186,11 @@ pub fn configure(
         let format = match FormatChoice::from_str(name, false) {
             Ok(FormatChoice::Given(Format::F64)) | Err(_) => bail!(
                 "{FORMATS}: `{name}` is not a firmware format: {}, or auto",
-                Format::FIRMWARE.map(Format::name).join(", ")
+                Format::FIRMWARE
+                    .iter()
+                    .map(|f| f.name())
+                    .collect::<Vec<_>>()
+                    .join(", ")
             ),
             Ok(FormatChoice::Given(format)) => format,
             Ok(FormatChoice::Auto) => auto(&scenes, methods, machine, target_psnr)?,
@@ -585,7 +589,9 @@ mod tests {
         assert_eq!(configuration.inputs().len(), 1);
         let source = configuration.source();
         assert!(
-            source.contains("crate::frames::variants::<f32, 5, 2, 5>(backend, clock, \"marbles\""),
+            source.contains(
+                "crate::frames::variants::<obscura::formats::F32, 5, 2, 5>(backend, clock, \"marbles\""
+            ),
             "{source}"
         );
     }

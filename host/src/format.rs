@@ -3,26 +3,51 @@
 
 use crate::checked::CheckedFx;
 use clap::ValueEnum;
+use clap::builder::PossibleValue;
 use obscura::{Methods, Scalar};
 use std::fmt;
 
-/// A number format of the core, by its command-line name.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, ValueEnum)]
-pub enum Format {
-    /// Signed 16.16 fixed point (32-bit): the firmware's default.
-    I16f16,
-    /// Signed 20.12 fixed point (32-bit): four more integer bits, four fewer fraction bits.
-    I20f12,
-    /// Signed 32.32 fixed point (64-bit).
-    I32f32,
-    /// IEEE single precision with micromath's approximate roots and reciprocals.
-    #[value(name = "f32-approx")]
-    F32Approx,
-    /// IEEE single precision.
-    F32,
-    /// IEEE double precision: the reference.
-    F64,
+/// Builds [`Format`] from the core's one list of formats ([`obscura::for_each_format!`]).
+macro_rules! format_enum {
+    (fixed { $($fixed:ident => $raw:ident,)* } float { $($float:ident => $ty:ty,)* }) => {
+        /// A number format of the core, by its command-line name ([`Scalar::NAME`]).
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        pub enum Format {
+            $(
+                #[doc = concat!("Signed fixed point, `", stringify!($raw), "`.")]
+                $fixed,
+            )*
+            $(
+                #[doc = concat!("`", stringify!($ty), "`.")]
+                $float,
+            )*
+        }
+
+        impl Format {
+            /// Every format, from the smallest range to the largest: the 32-bit fixed formats
+            /// from the most fraction bits to the fewest, the 64-bit fixed format, then the
+            /// floats, f64 last.
+            pub const ALL: &'static [Self] = &[$(Self::$fixed,)* $(Self::$float,)*];
+
+            /// Runs `job` in this format.
+            pub fn run<J: FormatJob>(self, job: J) -> J::Output {
+                match self {
+                    $(Self::$fixed => job.run::<CheckedFx<obscura::fixed::types::$raw>>(),)*
+                    $(Self::$float => job.run::<$ty>(),)*
+                }
+            }
+
+            /// The core's type for the format, as Rust source (what a firmware computes in).
+            pub fn rust_type(self) -> &'static str {
+                match self {
+                    $(Self::$fixed => concat!("obscura::formats::", stringify!($fixed)),)*
+                    $(Self::$float => concat!("obscura::formats::", stringify!($float)),)*
+                }
+            }
+        }
+    };
 }
+obscura::for_each_format!(format_enum);
 
 /// Work that is generic over the number format: `Format::run` picks the instantiation.
 pub trait FormatJob {
@@ -33,17 +58,8 @@ pub trait FormatJob {
 }
 
 impl Format {
-    /// Runs `job` in this format.
-    pub fn run<J: FormatJob>(self, job: J) -> J::Output {
-        match self {
-            Self::I16f16 => job.run::<CheckedFx<fixed::types::I16F16>>(),
-            Self::I20f12 => job.run::<CheckedFx<fixed::types::I20F12>>(),
-            Self::I32f32 => job.run::<CheckedFx<fixed::types::I32F32>>(),
-            Self::F32Approx => job.run::<obscura::F32Approx>(),
-            Self::F32 => job.run::<f32>(),
-            Self::F64 => job.run::<f64>(),
-        }
-    }
+    /// Every format a firmware can compute in (f64 stays on the host).
+    pub const FIRMWARE: &'static [Self] = Self::ALL.split_last().expect("f64 is listed").1;
 
     /// The name the core gives the format.
     pub fn name(self) -> &'static str {
@@ -56,27 +72,6 @@ impl Format {
         }
         self.run(Name)
     }
-}
-
-impl Format {
-    /// Every format, smallest first.
-    pub const ALL: [Self; 6] = [
-        Self::I16f16,
-        Self::I20f12,
-        Self::I32f32,
-        Self::F32Approx,
-        Self::F32,
-        Self::F64,
-    ];
-
-    /// Every format a firmware can compute in, smallest first (f64 stays on the host).
-    pub const FIRMWARE: [Self; 5] = [
-        Self::I16f16,
-        Self::I20f12,
-        Self::I32f32,
-        Self::F32Approx,
-        Self::F32,
-    ];
 
     /// Whether `methods` differ meaningfully from `base` in this format for a scene with or
     /// without triangles ([`obscura::Methods::matter`]).
@@ -91,22 +86,39 @@ impl Format {
         self.run(Matter(methods, base, has_triangles))
     }
 
-    /// The core's type for the format, as Rust source (what a firmware computes in).
-    pub fn rust_type(self) -> &'static str {
-        match self {
-            Self::I16f16 => "obscura::I16F16",
-            Self::I20f12 => "obscura::I20F12",
-            Self::I32f32 => "obscura::I32F32",
-            Self::F32Approx => "obscura::F32Approx",
-            Self::F32 => "f32",
-            Self::F64 => "f64",
+    /// The fixed format's integer and fraction bits (the sign among the integer's); `None` for
+    /// a float.
+    pub fn split(self) -> Option<(u32, u32)> {
+        struct Split;
+        impl FormatJob for Split {
+            type Output = Option<(u32, u32)>;
+            fn run<S: Scalar>(self) -> Option<(u32, u32)> {
+                S::SPLIT
+            }
         }
+        self.run(Split)
     }
 
     /// Whether the format is fixed point (whose firmware frames must match the host's bit for
     /// bit, and which has fast approximate roots when it is 32 bits wide).
     pub fn is_fixed_point(self) -> bool {
-        matches!(self, Self::I16f16 | Self::I20f12 | Self::I32f32)
+        self.split().is_some()
+    }
+
+    /// Whether the format is fixed point on 32 bits: the formats that differ only in where
+    /// their binary point sits, and so cost the same.
+    pub fn is_fixed_32(self) -> bool {
+        self.split().is_some_and(|(int, frac)| int + frac == 32)
+    }
+}
+
+impl ValueEnum for Format {
+    fn value_variants<'a>() -> &'a [Self] {
+        Self::ALL
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        Some(PossibleValue::new(self.name()))
     }
 }
 
@@ -121,10 +133,15 @@ mod tests {
     use super::*;
 
     #[test]
-    fn command_line_names_are_the_core_names() {
-        for format in Format::value_variants() {
-            let cli = format.to_possible_value().unwrap();
-            assert_eq!(cli.get_name(), format.name());
-        }
+    fn the_formats_are_the_cores_in_its_order_f64_last() {
+        let names: Vec<&str> = Format::ALL.iter().map(|f| f.name()).collect();
+        let core: Vec<&str> = obscura::scalar::FORMATS.iter().map(|f| f.name).collect();
+        assert_eq!(names, core);
+        assert_eq!(Format::ALL.last(), Some(&Format::F64));
+        assert!(!Format::FIRMWARE.contains(&Format::F64));
+        assert_eq!(Format::from_str("i20f12", false), Ok(Format::I20f12));
+        assert_eq!(Format::I20f12.split(), Some((20, 12)));
+        assert!(Format::I20f12.is_fixed_32() && !Format::I32f32.is_fixed_32());
+        assert_eq!(Format::F32Approx.split(), None);
     }
 }

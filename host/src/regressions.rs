@@ -197,7 +197,7 @@ fn extreme_glass_is_refused_or_predicted_so() {
 #[test]
 fn the_eye_on_a_triangles_edge_is_refused_in_every_format() {
     let edge = hostile("eye-on-edge");
-    for format in Format::FIRMWARE {
+    for &format in Format::FIRMWARE {
         let desc = edge.desc();
         let request = Request {
             desc: &desc,
@@ -208,9 +208,12 @@ fn the_eye_on_a_triangles_edge_is_refused_in_every_format() {
         let Err(error) = prepare(format, &request) else {
             panic!("{format} holds a scene whose eye is on a triangle's edge");
         };
+        // A format too small for the scene's values refuses it for that first (i8f24).
+        let message = format!("{error:#}");
         assert!(
-            format!("{error:#}").contains("move the eye away from the surface"),
-            "{format}: {error:#}"
+            message.contains("move the eye away from the surface")
+                || message.contains(&format!("beyond {format}'s range")),
+            "{format}: {message}"
         );
     }
 }

@@ -160,7 +160,11 @@ pub trait WideBits: Copy + Ord {
     /// integer, so a short vector normalises as precisely as a long one, and no |v|² need fit
     /// the format.
     fn normalize_raw(v: [Self; 3], frac: u32, fast: bool) -> Option<([Self; 3], Self)>;
-    /// self/b for b > 0, in raw units with `frac` fraction bits ≤ 16, from the fast reciprocal
+    /// ⌊self·levels + threshold⌋ in raw units of a format with `frac` fraction bits, clamped to
+    /// [0, levels], for 0 ≤ self ≤ 2^frac (one) and 0 ≤ threshold < 2^frac: exact, the sum
+    /// below (levels + 1)·2^frac in the wide integer.
+    fn quantize_raw(self, levels: u8, threshold: Self, frac: u32) -> u8;
+    /// self/b for b > 0, in raw units with `frac` fraction bits ≤ 28, from the fast reciprocal
     /// square root as a mantissa and an exponent: about 14 correct bits whatever the size of b.
     fn div_raw_fast(self, b: Self, frac: u32) -> Self;
 }
@@ -203,12 +207,17 @@ macro_rules! wide_bits {
                 (difference, difference.cmp(&0))
             }
             #[inline]
+            fn quantize_raw(self, levels: u8, threshold: Self, frac: u32) -> u8 {
+                let scaled = ($mul(self, <$bits>::from(levels)) + <$wide>::from(threshold)) >> frac;
+                u8::try_from(scaled.clamp(0, <$wide>::from(levels))).unwrap_or(levels)
+            }
+            #[inline]
             fn normalize_raw(v: [Self; 3], frac: u32, fast: bool) -> Option<([Self; 3], Self)> {
                 $normalize(v, frac, fast)
             }
             /// With 1/√b = z·2^(s − 62) (`rsqrt_mantissa`), 1/b = z²·2^(2s − 124); keeping the
             /// top 31 bits of z² as r, the raw quotient self·2^f/b is self·r >> (93 − 2s − f).
-            /// As b ≥ 1 (raw), s ≤ 32 and the shift is at least 93 − 64 − 16 = 13.
+            /// As b ≥ 1 (raw), s ≤ 32 and the shift is at least 93 − 64 − 28 = 1.
             #[inline]
             fn div_raw_fast(self, b: Self, frac: u32) -> Self {
                 let (z, s) = rsqrt_mantissa(b.unsigned_abs().into(), true);
@@ -444,10 +453,11 @@ where
     F::Bits: WideBits,
     O: Overflow,
 {
-    const NAME: &'static str = fixed_name::<F>();
+    const NAME: &'static str = FixedName::<F>::NAME;
     const ZERO: Self = Self::new(F::ZERO);
     const ONE: Self = Self::ONE_VALUE;
     const MAX: Self = Self::new(F::MAX);
+    const SPLIT: Option<(u32, u32)> = Some((F::INT_NBITS, F::FRAC_NBITS));
     const RANGE: f64 = {
         // MAX = 2^(INT_NBITS − 1) − 2^−FRAC_NBITS, exact in f64 for the formats used here.
         let int = (1_u64 << (F::INT_NBITS - 1)) as f64;
@@ -492,6 +502,13 @@ where
             lsb
         }
     };
+
+    /// Exact, in the wide integer ([`WideBits::quantize_raw`]).
+    #[inline]
+    fn quantize(self, levels: u8, threshold: Self) -> u8 {
+        let unit = Scalar::clamp(self, Self::ZERO, Self::ONE).raw();
+        F::Bits::quantize_raw(unit, levels, threshold.raw(), F::FRAC_NBITS)
+    }
 
     #[inline]
     fn rsqrt(self) -> Self {
@@ -580,15 +597,42 @@ where
     }
 }
 
-/// `"i16f16"` for `I16F16`: the lowercase name of a `fixed` type, built at compile time.
-const fn fixed_name<F: Fixed>() -> &'static str {
-    match (F::INT_NBITS, F::FRAC_NBITS) {
-        (16, 16) => "i16f16",
-        (32, 32) => "i32f32",
-        (20, 12) => "i20f12",
-        (24, 8) => "i24f8",
-        _ => "fixed",
-    }
+/// `"i16f16"` for `I16F16`: the lowercase name of a `fixed` type, spelled at compile time from
+/// its integer and fraction bits (each below 100).
+struct FixedName<F>(PhantomData<F>);
+
+impl<F: Fixed> FixedName<F> {
+    /// The name's bytes and its length.
+    #[allow(
+        clippy::indexing_slicing,
+        clippy::cast_possible_truncation,
+        reason = "evaluated at compile time: at most six bytes, each digit below 10"
+    )]
+    const SPELLED: ([u8; 6], usize) = {
+        let mut bytes = [0_u8; 6];
+        let mut len = 0;
+        let parts = [(b'i', F::INT_NBITS), (b'f', F::FRAC_NBITS)];
+        let mut part = 0;
+        while part < parts.len() {
+            let (letter, bits) = parts[part];
+            bytes[len] = letter;
+            len += 1;
+            if bits >= 10 {
+                bytes[len] = b'0' + (bits / 10) as u8;
+                len += 1;
+            }
+            bytes[len] = b'0' + (bits % 10) as u8;
+            len += 1;
+            part += 1;
+        }
+        (bytes, len)
+    };
+
+    const NAME: &'static str =
+        match core::str::from_utf8(Self::SPELLED.0.split_at(Self::SPELLED.1).0) {
+            Ok(name) => name,
+            Err(_) => panic!("a fixed format's name is ASCII"),
+        };
 }
 
 #[cfg(test)]

@@ -107,9 +107,10 @@ pub fn isqrt_u64(y: u64, fast: bool) -> u64 {
     root
 }
 
-/// 2^(3f/2)/√x, for x > 0 and an even f ≤ 16: the reciprocal square root of a fixed-point
+/// 2^(3f/2)/√x, for x > 0 and an even f ≤ 30: the reciprocal square root of a fixed-point
 /// number with f fraction bits, in raw units. Within one unit of the exact value, or 2⁻²² of
-/// it where that is more (the large roots of the smallest inputs); at most 2^(3f/2), for x = 1.
+/// it where that is more (the large roots of the smallest inputs); saturated to `u32::MAX`
+/// where it does not fit (the smallest x, for f > 20).
 /// To about 15 bits when `fast`.
 #[inline]
 #[must_use]
@@ -117,11 +118,15 @@ pub fn rsqrt_fixed(x: u32, frac: u32, fast: bool) -> u32 {
     if x == 0 {
         return u32::MAX;
     }
-    // x = (m/2³²)·2^(64 − 2k), so 2^(3f/2)/√x = z·2^(3f/2 + k − 62) with z in Q2.30; the
-    // exponent is at most 24 + 31 − 62 = −7 for f ≤ 16: always a right shift.
+    // x = (m/2³²)·2^(64 − 2k), so 2^(3f/2)/√x = z·2^(3f/2 + k − 62) with z in Q2.30, z ≤ 2³¹;
+    // the exponent is at most 36 + 31 − 62 = 5 for f ≤ 24, and z shifted left so stays below 2⁶⁴.
     let (_, z, shift) = rsqrt_q30(u64::from(x), steps(fast));
-    let right = 62 - 3 * frac / 2 - shift / 2;
-    u32::try_from((z + (1 << (right - 1))) >> right).unwrap_or(u32::MAX)
+    let exponent = 3 * frac / 2 + shift / 2;
+    let raw = match 62_u32.checked_sub(exponent) {
+        None | Some(0) => z << (exponent - 62).min(32),
+        Some(right) => (z + (1 << (right - 1))) >> right,
+    };
+    u32::try_from(raw).unwrap_or(u32::MAX)
 }
 
 /// The exponent of [`rsqrt_mantissa`]'s scale: 1/√y ≈ z·2^(s − `MANTISSA_SCALE`).
@@ -210,10 +215,13 @@ mod tests {
 
     #[test]
     fn reciprocal_root_is_within_one_unit() {
-        for frac in [8, 12, 16] {
+        // Every even fraction of the 32-bit formats, i8f24 to i24f8; what does not fit u32
+        // saturates.
+        for frac in (8..=24).step_by(2) {
             let mut x = 1_u32;
             while x < u32::MAX / 2 {
-                let exact = (1_u64 << (3 * frac / 2)) as f64 / f64::from(x).sqrt();
+                let exact = ((1_u64 << (3 * frac / 2)) as f64 / f64::from(x).sqrt())
+                    .min(f64::from(u32::MAX));
                 let got = f64::from(rsqrt_fixed(x, frac, false));
                 let tolerance = (exact / f64::from(1 << 22)).max(1.0);
                 assert!(
@@ -237,10 +245,11 @@ mod tests {
             );
             y = y * 3 / 2 + 1;
         }
-        for frac in [12, 16] {
+        for frac in (8..=24).step_by(2) {
             let mut x = 1_u32;
             while x < u32::MAX / 2 {
-                let exact = (1_u64 << (3 * frac / 2)) as f64 / f64::from(x).sqrt();
+                let exact = ((1_u64 << (3 * frac / 2)) as f64 / f64::from(x).sqrt())
+                    .min(f64::from(u32::MAX));
                 let got = f64::from(rsqrt_fixed(x, frac, true));
                 assert!(
                     (got - exact).abs() <= exact / 16384.0 + 1.0,

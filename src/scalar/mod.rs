@@ -17,6 +17,7 @@
 mod approx;
 mod fixed_point;
 mod float;
+mod formats;
 mod isqrt;
 mod kernels;
 
@@ -63,6 +64,9 @@ pub trait Scalar:
     const MAX: Self;
     /// [`Self::MAX`] as an `f64`, for range analysis.
     const RANGE: f64;
+    /// A fixed format's integer bits (the sign among them) and fraction bits; `None` for a
+    /// float.
+    const SPLIT: Option<(u32, u32)> = None;
 
     /// Converts from `f64`, or `None` when `x` is not finite or does not fit.
     fn from_f64(x: f64) -> Option<Self>;
@@ -184,6 +188,17 @@ pub trait Scalar:
         self.max(lo).min(hi)
     }
 
+    /// `⌊clamp(self, 0, 1)·levels + threshold⌋`, at most `levels`, for a threshold in [0, 1):
+    /// a colour channel on a display with `levels` + 1 levels. A fixed format computes it
+    /// exactly in its wide integer, so that no intermediate need fit the format (255 does not
+    /// fit i8f24).
+    #[must_use]
+    fn quantize(self, levels: u8, threshold: Self) -> u8 {
+        let scaled =
+            self.clamp(Self::ZERO, Self::ONE) * Self::from_int(i32::from(levels)) + threshold;
+        u8::try_from(scaled.floor_int().clamp(0, i32::from(levels))).unwrap_or(levels)
+    }
+
     /// `num / den` for small integers, rounded as the format's division rounds.
     #[must_use]
     fn ratio(num: i32, den: i32) -> Self {
@@ -271,15 +286,30 @@ impl FormatSet {
     }
 }
 
-/// Every format the tracer is built for, from the smallest range to the largest.
-pub const FORMATS: [FormatInfo; 6] = [
-    FormatInfo::of::<I16F16>(),
-    FormatInfo::of::<I20F12>(),
-    FormatInfo::of::<I32F32>(),
-    FormatInfo::of::<F32Approx>(),
-    FormatInfo::of::<f32>(),
-    FormatInfo::of::<f64>(),
-];
+/// Builds [`FORMATS`] and the [`formats`](crate::formats) type names from the one list.
+macro_rules! format_table {
+    (fixed { $($fixed:ident => $raw:ident,)* } float { $($float:ident => $ty:ty,)* }) => {
+        /// Every format the tracer is built for, from the smallest range to the largest.
+        pub const FORMATS: [FormatInfo; [$(stringify!($fixed),)* $(stringify!($float),)*].len()] = [
+            $(FormatInfo::of::<Fx<fixed::types::$raw>>(),)*
+            $(FormatInfo::of::<$ty>(),)*
+        ];
+
+        /// Each format's type, by the name the command line gives it: what a firmware
+        /// configured with a format computes in.
+        pub mod names {
+            $(
+                #[doc = concat!("`", stringify!($raw), "` fixed point.")]
+                pub type $fixed = super::Fx<fixed::types::$raw>;
+            )*
+            $(
+                #[doc = concat!("`", stringify!($ty), "`.")]
+                pub type $float = $ty;
+            )*
+        }
+    };
+}
+crate::for_each_format!(format_table);
 
 #[cfg(test)]
 mod tests {
@@ -298,7 +328,7 @@ mod tests {
             "{}",
             S::NAME
         );
-        assert_eq!(two.powi(10).to_f64(), 1024.0, "{}", S::NAME);
+        assert_eq!(two.powi(6).to_f64(), 64.0, "{}", S::NAME);
         assert_eq!(two.powi(0).to_f64(), 1.0, "{}", S::NAME);
         assert!(
             (S::from_int(9).sqrt().to_f64() - 3.0).abs() <= 3.0 * root_tolerance,
@@ -314,7 +344,8 @@ mod tests {
         assert!(S::from_f64(f64::INFINITY).is_none(), "{}", S::NAME);
         assert!(S::MAX.to_f64() == S::RANGE, "{}", S::NAME);
         assert!(
-            S::resolution(1.0) > 0.0 && S::resolution(1.0) < 1e-3,
+            // The coarsest format here, i24f8, has eight fraction bits.
+            S::resolution(1.0) > 0.0 && S::resolution(1.0) <= 1.0 / 256.0,
             "{}",
             S::NAME
         );
@@ -325,6 +356,9 @@ mod tests {
         check_basics::<I16F16>(0.0);
         check_basics::<I20F12>(0.0);
         check_basics::<I32F32>(0.0);
+        // Splits beyond the list's, which the arithmetic holds as well.
+        check_basics::<Fx<fixed::types::I8F24>>(0.0);
+        check_basics::<Fx<fixed::types::I24F8>>(0.0);
         check_basics::<f32>(0.0);
         check_basics::<f64>(0.0);
         check_basics::<F32Approx>(0.07);

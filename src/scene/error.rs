@@ -45,6 +45,8 @@ pub enum Remedy {
     /// Neighbouring pixels closer than the format can aim: a wider field of view, fewer
     /// pixels.
     WiderView,
+    /// An image with more pixels on a side than the format can count.
+    SmallerImage,
     /// A checkerboard's squares, against the world they cover.
     LargerSquares,
     /// A sphere too small or too far away for its test.
@@ -73,6 +75,7 @@ impl fmt::Display for Remedy {
             Self::LowerIor => "lower the ior",
             Self::NarrowerView => "narrow the field of view or make the image less elongated",
             Self::WiderView => "widen the field of view or render fewer pixels",
+            Self::SmallerImage => "render fewer pixels on the longer side",
             Self::LargerSquares => "make the checker's squares larger",
             Self::LargerSphere => "make the sphere larger or bring it nearer the eye",
             Self::FatterTriangle => "move a corner away from the line through the other two",

@@ -353,68 +353,80 @@ pub fn magnitudes<'a>(
             Remedy::LessLight,
         ),
     ];
-    let objects = desc
-        .objects
-        .iter()
-        .enumerate()
-        .flat_map(move |(i, object)| {
-            let item = Item::Object(i);
-            let shape: [Option<(&'static str, f64, Remedy)>; 3] = match object.shape {
-                ShapeDesc::Sphere { center, radius } => {
-                    let (c, r) = (distance(center, eye), f64::from(radius));
-                    let f = origin + c;
-                    let square = match methods.sphere {
-                        SphereMethod::Quadratic => ("b² − c in the quadratic", f * f + r * r),
-                        SphereMethod::Stable => ("|o − c|² in the stable form", f * f),
-                    };
-                    [
-                        Some((square.0, square.1, Remedy::ShrinkWorld)),
-                        Some((
-                            "the sphere's roots, |b| + √(b² + r²)",
-                            f + (f * f + r * r).sqrt(),
-                            Remedy::ShrinkWorld,
-                        )),
-                        Some((
-                            "a hit point less the sphere's centre",
-                            along + c,
-                            Remedy::ShrinkWorld,
-                        )),
-                    ]
-                }
-                ShapeDesc::Plane { checker, .. } => [
-                    checker.map(|checker| {
-                        let size = f64::from(checker.size);
-                        (
-                            "a checker coordinate",
-                            checker_reach(origin, world) / size + 1.0,
-                            Remedy::LargerSquares,
-                        )
-                    }),
-                    None,
-                    None,
-                ],
-                ShapeDesc::Triangle { vertices } => {
-                    let corners = vertices.map(Vec3::from_f32);
-                    let (quantity, value) =
-                        triangle_magnitude(methods.triangle, origin, Vec3::from_f32(eye), corners);
-                    [Some((quantity, value, Remedy::ShrinkWorld)), None, None]
-                }
-            };
-            let refraction = (object.material.transmission > 0.0).then(|| {
-                let ior = f64::from(object.material.ior);
-                ("η² in Snell's law", ior * ior + 1.0, Remedy::LowerIor)
+    let objects =
+        desc.objects
+            .iter()
+            .enumerate()
+            .flat_map(move |(i, object)| {
+                let item = Item::Object(i);
+                let shape: [Option<(&'static str, f64, Remedy)>; 3] = match object.shape {
+                    ShapeDesc::Sphere { center, radius } => {
+                        let (c, r) = (distance(center, eye), f64::from(radius));
+                        let f = origin + c;
+                        let square = match methods.sphere {
+                            SphereMethod::Quadratic => ("b² − c in the quadratic", f * f + r * r),
+                            SphereMethod::Stable => ("|o − c|² in the stable form", f * f),
+                        };
+                        [
+                            Some((square.0, square.1, Remedy::ShrinkWorld)),
+                            Some((
+                                "the sphere's roots, |b| + √(b² + r²)",
+                                f + (f * f + r * r).sqrt(),
+                                Remedy::ShrinkWorld,
+                            )),
+                            Some((
+                                "a hit point less the sphere's centre",
+                                along + c,
+                                Remedy::ShrinkWorld,
+                            )),
+                        ]
+                    }
+                    ShapeDesc::Plane { checker, .. } => [
+                        checker.map(|checker| {
+                            let size = f64::from(checker.size);
+                            (
+                                "a checker coordinate",
+                                checker_reach(origin, world) / size + 1.0,
+                                Remedy::LargerSquares,
+                            )
+                        }),
+                        None,
+                        None,
+                    ],
+                    ShapeDesc::Triangle { vertices } => {
+                        let corners = vertices.map(Vec3::from_f32);
+                        let eye = Vec3::from_f32(eye);
+                        let (quantity, value) =
+                            triangle_magnitude(methods.triangle, origin, eye, corners);
+                        // Möller–Trumbore takes a determinant below numerators/range for a ray
+                        // parallel to the triangle: the primary rays' must stay above it, or it
+                        // misses a triangle it faces.
+                        let seen = (methods.triangle == TriangleMethod::MollerTrumbore)
+                            .then(|| smallest_determinant(eye, corners))
+                            .flatten()
+                            .map(|det| {
+                                (
+                                    "Möller–Trumbore's numerators over a primary ray's determinant",
+                                    triangle_numerators(origin, eye, corners) / det,
+                                    Remedy::LargerTriangle,
+                                )
+                            });
+                        [Some((quantity, value, Remedy::ShrinkWorld)), seen, None]
+                    }
+                };
+                let refraction = (object.material.transmission > 0.0).then(|| {
+                    let ior = f64::from(object.material.ior);
+                    ("η² in Snell's law", ior * ior + 1.0, Remedy::LowerIor)
+                });
+                shape.into_iter().chain([refraction]).flatten().map(
+                    move |(quantity, value, remedy)| Magnitude {
+                        item,
+                        quantity,
+                        value,
+                        remedy,
+                    },
+                )
             });
-            shape
-                .into_iter()
-                .chain([refraction])
-                .flatten()
-                .map(move |(quantity, value, remedy)| Magnitude {
-                    item,
-                    quantity,
-                    value,
-                    remedy,
-                })
-        });
     global.into_iter().chain(objects)
 }
 
@@ -431,6 +443,20 @@ pub(crate) fn triangle_numerators(origin: f64, eye: Vec3<f64>, [a, b, c]: [Vec3<
     let (e1, e2) = ((b - a).length(), (c - a).length());
     let s = origin + (a - eye).length();
     (s * e1 * e2).max(s * e1.max(e2)).max(e1 * e2)
+}
+
+/// The smallest |det| = |d·(e1 × e2)| of a unit ray from `eye` that meets the triangle: |e1 ×
+/// e2| times the cosine at its farthest corner, h/|v − eye| with h the eye's distance from the
+/// triangle's plane; `None` where the eye is in that plane (no primary ray meets it).
+fn smallest_determinant(eye: Vec3<f64>, [a, b, c]: [Vec3<f64>; 3]) -> Option<f64> {
+    let cross = (b - a).cross(c - a);
+    let area = cross.length();
+    let h = (cross.dot(a - eye) / area).abs();
+    let farthest = [a, b, c]
+        .iter()
+        .map(|&v| (v - eye).length())
+        .fold(0.0, f64::max);
+    (h > 0.0 && area > 0.0).then(|| area * h / farthest)
 }
 
 fn triangle_magnitude(
@@ -785,6 +811,16 @@ pub(super) fn check_camera(
     width: u32,
     height: u32,
 ) -> Result<(), SceneError> {
+    // A pixel's centre is the ratio (2i + 1)/2n of two integers the format holds.
+    let side = Magnitude {
+        item: Item::Camera,
+        quantity: "twice the image's longer side in pixels (a pixel centre's denominator)",
+        value: 2.0 * f64::from(width.max(height)),
+        remedy: Remedy::SmallerImage,
+    };
+    if !fits(side.value, format.range) {
+        return Err(out_of_range(format, &side));
+    }
     let (m, f) = camera(half_width, half_height, width, height);
     if !fits(m.value, format.range) {
         return Err(out_of_range(format, &m));

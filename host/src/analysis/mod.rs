@@ -114,7 +114,8 @@ impl Analysis {
         let desc = scene.desc();
         let size = reference.image.dimensions();
         let verdicts = Format::ALL
-            .into_iter()
+            .iter()
+            .copied()
             .map(|format| {
                 let fit = fit(format, scene, methods, size);
                 // A rescaled scene is predicted as it will be rendered: the same image, but the
@@ -142,10 +143,35 @@ impl Analysis {
         }
     }
 
+    /// The scene's 32-bit split: of the 32-bit fixed formats that hold it as it is, the one
+    /// with the most fraction bits, which gives the scene the integer bits its largest
+    /// intermediate needs (as the range proof counts them) and the rest to the fraction.
+    pub fn split(&self) -> Option<Format> {
+        split(&[self])
+    }
+
     /// What `format` by `methods` costs per pixel on `machine` in this scene, by the chart.
     pub fn cost(&self, machine: Machine, format: Format, methods: &Methods) -> Option<f64> {
         cost(machine, format, methods, self.has_triangles)
     }
+}
+
+/// The 32-bit fixed format with the most fraction bits that holds every scene analysed, as it
+/// is (not rescaled).
+fn split(analyses: &[&Analysis]) -> Option<Format> {
+    let holds = |format: Format| {
+        analyses.iter().all(|analysis| {
+            analysis
+                .verdicts
+                .iter()
+                .any(|v| v.format == format && v.fit == Fit::Holds)
+        })
+    };
+    Format::ALL
+        .iter()
+        .copied()
+        .filter(|&format| format.is_fixed_32() && holds(format))
+        .max_by_key(|format| format.split().map(|(_, fraction)| fraction))
 }
 
 /// A format `--format auto` picked, and what it measured.
@@ -178,8 +204,13 @@ pub fn pick(
     rescale: bool,
 ) -> Result<Option<Pick>> {
     let analyses: Vec<&Analysis> = scenes.iter().map(|&(_, analysis)| analysis).collect();
+    // The 32-bit splits cost the same, so of those only the scenes' split, the most precise,
+    // is a candidate (where one holds them all as they are).
+    let split = split(&analyses);
     let mut candidates: Vec<(f64, Format)> = Format::ALL
-        .into_iter()
+        .iter()
+        .copied()
+        .filter(|&format| !format.is_fixed_32() || split.is_none_or(|split| split == format))
         .filter_map(|format| {
             let costs = analyses
                 .iter()
@@ -685,7 +716,7 @@ mod tests {
             message.contains("no format can hold") && message.contains("object 1: radius²"),
             "{message}"
         );
-        for format in Format::ALL {
+        for &format in Format::ALL {
             assert!(matches!(
                 fit(format, &speck, Methods::LECTURE, (32, 32)),
                 Fit::Refused(_)

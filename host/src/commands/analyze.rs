@@ -19,6 +19,17 @@ fn analyze(args: &AnalyzeArgs, named: &NamedScene) -> Result<()> {
     say!("# {} by methods {methods}\n", named.name)?;
     print_extents(&analysis.extents)?;
     print_bits(&analysis.bits)?;
+    match analysis.split() {
+        Some(split) => {
+            let (integer, fraction) = split.split().unwrap_or_default();
+            say!(
+                "\nThe scene's 32-bit split, the 32-bit fixed format with the most fraction bits \
+                 that holds it: **{split}** ({integer} integer bits, the sign among them, and \
+                 {fraction} fraction bits)."
+            )?;
+        }
+        None => say!("\nNo 32-bit fixed format holds the scene as it is.")?,
+    }
     say!(
         "\n## Formats, at {width}x{height}\n\nThe model's bound against f64 (the format's \
          constants and tolerances, rendered in f64; its rounding, which may move each pixel's \

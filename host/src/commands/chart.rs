@@ -38,7 +38,7 @@ fn variants() -> Vec<Variant> {
     let base = Methods::LECTURE;
     let mut all = Vec::new();
     for scene in &scenes::BUILT_IN {
-        for format in Format::FIRMWARE {
+        for &format in Format::FIRMWARE {
             for methods in base.variants() {
                 if format.methods_matter(&methods, &base, scene.desc.has_triangles()) {
                     all.push(Variant {
@@ -228,7 +228,8 @@ fn find(scene: &str, format: &str) -> Result<(&'static BuiltIn, Format)> {
     let built_in = scenes::find(scene)
         .with_context(|| format!("the firmware drew an unknown scene `{scene}`"))?;
     let format = Format::FIRMWARE
-        .into_iter()
+        .iter()
+        .copied()
         .find(|f| f.name() == format)
         .with_context(|| format!("the firmware drew an unknown format `{format}`"))?;
     Ok((built_in, format))

@@ -48,7 +48,11 @@ fn formats(args: &FirmwareArgs, scenes: &[NamedScene], methods: Methods) -> Resu
         let format = match choice {
             FormatChoice::Given(Format::F64) => bail!(
                 "the firmware computes in {}, not f64 (which stays on the host)",
-                Format::FIRMWARE.map(Format::name).join(", ")
+                Format::FIRMWARE
+                    .iter()
+                    .map(|f| f.name())
+                    .collect::<Vec<_>>()
+                    .join(", ")
             ),
             FormatChoice::Given(format) => format,
             FormatChoice::Auto => {

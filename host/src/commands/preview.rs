@@ -28,7 +28,11 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
     let format = match args.format {
         FormatChoice::Given(Format::F64) => bail!(
             "a firmware computes in {}, not f64 (which stays on the host)",
-            Format::FIRMWARE.map(Format::name).join(", ")
+            Format::FIRMWARE
+                .iter()
+                .map(|f| f.name())
+                .collect::<Vec<_>>()
+                .join(", ")
         ),
         FormatChoice::Given(format) => format,
         FormatChoice::Auto => firmware_build::auto(

@@ -111,7 +111,7 @@ impl fmt::Display for Outcome {
 /// Runs `case` in every format the firmware or the host computes in.
 pub fn run_case(case: &Case) -> Result<Vec<Row>> {
     let mut rows = Vec::new();
-    for format in Format::ALL {
+    for &format in Format::ALL {
         rows.extend((case.run)(format)?);
     }
     Ok(rows)
@@ -163,15 +163,18 @@ mod tests {
         }
     }
 
+    /// Each case measures something in every format, or else the format refuses all of it
+    /// for its range (i8f24's ±128 holds few of the cases' worlds).
     #[test]
-    fn every_case_measures_something_in_every_format() {
+    fn every_case_measures_something_in_every_format_that_holds_its_values() {
         for case in &CASES {
-            for format in Format::ALL {
+            for &format in Format::ALL {
+                let of_format = || rows(case.name).iter().filter(|r| r.format == format.name());
                 assert!(
-                    rows(case.name)
-                        .iter()
-                        .any(|r| r.format == format.name() && r.y.is_some()),
-                    "{}: {} refuses everything",
+                    of_format().any(|r| r.y.is_some())
+                        || of_format()
+                            .all(|r| matches!(r.outcome, Outcome::Refused { kind: "range", .. })),
+                    "{}: {} refuses everything, not all for its range",
                     case.name,
                     format.name()
                 );

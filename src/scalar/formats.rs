@@ -1,0 +1,33 @@
+//! The formats the tracer is built for, listed once: [`for_each_format!`](crate::for_each_format)
+//! hands the list to a macro, from which the core builds [`FORMATS`](super::FORMATS) and the
+//! [`formats`](crate::formats) type names, and the desktop harness its command-line formats.
+
+/// Calls `$then!` with every format the tracer is built for, from the smallest range to the
+/// largest: the 32-bit fixed formats as `Variant => RawType` (a type of `fixed::types`), then
+/// the 64-bit one, then the floats as `Variant => Type`.
+///
+/// ```
+/// macro_rules! count {
+///     (fixed { $($f:ident => $raw:ident,)* } float { $($v:ident => $t:ty,)* }) => {
+///         [$(stringify!($f),)* $(stringify!($v),)*].len()
+///     };
+/// }
+/// assert_eq!(obscura::for_each_format!(count), obscura::scalar::FORMATS.len());
+/// ```
+#[macro_export]
+macro_rules! for_each_format {
+    ($then:ident) => {
+        $then! {
+            fixed {
+                I16f16 => I16F16,
+                I20f12 => I20F12,
+                I32f32 => I32F32,
+            }
+            float {
+                F32Approx => $crate::F32Approx,
+                F32 => f32,
+                F64 => f64,
+            }
+        }
+    };
+}
