@@ -647,7 +647,6 @@ mod tests {
                 .formats
         };
         assert_eq!(pick(Machine::M4f), [Format::F32]);
-        // The built-in scenes' 32-bit split.
-        assert_eq!(pick(Machine::M0), [Format::I12f20]);
+        assert_eq!(pick(Machine::M0), [Format::I16f16]);
     }
 }
