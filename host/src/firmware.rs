@@ -60,14 +60,17 @@ impl Target {
     }
 
     /// The formats of each firmware image the chart runs, every one with every method
-    /// variant: formats of one kind (32-bit fixed, 64-bit fixed, float) together, as many as
-    /// fit the flash (on the M0's 256 KiB, two 32-bit fixed formats, or `i32f32` alone, or
+    /// variant: on the M4F all in one image (its 512 KiB hold them); on the M0 formats of one
+    /// kind together, as many as its 256 KiB hold (two 32-bit fixed formats, `i32f32` alone,
     /// the two f32 formats).
     pub fn chart_images(self) -> Vec<Vec<Format>> {
+        if self == Self::M4f {
+            return vec![Format::FIRMWARE.to_vec()];
+        }
         let of_kind = |kind: fn(&Format) -> bool| -> Vec<Format> {
             Format::FIRMWARE.iter().copied().filter(kind).collect()
         };
-        // Each kind, and how many of it the M0's flash holds.
+        // Each kind, and how many of it one image holds.
         let kinds = [
             (of_kind(|f| f.is_fixed_32()), 2),
             (of_kind(|f| f.is_fixed_point() && !f.is_fixed_32()), 1),
@@ -75,13 +78,7 @@ impl Target {
         ];
         kinds
             .iter()
-            .flat_map(|(formats, on_m0)| {
-                let per_image = match self {
-                    Self::M4f => 6,
-                    Self::M0 => *on_m0,
-                };
-                formats.chunks(per_image).map(<[Format]>::to_vec)
-            })
+            .flat_map(|(formats, per_image)| formats.chunks(*per_image).map(<[Format]>::to_vec))
             .collect()
     }
 

@@ -37,17 +37,24 @@ pub fn mul_u64_small(a: u64, b: u64) -> u64 {
 pub fn mul_i32_wide(a: i32, b: i32) -> i64 {
     #[cfg(armv6m)]
     {
-        // |a|·|b| ≤ 2⁶² fits i64, and so does its negation.
-        let magnitude = mul_u32_partial(a.unsigned_abs(), b.unsigned_abs()) as i64;
-        if (a < 0) == (b < 0) {
-            magnitude
-        } else {
-            -magnitude
-        }
+        mul_i32_partial(a, b)
     }
     #[cfg(not(armv6m))]
     {
         i64::from(a) * i64::from(b)
+    }
+}
+
+/// a·b exactly from [`mul_u32_partial`] of the magnitudes, the sign applied after.
+#[cfg(any(armv6m, test))]
+#[inline(always)]
+fn mul_i32_partial(a: i32, b: i32) -> i64 {
+    // |a|·|b| ≤ 2⁶² fits i64, and so does its negation.
+    let magnitude = mul_u32_partial(a.unsigned_abs(), b.unsigned_abs()) as i64;
+    if (a < 0) == (b < 0) {
+        magnitude
+    } else {
+        -magnitude
     }
 }
 
@@ -120,43 +127,7 @@ pub fn div_i32_fixed(a: i32, b: i32, frac: u32) -> Option<i32> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn long_division_is_the_exact_quotient() {
-        let all = operands();
-        for &d in &all {
-            for &a in &all {
-                for shift in [0, 12, 16, 31, 32] {
-                    let n = u64::from(a) << shift;
-                    let exact = if d == 0 {
-                        None
-                    } else {
-                        u32::try_from(n / u64::from(d)).ok()
-                    };
-                    assert_eq!(div_u64_u32(n, d), exact, "{n} / {d}");
-                }
-            }
-        }
-    }
-
-    #[test]
-    fn fixed_division_is_the_formats_own() {
-        use fixed::types::{I16F16, I20F12};
-        let all = operands();
-        for &a in &all {
-            for &b in &all {
-                let (a, b) = (a as i32, b as i32);
-                let expected = I16F16::from_bits(a)
-                    .checked_div(I16F16::from_bits(b))
-                    .map(I16F16::to_bits);
-                assert_eq!(div_i32_fixed(a, b, 16), expected, "{a} / {b} in I16F16");
-                let expected = I20F12::from_bits(a)
-                    .checked_div(I20F12::from_bits(b))
-                    .map(I20F12::to_bits);
-                assert_eq!(div_i32_fixed(a, b, 12), expected, "{a} / {b} in I20F12");
-            }
-        }
-    }
+    use fixed::traits::Fixed;
 
     /// Operands at every edge of the range and in between: 0, ±1, powers of two and their
     /// neighbours, the extremes, and a sweep by a large odd step.
@@ -170,36 +141,75 @@ mod tests {
         all
     }
 
-    #[test]
-    fn partial_products_are_the_exact_product() {
+    /// Calls `check` with every pair of [`operands`].
+    fn for_each_pair(mut check: impl FnMut(u32, u32)) {
         let all = operands();
         for &a in &all {
             for &b in &all {
-                assert_eq!(
-                    mul_u32_partial(a, b),
-                    u64::from(a) * u64::from(b),
-                    "{a} × {b}"
-                );
+                check(a, b);
             }
         }
     }
 
     #[test]
-    fn signed_products_are_exact() {
-        let all = operands();
-        for &a in &all {
-            for &b in &all {
-                let (a, b) = (a as i32, b as i32);
-                assert_eq!(mul_i32_wide(a, b), i64::from(a) * i64::from(b), "{a} × {b}");
-                // The M0's path, exercised here too.
-                let magnitude = mul_u32_partial(a.unsigned_abs(), b.unsigned_abs()) as i64;
-                let signed = if (a < 0) == (b < 0) {
-                    magnitude
+    fn long_division_is_the_exact_quotient() {
+        for_each_pair(|a, d| {
+            for shift in [0, 12, 16, 31, 32] {
+                let n = u64::from(a) << shift;
+                let exact = if d == 0 {
+                    None
                 } else {
-                    -magnitude
+                    u32::try_from(n / u64::from(d)).ok()
                 };
-                assert_eq!(signed, i64::from(a) * i64::from(b), "{a} × {b}");
+                assert_eq!(div_u64_u32(n, d), exact, "{n} / {d}");
             }
-        }
+        });
+    }
+
+    /// [`div_i32_fixed`] against `fixed`'s `checked_div` in the 32-bit format `F`.
+    fn division_is_fixeds<F: Fixed<Bits = i32>>(a: i32, b: i32) {
+        let expected = F::from_bits(a).checked_div(F::from_bits(b)).map(F::to_bits);
+        assert_eq!(
+            div_i32_fixed(a, b, F::FRAC_NBITS),
+            expected,
+            "{a} / {b} with {} fraction bits",
+            F::FRAC_NBITS
+        );
+    }
+
+    #[test]
+    fn fixed_division_is_the_formats_own() {
+        use fixed::types::{I16F16, I20F12};
+        for_each_pair(|a, b| {
+            let (a, b) = (a as i32, b as i32);
+            division_is_fixeds::<I16F16>(a, b);
+            division_is_fixeds::<I20F12>(a, b);
+        });
+    }
+
+    #[test]
+    fn partial_products_are_the_exact_product() {
+        for_each_pair(|a, b| {
+            assert_eq!(
+                mul_u32_partial(a, b),
+                u64::from(a) * u64::from(b),
+                "{a} × {b}"
+            );
+        });
+    }
+
+    #[test]
+    fn signed_products_are_exact() {
+        for_each_pair(|a, b| {
+            let (a, b) = (a as i32, b as i32);
+            let exact = i64::from(a) * i64::from(b);
+            assert_eq!(mul_i32_wide(a, b), exact, "{a} × {b}");
+            // The M0's path, exercised here too.
+            assert_eq!(
+                mul_i32_partial(a, b),
+                exact,
+                "{a} × {b} by partial products"
+            );
+        });
     }
 }
