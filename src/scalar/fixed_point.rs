@@ -17,8 +17,8 @@
 
 use super::Scalar;
 use super::isqrt::{
-    MANTISSA_BITS, MANTISSA_SCALE, ROOT_SCALE, RootPair, isqrt_u64, root_pair, rsqrt_fixed,
-    rsqrt_mantissa,
+    MANTISSA_BITS, MANTISSA_SCALE, ROOT_SCALE, RootPair, isqrt_u64, one_step_holds_unit, root_pair,
+    rsqrt_fixed, rsqrt_mantissa,
 };
 use super::kernels::{div_i32_fixed, mul_i32_wide, mul_u32_wide};
 use core::cmp::Ordering;
@@ -149,11 +149,11 @@ pub trait WideBits: Copy + Ord {
     /// the format has (0 where they are correctly rounded).
     const ROOT_ERROR: f64;
     /// ⌊√(self · 2^frac)⌋ for `self` > 0: the square root of a fixed-point number with `frac`
-    /// fraction bits, in raw units (it always fits); to about 15 bits when `fast` and the
+    /// fraction bits, in raw units (it always fits); to 17 bits when `fast` and the
     /// format has [`Self::FAST_ROOTS`].
     fn sqrt_raw(self, frac: u32, fast: bool) -> Self;
     /// 1/√self in raw units of a format with `frac` fraction bits, within one unit, saturated;
-    /// for `self` > 0; to about 15 bits when `fast` and the format has [`Self::FAST_ROOTS`].
+    /// for `self` > 0; to 17 bits when `fast` and the format has [`Self::FAST_ROOTS`].
     fn rsqrt_raw(self, frac: u32, fast: bool) -> Self;
     /// The unit vector along `v` and its length (saturated), in raw units of a format with
     /// `frac` fraction bits; `None` for the zero vector. |v|² is summed exactly in the wide
@@ -261,7 +261,9 @@ fn div_i64_fixed(a: i64, b: i64, frac: u32) -> Option<i64> {
 /// The 32-bit formats' unit vectors. With y = Σvᵢ² exact in u64 (each below 2⁶², three below
 /// 2⁶⁴) and its [`RootPair`] (1/√y = z·2^(s − 62), √y = r·2^−(30 + s)): the unit vector's raw
 /// coordinates are vᵢ·2^f/√y = vᵢ·z >> (62 − s − f), the shift at least 62 − 31 − 30 = 1, and
-/// the length's raw value √y = r >> (30 + s), rounded.
+/// the length's raw value √y = r >> (30 + s), rounded. When `fast`, one Newton step where it
+/// keeps the coordinates within the format's LSB ([`one_step_holds_unit`]: to 16 fraction bits),
+/// else the two of the exact vectors.
 #[inline]
 fn normalize_raw_32(v: [i32; 3], frac: u32, fast: bool) -> Option<([i32; 3], i32)> {
     let y: u64 = v
@@ -271,7 +273,7 @@ fn normalize_raw_32(v: [i32; 3], frac: u32, fast: bool) -> Option<([i32; 3], i32
     if y == 0 {
         return None;
     }
-    let RootPair { inverse, root, s } = root_pair(y, fast);
+    let RootPair { inverse, root, s } = root_pair(y, fast && one_step_holds_unit(frac));
     // inverse < 2³¹.
     let z = i64::try_from(inverse).unwrap_or(i64::MAX);
     let right = MANTISSA_SCALE - s - frac;
@@ -789,6 +791,41 @@ mod tests {
         });
         let huge = [i64::MAX, -i64::MAX, i64::MAX];
         check::<I32F32>(huge, |c| I32F32::new(fixed::types::I32F32::from_bits(c)));
+    }
+
+    /// The error model's unit (one LSB at 1, [`Scalar::UNIT_ERROR`]) holds for the fast unit
+    /// vectors as for the exact ones, at every binary point a 32-bit format may have.
+    #[test]
+    fn unit_vectors_are_within_the_unit_error_at_every_binary_point() {
+        let mut state = 0x2545_F491_4F6C_DD1D_u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        for frac in (8..=24).step_by(2) {
+            let lsb = 2f64.powi(-frac);
+            let mut worst = [0.0_f64; 2];
+            for _ in 0..20_000 {
+                let magnitude = next() % 31;
+                let raw = [(); 3].map(|()| (next() as i32) >> magnitude);
+                let exact = raw.map(f64::from);
+                let norm = exact.iter().map(|c| c * c).sum::<f64>().sqrt();
+                for (fast, worst) in [false, true].into_iter().zip(&mut worst) {
+                    let Some((unit, _)) = normalize_raw_32(raw, frac as u32, fast) else {
+                        continue;
+                    };
+                    for (c, e) in unit.iter().zip(exact) {
+                        *worst = worst.max((f64::from(*c) * lsb - e / norm).abs() / lsb);
+                    }
+                }
+            }
+            assert!(
+                worst.iter().all(|&w| w <= 1.0),
+                "frac {frac}: {worst:?} LSB"
+            );
+        }
     }
 
     #[test]

@@ -5,9 +5,9 @@
 //!
 //! 1. Normalise: shift y left by an even amount 2k so that its top two bits are not both zero,
 //!    and keep the top 32 bits as m, a Q0.32 number in [¼, 1). Then y ≈ m·2^(64 − 2k).
-//! 2. Seed z ≈ 1/√m from a 192-entry table on m's top eight bits (about eight correct bits).
-//! 3. Newton steps for 1/√m, z ← z·(3 − m·z²)/2, each doubling the correct bits (about 15
-//!    after one, the 30 of Q2.30 after two).
+//! 2. Seed z ≈ 1/√m from a 384-entry table on m's top nine bits (about nine correct bits).
+//! 3. Newton steps for 1/√m, z ← z·(3 − m·z²)/2, each doubling the correct bits (17 after
+//!    one, [`ONE_STEP_ERROR`]; the 30 of Q2.30 after two).
 //!
 //! Then √y = m·z·2^(32 − k) and 1/√y = z·2^(k − 32), and the two routines scale accordingly.
 //! [`isqrt_u64`] finishes by stepping to the exact ⌊√y⌋, so its result is the mathematical one;
@@ -17,22 +17,41 @@
 
 use super::kernels::mul_u64_small;
 
-/// ⌊2³⁰ / √((i + 64.5) / 256)⌋ = ⌊√(2⁶⁹ / (2i + 129))⌋: 1/√m in Q2.30 at the middle of each
-/// of the 192 intervals of m's top eight bits (64..256, as m ≥ ¼).
+/// The bits of m that index [`RSQRT_SEEDS`].
+const SEED_BITS: u32 = 9;
+/// The table's first index: m ≥ ¼.
+const SEED_BASE: usize = 1 << (SEED_BITS - 2);
+
+/// ⌊2³⁰ / √((i + 128.5) / 512)⌋ = ⌊√(2⁷⁰ / (2i + 257))⌋: 1/√m in Q2.30 at the middle of each
+/// of the 384 intervals of m's top nine bits (128..512, as m ≥ ¼).
 #[allow(
     clippy::indexing_slicing,
-    reason = "evaluated at compile time, i < 192"
+    reason = "evaluated at compile time, i < 384"
 )]
-static RSQRT_SEEDS: [u32; 192] = {
-    let mut table = [0_u32; 192];
+static RSQRT_SEEDS: [u32; 3 * SEED_BASE] = {
+    let mut table = [0_u32; 3 * SEED_BASE];
     let mut i = 0;
-    while i < 192 {
+    while i < 3 * SEED_BASE {
         // At most 2³¹: fits u32.
-        table[i] = isqrt_bitwise((1_u128 << 69) / (2 * i as u128 + 129)) as u32;
+        table[i] =
+            isqrt_bitwise((1_u128 << 70) / (2 * i as u128 + 2 * SEED_BASE as u128 + 1)) as u32;
         i += 1;
     }
     table
 };
+
+/// The relative error of 1/√m after one Newton step from [`RSQRT_SEEDS`]: 2⁻¹⁷ bounds it
+/// (2⁻¹⁷·⁴² at the ends of the widest interval, tested).
+pub const ONE_STEP_ERROR: f64 = 1.0 / (1 << 17) as f64;
+
+/// Whether one Newton step keeps a unit vector in a format with `frac` fraction bits within
+/// its LSB (half an LSB of rounding and [`ONE_STEP_ERROR`] ≤ half an LSB): the fast unit
+/// vectors take one step where it does, two where it does not, so that they are as exact as
+/// the error model's unit ([`crate::scalar::Scalar::UNIT_ERROR`]) in every format.
+#[must_use]
+pub const fn one_step_holds_unit(frac: u32) -> bool {
+    frac < 64 && ONE_STEP_ERROR * ((1_u64 << (frac + 1)) as f64) <= 1.0
+}
 
 /// ⌊√y⌋ one bit at a time: slow, obviously right, and usable at compile time.
 const fn isqrt_bitwise(y: u128) -> u128 {
@@ -56,7 +75,7 @@ const fn isqrt_bitwise(y: u128) -> u128 {
 
 /// Newton steps for the exact routines: all the bits of Q2.30.
 const FULL: u32 = 2;
-/// Newton steps for the fast ones: about 15 correct bits.
+/// Newton steps for the fast ones: 17 correct bits ([`ONE_STEP_ERROR`]).
 const FAST: u32 = 1;
 
 /// Normalises y > 0 to (m, 2k) with y ≈ m·2^(64 − 2k), m in [2³⁰, 2³²), and returns
@@ -65,10 +84,10 @@ const FAST: u32 = 1;
 fn rsqrt_q30(y: u64, steps: u32) -> (u64, u64, u32) {
     let shift = y.leading_zeros() & !1;
     let m = (y << shift) >> 32;
-    // m ≥ 2³⁰, so m >> 24 is in 64..256.
-    let index = usize::try_from(m >> 24)
+    // m ≥ 2³⁰, so m >> 23 is in 128..512.
+    let index = usize::try_from(m >> (32 - SEED_BITS))
         .unwrap_or(usize::MAX)
-        .wrapping_sub(64);
+        .wrapping_sub(SEED_BASE);
     let mut z = u64::from(RSQRT_SEEDS.get(index).copied().unwrap_or(1 << 30));
     for _ in 0..steps {
         // z < 2³¹ and m·z² < 3·2⁶², so every product fits u64.
@@ -85,7 +104,7 @@ const fn steps(fast: bool) -> u32 {
     if fast { FAST } else { FULL }
 }
 
-/// ⌊√y⌋ for y < 2⁶², exactly; to about 15 bits when `fast` (one Newton step and no final
+/// ⌊√y⌋ for y < 2⁶², exactly; to 17 bits when `fast` (one Newton step and no final
 /// correction).
 #[inline]
 #[must_use]
@@ -111,7 +130,7 @@ pub fn isqrt_u64(y: u64, fast: bool) -> u64 {
 /// number with f fraction bits, in raw units. Within one unit of the exact value, or 2⁻²² of
 /// it where that is more (the large roots of the smallest inputs); saturated to `u32::MAX`
 /// where it does not fit (the smallest x, for f > 20).
-/// To about 15 bits when `fast`.
+/// To 17 bits when `fast`.
 #[inline]
 #[must_use]
 pub fn rsqrt_fixed(x: u32, frac: u32, fast: bool) -> u32 {
@@ -136,7 +155,7 @@ pub const MANTISSA_SCALE: u32 = 62;
 pub const MANTISSA_BITS: u32 = 31;
 
 /// The reciprocal square root of y > 0 as a mantissa and an exponent: (z, s) with
-/// 1/√y ≈ z·2^(s − 62), z < 2³¹ carrying about 30 correct bits (15 when `fast`) whatever the size
+/// 1/√y ≈ z·2^(s − 62), z < 2³¹ carrying about 30 correct bits (17 when `fast`) whatever the size
 /// of y — which a fixed-point result alone cannot do for large y.
 #[inline]
 #[must_use]
@@ -154,7 +173,7 @@ pub const ROOT_SCALE: u32 = 30;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RootPair {
     /// z < 2^[`MANTISSA_BITS`] with 1/√y ≈ z·2^(s − [`MANTISSA_SCALE`]): about 30 correct bits
-    /// (15 when fast).
+    /// (17 when fast).
     pub inverse: u64,
     /// m·z < 2⁶³ with √y ≈ (m·z)·2^−([`ROOT_SCALE`] + s), m the top 32 bits of y.
     pub root: u64,
@@ -162,7 +181,7 @@ pub struct RootPair {
     pub s: u32,
 }
 
-/// [`RootPair`] of y > 0 (any u64): to about 30 bits, or 15 when `fast`.
+/// [`RootPair`] of y > 0 (any u64): to about 30 bits, or 17 when `fast`.
 #[inline]
 #[must_use]
 pub fn root_pair(y: u64, fast: bool) -> RootPair {
@@ -279,9 +298,35 @@ mod tests {
     #[test]
     fn seeds_are_the_reciprocal_square_roots() {
         for (i, &seed) in RSQRT_SEEDS.iter().enumerate() {
-            let m = (i as f64 + 64.5) / 256.0;
+            let m = (i as f64 + 128.5) / 512.0;
             let exact = f64::from(1_u32 << 30) / m.sqrt();
             assert!((f64::from(seed) - exact).abs() <= 1.0, "{i}");
         }
+    }
+
+    /// Every interval of the table, at its ends (where the seed is worst) and between.
+    #[test]
+    fn one_step_is_within_its_bound() {
+        let mut worst = 0.0_f64;
+        for top in 128_u64..512 {
+            for eighth in 0..=8 {
+                let m = ((top << 23) + eighth * (1 << 20)).min(u64::from(u32::MAX));
+                let (_, z, shift) = rsqrt_q30(m << 32, FAST);
+                assert_eq!(shift, 0);
+                let exact = f64::from(1_u32 << 30) / (m as f64 / 2f64.powi(32)).sqrt();
+                worst = worst.max((z as f64 / exact - 1.0).abs());
+            }
+        }
+        assert!(worst <= ONE_STEP_ERROR, "{worst:e}");
+        assert!(
+            worst > ONE_STEP_ERROR / 2.0,
+            "the bound is loose: {worst:e}"
+        );
+    }
+
+    #[test]
+    fn one_step_holds_unit_vectors_to_sixteen_fraction_bits() {
+        assert!(one_step_holds_unit(16));
+        assert!(!one_step_holds_unit(18));
     }
 }
