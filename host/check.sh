@@ -104,6 +104,14 @@ cargo run --release --locked -p obscura-host -- firmware --target m4f --scene wh
 cargo run --release --locked -p obscura-host -- firmware --target m4f --scene whitted,shapes \
     --format i32f32,f32-approx,f32 --triangle moller-trumbore
 
+step "firmware under QEMU, the 32-bit splits that hold a 240x240 scene, bit for bit against the host"
+cargo run --release --locked -p obscura-host -- firmware --target m4f --scene whitted,shapes \
+    --format i12f20,i14f18
+for target in m4f m0; do
+    cargo run --release --locked -p obscura-host -- firmware --target "$target" \
+        --scene host/scenes/tabletop.toml --format i10f22
+done
+
 step "the preview, headless, against the firmware's frame under QEMU, byte for byte"
 cargo run --release --locked -p obscura-host -- firmware --target m4f \
     --scene host/scenes/pyramid.toml --format i16f16 --order progressive --dither ordered

@@ -60,19 +60,19 @@ impl Target {
     }
 
     /// The formats of each firmware image the chart runs, every one with every method
-    /// variant: on the M4F all in one image (its 512 KiB hold them); on the M0 formats of one
-    /// kind together, as many as its 256 KiB hold (two 32-bit fixed formats, `i32f32` alone,
-    /// the two f32 formats).
+    /// variant: formats of one kind together, as many as the flash holds (the M4F's 512 KiB
+    /// four 32-bit fixed formats, the M0's 256 KiB two; `i32f32` alone; the two f32 formats).
     pub fn chart_images(self) -> Vec<Vec<Format>> {
-        if self == Self::M4f {
-            return vec![Format::FIRMWARE.to_vec()];
-        }
         let of_kind = |kind: fn(&Format) -> bool| -> Vec<Format> {
             Format::FIRMWARE.iter().copied().filter(kind).collect()
         };
+        let fixed_32_per_image = match self {
+            Self::M4f => 4,
+            Self::M0 => 2,
+        };
         // Each kind, and how many of it one image holds.
         let kinds = [
-            (of_kind(|f| f.is_fixed_32()), 2),
+            (of_kind(|f| f.is_fixed_32()), fixed_32_per_image),
             (of_kind(|f| f.is_fixed_point() && !f.is_fixed_32()), 1),
             (of_kind(|f| !f.is_fixed_point()), 2),
         ];

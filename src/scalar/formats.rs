@@ -4,7 +4,10 @@
 
 /// Calls `$then!` with every format the tracer is built for, from the smallest range to the
 /// largest: the 32-bit fixed formats as `Variant => RawType` (a type of `fixed::types`), then
-/// the 64-bit one, then the floats as `Variant => Type`.
+/// the 64-bit one, then the floats as `Variant => Type`. The 32-bit formats are the even
+/// splits from i8f24 to i24f8 but i18f14: in the `glass` stress case it draws four pixels
+/// wrong where a ray meets the sphere from inside at its critical angle (42.1° against
+/// 41.8°), which its error model does not explain yet.
 ///
 /// ```
 /// macro_rules! count {
@@ -19,8 +22,14 @@ macro_rules! for_each_format {
     ($then:ident) => {
         $then! {
             fixed {
+                I8f24 => I8F24,
+                I10f22 => I10F22,
+                I12f20 => I12F20,
+                I14f18 => I14F18,
                 I16f16 => I16F16,
                 I20f12 => I20F12,
+                I22f10 => I22F10,
+                I24f8 => I24F8,
                 I32f32 => I32F32,
             }
             float {

@@ -7,7 +7,7 @@
 //!    and keep the top 32 bits as m, a Q0.32 number in [¼, 1). Then y ≈ m·2^(64 − 2k).
 //! 2. Seed z ≈ 1/√m from a 384-entry table on m's top nine bits (about nine correct bits).
 //! 3. Newton steps for 1/√m, z ← z·(3 − m·z²)/2, each doubling the correct bits (17 after
-//!    one, [`ONE_STEP_ERROR`]; the 30 of Q2.30 after two).
+//!    one, [`ONE_STEP_BITS`]; the 30 of Q2.30 after two).
 //!
 //! Then √y = m·z·2^(32 − k) and 1/√y = z·2^(k − 32), and the two routines scale accordingly.
 //! [`isqrt_u64`] finishes by stepping to the exact ⌊√y⌋, so its result is the mathematical one;
@@ -40,17 +40,18 @@ static RSQRT_SEEDS: [u32; 3 * SEED_BASE] = {
     table
 };
 
-/// The relative error of 1/√m after one Newton step from [`RSQRT_SEEDS`]: 2⁻¹⁷ bounds it
-/// (2⁻¹⁷·⁴² at the ends of the widest interval, tested).
-pub const ONE_STEP_ERROR: f64 = 1.0 / (1 << 17) as f64;
+/// The bits of 1/√m one Newton step from [`RSQRT_SEEDS`] keeps: its relative error is below
+/// 2⁻¹⁷ (2⁻¹⁷·⁴² at the ends of the widest interval, tested).
+pub const ONE_STEP_BITS: u32 = 17;
 
 /// Whether one Newton step keeps a unit vector in a format with `frac` fraction bits within
-/// its LSB (half an LSB of rounding and [`ONE_STEP_ERROR`] ≤ half an LSB): the fast unit
+/// its LSB (half an LSB of rounding and 2^−[`ONE_STEP_BITS`] ≤ half an LSB): the fast unit
 /// vectors take one step where it does, two where it does not, so that they are as exact as
-/// the error model's unit ([`crate::scalar::Scalar::UNIT_ERROR`]) in every format.
+/// the error model's unit ([`crate::scalar::Scalar::UNIT_ERROR`]) in every format. Integer
+/// arithmetic: it runs per vector where the compiler does not see `frac` as a constant.
 #[must_use]
 pub const fn one_step_holds_unit(frac: u32) -> bool {
-    frac < 64 && ONE_STEP_ERROR * ((1_u64 << (frac + 1)) as f64) <= 1.0
+    frac < ONE_STEP_BITS
 }
 
 /// ⌊√y⌋ one bit at a time: slow, obviously right, and usable at compile time.
@@ -75,7 +76,7 @@ const fn isqrt_bitwise(y: u128) -> u128 {
 
 /// Newton steps for the exact routines: all the bits of Q2.30.
 const FULL: u32 = 2;
-/// Newton steps for the fast ones: 17 correct bits ([`ONE_STEP_ERROR`]).
+/// Newton steps for the fast ones: [`ONE_STEP_BITS`] correct bits.
 const FAST: u32 = 1;
 
 /// Normalises y > 0 to (m, 2k) with y ≈ m·2^(64 − 2k), m in [2³⁰, 2³²), and returns
@@ -307,6 +308,7 @@ mod tests {
     /// Every interval of the table, at its ends (where the seed is worst) and between.
     #[test]
     fn one_step_is_within_its_bound() {
+        let bound = 1.0 / f64::from(1_u32 << ONE_STEP_BITS);
         let mut worst = 0.0_f64;
         for top in 128_u64..512 {
             for eighth in 0..=8 {
@@ -317,11 +319,8 @@ mod tests {
                 worst = worst.max((z as f64 / exact - 1.0).abs());
             }
         }
-        assert!(worst <= ONE_STEP_ERROR, "{worst:e}");
-        assert!(
-            worst > ONE_STEP_ERROR / 2.0,
-            "the bound is loose: {worst:e}"
-        );
+        assert!(worst <= bound, "{worst:e}");
+        assert!(worst > bound / 2.0, "the bound is loose: {worst:e}");
     }
 
     #[test]

@@ -898,7 +898,36 @@ pub(super) fn check(
 /// The first magnitude that does not fit `format` by `methods`.
 fn too_large(format: &FormatInfo, desc: &SceneDesc<'_>, methods: &Methods) -> Option<Magnitude> {
     let slack = origin_slack(desc, methods, format);
-    magnitudes(desc, methods, slack).find(|m| !fits(m.value, format.range))
+    magnitudes(desc, methods, slack)
+        .chain(plane_scale(format, desc))
+        .find(|m| !fits(m.value, format.range))
+}
+
+/// A plane keeps a hit to the world by testing |p·s|² ≤ (R·s)², each coordinate of p within R
+/// and s the power of two that brings R within (½, 1] — or one LSB, where the format resolves
+/// no finer: then R·s outgrows 1, and the sum of the three squares, 3(R·s)², must fit.
+fn plane_scale(format: &FormatInfo, desc: &SceneDesc<'_>) -> Option<Magnitude> {
+    let plane = desc
+        .objects
+        .iter()
+        .position(|o| matches!(o.shape, ShapeDesc::Plane { .. }))?;
+    let world = f64::from(desc.far);
+    // As the plane finds it: halved until R·s ≤ 1, or doubled while R·s ≤ ½, below half
+    // the format's range (each loop ends within f64's exponents).
+    let mut ideal = 1.0_f64;
+    while world * ideal > 1.0 {
+        ideal /= 2.0;
+    }
+    while world * ideal <= 0.5 && ideal < format.range / 2.0 {
+        ideal *= 2.0;
+    }
+    let scaled = world * ideal.max((format.resolution)(1.0));
+    Some(Magnitude {
+        item: Item::Object(plane),
+        quantity: "the sum of a hit's squared coordinates in the plane's world scale",
+        value: 3.0 * scaled * scaled,
+        remedy: Remedy::ShrinkWorld,
+    })
 }
 
 /// The first feature `format` cannot resolve by `methods`.

@@ -143,11 +143,12 @@ impl Analysis {
         }
     }
 
-    /// The scene's 32-bit split: of the 32-bit fixed formats that hold it as it is, the one
-    /// with the most fraction bits, which gives the scene the integer bits its largest
-    /// intermediate needs (as the range proof counts them) and the rest to the fraction.
-    pub fn split(&self) -> Option<Format> {
-        split(&[self])
+    /// The scene's 32-bit split: of the 32-bit fixed formats that hold it as it is (or, with
+    /// `rescaled`, rescaled about the eye), the one with the most fraction bits, which gives the
+    /// scene the integer bits its largest intermediate needs (as the range proof counts them)
+    /// and the rest to the fraction.
+    pub fn split(&self, rescaled: bool) -> Option<Format> {
+        split(&[self], rescaled)
     }
 
     /// What `format` by `methods` costs per pixel on `machine` in this scene, by the chart.
@@ -156,15 +157,19 @@ impl Analysis {
     }
 }
 
-/// The 32-bit fixed format with the most fraction bits that holds every scene analysed, as it
-/// is (not rescaled).
-fn split(analyses: &[&Analysis]) -> Option<Format> {
+/// The 32-bit fixed format with the most fraction bits that holds every scene analysed as it
+/// is, or with `rescaled` also rescaled about the eye.
+fn split(analyses: &[&Analysis], rescaled: bool) -> Option<Format> {
     let holds = |format: Format| {
         analyses.iter().all(|analysis| {
-            analysis
-                .verdicts
-                .iter()
-                .any(|v| v.format == format && v.fit == Fit::Holds)
+            analysis.verdicts.iter().any(|v| {
+                v.format == format
+                    && match v.fit {
+                        Fit::Holds => true,
+                        Fit::Rescaled(_) => rescaled,
+                        Fit::Refused(_) => false,
+                    }
+            })
         })
     };
     Format::ALL
@@ -205,8 +210,8 @@ pub fn pick(
 ) -> Result<Option<Pick>> {
     let analyses: Vec<&Analysis> = scenes.iter().map(|&(_, analysis)| analysis).collect();
     // The 32-bit splits cost the same, so of those only the scenes' split, the most precise,
-    // is a candidate (where one holds them all as they are).
-    let split = split(&analyses);
+    // is a candidate (where one holds them all as they are; or, rescaling, rescaled).
+    let split = split(&analyses, false).or_else(|| split(&analyses, rescale));
     let mut candidates: Vec<(f64, Format)> = Format::ALL
         .iter()
         .copied()

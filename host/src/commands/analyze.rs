@@ -3,6 +3,7 @@
 use crate::analysis::{Analysis, Bits, Extents, Fit, Pick, measure, pick};
 use crate::cli::AnalyzeArgs;
 use crate::cost::Machine;
+use crate::format::Format;
 use crate::output::say;
 use crate::scene_file::NamedScene;
 use anyhow::Result;
@@ -19,16 +20,21 @@ fn analyze(args: &AnalyzeArgs, named: &NamedScene) -> Result<()> {
     say!("# {} by methods {methods}\n", named.name)?;
     print_extents(&analysis.extents)?;
     print_bits(&analysis.bits)?;
-    match analysis.split() {
-        Some(split) => {
-            let (integer, fraction) = split.split().unwrap_or_default();
-            say!(
-                "\nThe scene's 32-bit split, the 32-bit fixed format with the most fraction bits \
-                 that holds it: **{split}** ({integer} integer bits, the sign among them, and \
-                 {fraction} fraction bits)."
-            )?;
-        }
-        None => say!("\nNo 32-bit fixed format holds the scene as it is.")?,
+    let split_line = |split: Format| {
+        let (integer, fraction) = split.split().unwrap_or_default();
+        format!(
+            "the 32-bit fixed format with the most fraction bits that holds it: **{split}** \
+             ({integer} integer bits, the sign among them, and {fraction} fraction bits)"
+        )
+    };
+    match (analysis.split(false), analysis.split(true)) {
+        (Some(split), _) => say!("\nThe scene's 32-bit split, {}.", split_line(split))?,
+        (None, Some(split)) => say!(
+            "\nNo 32-bit fixed format holds the scene as it is; rescaled about the eye, its split \
+             is {}.",
+            split_line(split)
+        )?,
+        (None, None) => say!("\nNo 32-bit fixed format holds the scene, even rescaled.")?,
     }
     say!(
         "\n## Formats, at {width}x{height}\n\nThe model's bound against f64 (the format's \
