@@ -278,6 +278,11 @@ pub struct FirmwareArgs {
     /// the M0), RAM with the measured stack ≤ 16 KiB on both.
     #[arg(long)]
     pub budget: bool,
+    /// Also count the run's instructions by function under QEMU (a TCG plugin, built from
+    /// host/qemu/profile.c by the system's C compiler) and print where they go per pixel
+    /// drawn: by phase of the tracer, and the functions that take most.
+    #[arg(long)]
+    pub profile: bool,
 }
 
 /// `obscura preview`.

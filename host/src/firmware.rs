@@ -9,6 +9,7 @@ use clap::ValueEnum;
 use object::{Object, ObjectSection, SectionFlags, SectionKind};
 use obscura::methods::MethodName;
 use obscura::{Methods, Presentation};
+use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -192,9 +193,30 @@ pub struct Frame {
     pub file: String,
 }
 
-/// Runs `elf` under QEMU in `dir` (where the frames land), waiting at most `timeout`, and
-/// returns the frames it reported.
-pub fn run(target: Target, elf: &Path, dir: &Path, timeout: Duration) -> Result<Vec<Frame>> {
+/// A QEMU plugin to load for a run: the shared library, and its argument.
+#[derive(Clone, Copy, Debug)]
+pub struct Plugin<'a> {
+    /// The plugin.
+    pub library: &'a Path,
+    /// Its argument, `name=value`.
+    pub argument: &'a str,
+}
+
+/// Runs `elf` under QEMU in `dir` (where the frames land), with `plugin` loaded if given,
+/// waiting at most `timeout`, and returns the frames it reported.
+pub fn run(
+    target: Target,
+    elf: &Path,
+    dir: &Path,
+    timeout: Duration,
+    plugin: Option<Plugin<'_>>,
+) -> Result<Vec<Frame>> {
+    let plugin_args = plugin.map(|plugin| {
+        let mut option = plugin.library.as_os_str().to_owned();
+        option.push(",");
+        option.push(plugin.argument);
+        [OsString::from("-plugin"), option]
+    });
     let mut child = Command::new("qemu-system-arm")
         .current_dir(dir)
         .args(target.qemu_machine())
@@ -205,6 +227,7 @@ pub fn run(target: Target, elf: &Path, dir: &Path, timeout: Duration) -> Result<
             "-icount",
             "shift=0",
         ])
+        .args(plugin_args.iter().flatten())
         .arg("-kernel")
         .arg(elf)
         .stdin(Stdio::null())

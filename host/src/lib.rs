@@ -21,6 +21,7 @@ mod pareto;
 #[cfg(test)]
 mod peak;
 mod plot;
+mod profile;
 mod quantized;
 #[cfg(test)]
 mod regressions;

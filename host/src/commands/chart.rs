@@ -92,7 +92,8 @@ pub fn run(args: &ChartArgs) -> Result<()> {
                     .collect::<Vec<_>>()
                     .join(", ")
             );
-            let frames = firmware::run(target, &elf, &dir, Duration::from_secs(args.timeout))?;
+            let frames =
+                firmware::run(target, &elf, &dir, Duration::from_secs(args.timeout), None)?;
             for frame in &frames {
                 let (scene, format) = find(&frame.scene, &frame.format)?;
                 let (_, _, differing) = firmware::compare_frame(&scene.desc, format, frame, &dir)?;

@@ -7,6 +7,7 @@ use crate::firmware_build::{self, Configuration, Image};
 use crate::format::Format;
 use crate::heatmap::heatmap;
 use crate::output::{self, say};
+use crate::profile::{self, Profile};
 use crate::render::rgb565_image;
 use crate::scene_file::{self, NamedScene};
 use anyhow::{Context, Result, bail};
@@ -124,7 +125,24 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
     let size = firmware::image_size(&elf)?;
     let dir = args.out_dir.join(target.name());
     eprintln!("running {} under QEMU in {}", elf.display(), dir.display());
-    let frames = firmware::run(target, &elf, &dir, Duration::from_secs(args.timeout))?;
+    let counts = dir.join("profile-counts.txt");
+    let library = if args.profile {
+        Some(profile::plugin()?)
+    } else {
+        None
+    };
+    let argument = format!("out={}", counts.display());
+    let plugin = library.as_deref().map(|library| firmware::Plugin {
+        library,
+        argument: &argument,
+    });
+    let frames = firmware::run(
+        target,
+        &elf,
+        &dir,
+        Duration::from_secs(args.timeout),
+        plugin,
+    )?;
 
     let mut reports = Vec::new();
     let mut mismatched = Vec::new();
@@ -195,6 +213,9 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
         }
     }
     print_table(target, &reports)?;
+    if args.profile {
+        print_profile(target, &Profile::read(&elf, &counts)?, &reports)?;
+    }
     let budget = target.budget();
     let stack = reports.iter().map(|r| r.stack_bytes).max().unwrap_or(0);
     let over = size.exceeds(stack, budget);
@@ -226,6 +247,57 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
             "the firmware image takes {why}; build fewer scenes or formats into one image \
              (one of each is what a board needs)"
         );
+    }
+    Ok(())
+}
+
+/// How many functions the profile lists.
+const PROFILED_FUNCTIONS: usize = 12;
+
+/// Where the run's instructions went, per pixel drawn: by phase, then the functions that took
+/// most. Fails when the plugin counted fewer instructions than SysTick did for the frames alone.
+fn print_profile(target: Target, profile: &Profile, reports: &[Report]) -> Result<()> {
+    let pixels: u64 = reports
+        .iter()
+        .map(|r| u64::from(r.width) * u64::from(r.height))
+        .sum();
+    let frames: u64 = reports.iter().map(|r| r.instructions_per_frame).sum();
+    if profile.total < frames {
+        bail!(
+            "QEMU's plugin counted {} instructions in the whole run, fewer than SysTick's {frames} \
+             for the frames alone: the profile is wrong",
+            profile.total
+        );
+    }
+    let per_pixel = |n: u64| n as f64 / pixels.max(1) as f64;
+    let share = |n: u64| 100.0 * n as f64 / profile.total.max(1) as f64;
+    say!(
+        "\nwhere the instructions go on {} (QEMU's count at each address, by function; \
+         per pixel of the {pixels} drawn; the frames alone, by SysTick: {:.0} per pixel):\n",
+        target.name(),
+        per_pixel(frames)
+    )?;
+    say!("| phase | instructions per pixel | share |")?;
+    say!("|---|---:|---:|")?;
+    for &(phase, n) in &profile.phases {
+        say!("| {phase} | {:.0} | {:.1} % |", per_pixel(n), share(n))?;
+    }
+    say!(
+        "| the whole run | {:.0} | 100 % |",
+        per_pixel(profile.total)
+    )?;
+    for (kind, functions) in [
+        ("function of the image (out of line)", &profile.functions),
+        (
+            "function of the source (innermost inlined)",
+            &profile.sources,
+        ),
+    ] {
+        say!("\n| {kind} | instructions per pixel | share |")?;
+        say!("|---|---:|---:|")?;
+        for (name, n) in functions.iter().take(PROFILED_FUNCTIONS) {
+            say!("| `{name}` | {:.0} | {:.1} % |", per_pixel(*n), share(*n))?;
+        }
     }
     Ok(())
 }

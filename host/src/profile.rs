@@ -1,0 +1,440 @@
+//! Where a firmware run's instructions go (`obscura firmware --profile`). QEMU counts the
+//! instructions executed at each address with a small TCG plugin (`host/qemu/profile.c`, built
+//! here by the system's C compiler). Each address is attributed twice: to the function of the
+//! ELF image that holds it (what is out of line: the calls a frame makes), and to a phase of the
+//! tracer by the functions inlined there (the image's debug information: release builds keep
+//! line tables and inlining), as a sampling profiler with inline frames would.
+
+use crate::firmware::workspace;
+use addr2line::Loader;
+use anyhow::{Context, Result, anyhow, bail};
+use object::{Object, ObjectSymbol, SymbolKind};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// A phase of a frame and the functions that mark it: an address belongs to the phase of the
+/// innermost function inlined there that marks one (a function marks a phase when its
+/// demangled name contains one of `marks`; the first phase listed wins). Arithmetic marks
+/// [`ARITHMETIC`] only where nothing encloses it that marks another phase: inlined, it is the
+/// work of its caller's phase.
+struct Phase {
+    name: &'static str,
+    marks: &'static [&'static str],
+}
+
+/// The phases, in the order the table lists them.
+const PHASES: [Phase; 9] = [
+    Phase {
+        name: "primary rays (camera)",
+        marks: &["obscura::camera::"],
+    },
+    Phase {
+        name: "intersection tests",
+        marks: &["obscura::shape::"],
+    },
+    Phase {
+        name: "shadow rays (but their intersection tests)",
+        marks: &["::transmittance"],
+    },
+    Phase {
+        name: "secondary rays: reflection and refraction",
+        marks: &["::spawn", "::refract"],
+    },
+    Phase {
+        name: "shading",
+        marks: &[
+            "obscura::shade::",
+            "obscura::light::",
+            "obscura::material::",
+        ],
+    },
+    Phase {
+        name: ARITHMETIC,
+        marks: &["obscura::scalar::", "obscura::vec3::", "obscura::methods::"],
+    },
+    Phase {
+        name: "compiler library (soft float, 64-bit division, copies)",
+        marks: &[
+            "compiler_builtins",
+            "__aeabi",
+            "memcpy",
+            "memset",
+            "memmove",
+        ],
+    },
+    Phase {
+        name: "colour, quantisation and output",
+        marks: &[
+            "obscura::color::",
+            "obscura::render::",
+            "obscura_firmware::",
+            "obscura_qemu::",
+            "embedded_graphics",
+            "cortex_m_semihosting::",
+        ],
+    },
+    Phase {
+        name: "scene build and range proof",
+        marks: &["obscura::scene::", "obscura::scenes::", "obscura::desc::"],
+    },
+];
+
+/// Roots, quotients and unit vectors out of line: called, not inlined into a phase.
+const ARITHMETIC: &str = "roots, quotients and unit vectors (out of line)";
+
+/// Where what no phase claims goes: start-up, and `core`'s functions left out of line.
+const OTHER: &str = "other (start-up, core library)";
+
+/// The phase a function called `name` (demangled, without its hash) marks, if any.
+fn marked(name: &str) -> Option<&'static str> {
+    PHASES
+        .iter()
+        .find(|phase| phase.marks.iter().any(|mark| name.contains(mark)))
+        .map(|phase| phase.name)
+}
+
+/// The phase of an address whose functions are `inlined`, innermost first and the function
+/// that holds it last.
+fn phase_of<'a>(inlined: impl IntoIterator<Item = &'a str>) -> &'static str {
+    let mut arithmetic = false;
+    for name in inlined {
+        match marked(name) {
+            Some(ARITHMETIC) => arithmetic = true,
+            Some(phase) => return phase,
+            None => {}
+        }
+    }
+    if arithmetic { ARITHMETIC } else { OTHER }
+}
+
+/// A function of the image: where it starts, how many bytes it spans, its demangled name.
+#[derive(Clone, Debug, PartialEq, Eq)]
+struct Function {
+    start: u64,
+    size: u64,
+    name: String,
+}
+
+/// The functions of the ELF image `data`, by address (Thumb's mode bit cleared).
+fn functions(data: &[u8]) -> Result<Vec<Function>> {
+    let file = object::File::parse(data).context("the firmware image is not an ELF file")?;
+    let mut functions: Vec<Function> = file
+        .symbols()
+        .filter(|symbol| symbol.kind() == SymbolKind::Text && symbol.size() > 0)
+        .filter_map(|symbol| {
+            let name = symbol.name().ok()?;
+            Some(Function {
+                start: symbol.address() & !1,
+                size: symbol.size(),
+                name: addr2line::demangle_auto(name.into(), None).into_owned(),
+            })
+        })
+        .collect();
+    functions.sort_by_key(|f| f.start);
+    Ok(functions)
+}
+
+/// The function holding `address`, if any.
+fn holding(functions: &[Function], address: u64) -> Option<&Function> {
+    let after = functions.partition_point(|f| f.start <= address);
+    functions
+        .get(after.checked_sub(1)?)
+        .filter(|f| address < f.start + f.size)
+}
+
+/// An address that ran: how often, the function holding it (or the address, where no symbol
+/// covers it) and the functions inlined there, innermost first (empty without debug
+/// information).
+#[derive(Clone, Debug)]
+struct Executed {
+    times: u64,
+    function: String,
+    inlined: Vec<String>,
+}
+
+/// Instructions executed, by function and by phase.
+#[derive(Debug, Default)]
+pub struct Profile {
+    /// Per function of the image (its name, or the address for code no symbol covers), most
+    /// first: what runs out of line.
+    pub functions: Vec<(String, u64)>,
+    /// Per function of the source: the innermost function inlined at each address (the
+    /// image's function where nothing is), most first.
+    pub sources: Vec<(String, u64)>,
+    /// Per phase, in [`PHASES`]' order then [`OTHER`]; a phase that ran nothing is left out.
+    pub phases: Vec<(&'static str, u64)>,
+    /// Every instruction the run executed.
+    pub total: u64,
+}
+
+impl Profile {
+    /// Sums what `executed` by function and by phase.
+    fn attribute(executed: &[Executed]) -> Self {
+        let mut by_function: HashMap<&str, u64> = HashMap::new();
+        let mut by_source: HashMap<&str, u64> = HashMap::new();
+        let mut by_phase: HashMap<&str, u64> = HashMap::new();
+        for e in executed {
+            *by_function.entry(&e.function).or_default() += e.times;
+            let source = e.inlined.first().unwrap_or(&e.function);
+            *by_source.entry(source).or_default() += e.times;
+            let inlined = e.inlined.iter().chain([&e.function]).map(String::as_str);
+            *by_phase.entry(phase_of(inlined)).or_default() += e.times;
+        }
+        let phases = PHASES
+            .iter()
+            .map(|phase| phase.name)
+            .chain([OTHER])
+            .filter_map(|phase| Some((phase, *by_phase.get(phase)?)))
+            .collect();
+        Self {
+            total: executed.iter().map(|e| e.times).sum(),
+            functions: most_first(by_function),
+            sources: most_first(by_source),
+            phases,
+        }
+    }
+
+    /// The profile of a run of the image `elf` whose plugin wrote `counts`.
+    pub fn read(elf: &Path, counts: &Path) -> Result<Self> {
+        let data = std::fs::read(elf).with_context(|| format!("cannot read {}", elf.display()))?;
+        let functions = functions(&data)?;
+        let debug = Loader::new(elf).map_err(|e| {
+            anyhow!(
+                "cannot read the debug information of {}: {e}",
+                elf.display()
+            )
+        })?;
+        let text = std::fs::read_to_string(counts)
+            .with_context(|| format!("the profiling plugin wrote no {}", counts.display()))?;
+        let executed = parse_counts(&text)?
+            .into_iter()
+            .map(|(address, times)| {
+                let function = holding(&functions, address)
+                    .map_or_else(|| format!("{address:#x}"), |f| f.name.clone());
+                let mut inlined = Vec::new();
+                let mut frames = debug
+                    .find_frames(address)
+                    .map_err(|e| anyhow!("the debug information at {address:#x}: {e}"))?;
+                while let Some(frame) = frames
+                    .next()
+                    .map_err(|e| anyhow!("the debug information at {address:#x}: {e}"))?
+                {
+                    if let Some(name) = frame.function.as_ref().and_then(|f| f.demangle().ok()) {
+                        inlined.push(name.into_owned());
+                    }
+                }
+                Ok(Executed {
+                    times,
+                    function,
+                    inlined,
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
+        Ok(Self::attribute(&executed))
+    }
+}
+
+/// The counts of `by_name`, most first (ties by name).
+fn most_first(by_name: HashMap<&str, u64>) -> Vec<(String, u64)> {
+    let mut all: Vec<(String, u64)> = by_name
+        .into_iter()
+        .map(|(name, times)| (name.to_owned(), times))
+        .collect();
+    all.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(&b.0)));
+    all
+}
+
+/// Parses the plugin's lines, `<address in hex> <times executed>`.
+fn parse_counts(text: &str) -> Result<Vec<(u64, u64)>> {
+    text.lines()
+        .enumerate()
+        .map(|(i, line)| {
+            let parsed = line.split_once(' ').and_then(|(address, executed)| {
+                Some((
+                    u64::from_str_radix(address, 16).ok()?,
+                    executed.parse().ok()?,
+                ))
+            });
+            parsed.with_context(|| format!("line {} of the plugin's counts: `{line}`", i + 1))
+        })
+        .collect()
+}
+
+/// The plugin's source, in the workspace.
+fn plugin_source() -> PathBuf {
+    workspace().join("host/qemu/profile.c")
+}
+
+/// Builds the counting plugin with the system's C compiler (`cc`, or `$CC`) unless it is
+/// newer than its source, and returns its path.
+pub fn plugin() -> Result<PathBuf> {
+    let source = plugin_source();
+    let out = workspace().join("target/qemu-plugin");
+    let library = out.join("profile.so");
+    let modified = |path: &Path| std::fs::metadata(path).and_then(|m| m.modified()).ok();
+    if let (Some(built), Some(written)) = (modified(&library), modified(&source))
+        && built >= written
+    {
+        return Ok(library);
+    }
+    std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
+    let cc = std::env::var_os("CC").unwrap_or_else(|| "cc".into());
+    let status = Command::new(&cc)
+        .args(["-shared", "-fPIC", "-O2", "-Wall", "-Werror", "-o"])
+        .arg(&library)
+        .arg(&source)
+        .status()
+        .with_context(|| {
+            format!(
+                "cannot run the C compiler `{}` to build QEMU's counting plugin; install one \
+                 (sudo apt-get install gcc) or name it in $CC",
+                cc.to_string_lossy()
+            )
+        })?;
+    if !status.success() {
+        bail!(
+            "building QEMU's counting plugin {} failed (see the compiler's messages above)",
+            source.display()
+        );
+    }
+    Ok(library)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_address_belongs_to_the_innermost_phase_inlined_there() {
+        for (inlined, phase) in [
+            (
+                &["obscura::camera::Camera<S>::row"][..],
+                "primary rays (camera)",
+            ),
+            (
+                &[
+                    "<obscura::scalar::fixed_point::Fx<F,O> as core::ops::arith::Mul>::mul",
+                    "obscura::shape::sphere::Sphere<S>::intersect",
+                    "obscura::shade::Tracer<S>::nearest",
+                    "obscura::shade::Tracer<S>::transmittance",
+                    "obscura::shade::Tracer<S>::trace",
+                    "obscura_firmware::frames::render",
+                ],
+                "intersection tests",
+            ),
+            (
+                &[
+                    "obscura::shade::Tracer<S>::transmittance",
+                    "obscura::shade::Tracer<S>::trace",
+                ],
+                "shadow rays (but their intersection tests)",
+            ),
+            (
+                &[
+                    "obscura::vec3::Vec3<S>::dot",
+                    "obscura::shade::Tracer<S>::trace",
+                ],
+                "shading",
+            ),
+            (
+                &["<obscura::scalar::fixed_point::Fx<F,O> as obscura::scalar::Scalar>::normalize3"],
+                ARITHMETIC,
+            ),
+            (
+                &["compiler_builtins::float::mul::__muldf3"],
+                "compiler library (soft float, 64-bit division, copies)",
+            ),
+            (
+                &[
+                    "obscura::color::Rgb<S>::quantize_at",
+                    "obscura_firmware::frames::render",
+                ],
+                "colour, quantisation and output",
+            ),
+            (
+                &["obscura::scene::range::check"],
+                "scene build and range proof",
+            ),
+            (&["Reset"], OTHER),
+            (
+                &[
+                    "<core::iter::adapters::zip::Zip<A,B> as core::iter::adapters::zip::ZipImpl<A,B>>::next",
+                ],
+                OTHER,
+            ),
+        ] {
+            assert_eq!(phase_of(inlined.iter().copied()), phase, "{inlined:?}");
+        }
+    }
+
+    #[test]
+    fn addresses_count_for_their_function_and_phase() {
+        let function = |start, size, name: &str| Function {
+            start,
+            size,
+            name: name.to_owned(),
+        };
+        let functions = [
+            function(0x100, 0x20, "obscura::shape::sphere::Sphere<S>::intersect"),
+            function(0x120, 0x10, "obscura::camera::Camera<S>::row"),
+            function(0x200, 0x08, "__aeabi_lmul"),
+        ];
+        assert_eq!(holding(&functions, 0x100).unwrap().start, 0x100);
+        assert_eq!(holding(&functions, 0x12f).unwrap().start, 0x120);
+        assert!(holding(&functions, 0x130).is_none());
+        assert!(holding(&functions, 0xff).is_none());
+        let executed = |times, function: &str, inlined: &[&str]| Executed {
+            times,
+            function: function.to_owned(),
+            inlined: inlined.iter().map(|&s| s.to_owned()).collect(),
+        };
+        let profile = Profile::attribute(&[
+            executed(5, "obscura::shape::sphere::Sphere<S>::intersect", &[]),
+            executed(
+                7,
+                "obscura::shape::sphere::Sphere<S>::intersect",
+                &["obscura::vec3::Vec3<S>::dot"],
+            ),
+            executed(3, "obscura::camera::Camera<S>::row", &[]),
+            executed(4, "0x130", &[]),
+            executed(10, "__aeabi_lmul", &[]),
+        ]);
+        assert_eq!(profile.total, 29);
+        assert_eq!(
+            profile.functions,
+            [
+                (
+                    "obscura::shape::sphere::Sphere<S>::intersect".to_owned(),
+                    12
+                ),
+                ("__aeabi_lmul".to_owned(), 10),
+                ("0x130".to_owned(), 4),
+                ("obscura::camera::Camera<S>::row".to_owned(), 3),
+            ]
+        );
+        assert_eq!(
+            profile.sources[..2],
+            [
+                ("__aeabi_lmul".to_owned(), 10),
+                ("obscura::vec3::Vec3<S>::dot".to_owned(), 7),
+            ]
+        );
+        assert_eq!(
+            profile.phases,
+            [
+                ("primary rays (camera)", 3),
+                ("intersection tests", 12),
+                ("compiler library (soft float, 64-bit division, copies)", 10),
+                (OTHER, 4),
+            ]
+        );
+    }
+
+    #[test]
+    fn malformed_counts_name_their_line() {
+        let error = parse_counts("100 3\nzz 1\n").unwrap_err();
+        assert!(format!("{error:#}").contains("line 2"), "{error:#}");
+        assert_eq!(parse_counts("1a 3\n").unwrap(), [(0x1a, 3)]);
+    }
+}
