@@ -94,7 +94,7 @@ for target in m4f m0; do
     cargo run --release --locked -p obscura-host -- firmware --target "$target" \
         --scene whitted,shapes --format i16f16 --budget
     cargo run --release --locked -p obscura-host -- firmware --target "$target" \
-        --scene host/scenes/pyramid.toml --format auto --budget
+        --scene host/scenes/pyramid.toml --format auto --budget --profile
 done
 
 step "firmware under QEMU (m4f), the other formats, methods, row order and dither, bit for bit against the host"

@@ -3,8 +3,11 @@
 //! the format's own value, rounded to its grid; the range proof and the features are the
 //! format's; a quotient saturates at its range. The rounding of each operation is left out but
 //! for the one an image is most sensitive to: a power (Phong's highlight, cosⁿ) is taken of
-//! its cosine less the format's rounding of a cosine, which an exponent n multiplies by n where
-//! the highlight shows. So a render in it against the f64 reference shows what the format's
+//! its cosine plus the format's rounding of a cosine, which an exponent n multiplies by n where
+//! the highlight shows, and raised by the bound of its own products' rounding, which the
+//! exponent multiplies alike. Up, not down: xⁿ is convex, so a cosine rounded up moves it
+//! further than one rounded down, and a highlight narrower than the format resolves spreads
+//! (its cosines round to 1). So a render in it against the f64 reference shows what the format's
 //! constants, tolerances and highlights do to the image, pixel by pixel, which
 //! [`crate::analysis`] adds to its model of the rest of the rounding.
 
@@ -136,16 +139,36 @@ impl<S: Scalar> Scalar for Quantized<S> {
         Self::new(S::ratio(num, den).to_f64())
     }
 
-    /// The power of the base less its rounding as a cosine: see the module documentation.
+    /// The power of the base plus its rounding as a cosine, plus the rounding of the power
+    /// itself ([`power_rounding`]), at most 1: see the module documentation.
     fn powi(self, exponent: u16) -> Self {
-        let base = (self.0 - COSINE_STEPS * S::UNIT_ERROR).max(0.0);
-        Self::new(base.powi(i32::from(exponent)))
+        let base = (self.0 + COSINE_STEPS * S::UNIT_ERROR).clamp(0.0, 1.0);
+        let power = base.powi(i32::from(exponent));
+        let rounding = power_rounding(base, exponent, S::resolution(1.0) / 2.0);
+        Self::new((power + rounding).min(1.0))
     }
 
     fn diff_of_products(a: Self, b: Self, c: Self, d: Self) -> (Self, Ordering) {
         let (value, sign) = f64::diff_of_products(a.0, b.0, c.0, d.0);
         (Self::new(value), sign)
     }
+}
+
+/// How far [`Scalar::powi`]'s products, each rounded by up to `rounding`, may move xⁿ for x in
+/// [0, 1]. By repeated squaring xⁿ is the product of the squares x^(2ʲ) for the bits j of n; the
+/// rounding of the square x^(2ʲ⁺¹) reaches the power multiplied by the derivative of xⁿ with
+/// respect to that square, at most (n/2ʲ⁺¹)·x^(n − 2ʲ⁺¹), and each multiplication into the
+/// result passes its own rounding on times factors below 1. So near x = 1, where the highlight
+/// is brightest, the bound is about n times the rounding, and far below it about one rounding
+/// per bit of n.
+fn power_rounding(x: f64, exponent: u16, rounding: f64) -> f64 {
+    let n = f64::from(exponent);
+    let squares: f64 = (0..16)
+        .map(|j| 2_f64.powi(j + 1))
+        .take_while(|&square| square <= n)
+        .map(|square| n / square * x.powf(n - square))
+        .sum();
+    rounding * (squares + f64::from(exponent.count_ones()))
 }
 
 #[cfg(test)]

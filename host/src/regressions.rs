@@ -98,6 +98,14 @@ fn a_phong_highlight_neither_wraps_nor_lies() {
 }
 
 #[test]
+fn a_highlight_whose_cosines_round_up_is_predicted_so() {
+    let scene = hostile("highlight-rounded-up");
+    for format in [Format::I16f16, Format::I20f12, Format::I22f10] {
+        assert!(refused_or_held(&scene, format, Methods::LECTURE, 96, &[]));
+    }
+}
+
+#[test]
 fn sphere_roots_at_the_edge_of_the_range_neither_wrap_nor_lie() {
     for format in [Format::I20f12, Format::I32f32] {
         let world = hostile(&format!("roots-{format}"));

@@ -20,7 +20,7 @@ use super::isqrt::{
     MANTISSA_BITS, MANTISSA_SCALE, ROOT_SCALE, RootPair, isqrt_u64, one_step_holds_unit, root_pair,
     rsqrt_fixed, rsqrt_mantissa,
 };
-use super::kernels::{div_i32_fixed, mul_i32_wide, mul_u32_wide};
+use super::kernels::{div_i32_fixed, mul_i32_wide, mul_u32_wide, mul_u64_small};
 use core::cmp::Ordering;
 use core::fmt;
 use core::hash::Hash;
@@ -222,7 +222,7 @@ macro_rules! wide_bits {
             fn div_raw_fast(self, b: Self, frac: u32) -> Self {
                 let (z, s) = rsqrt_mantissa(b.unsigned_abs().into(), true);
                 // r < 2³¹ fits every signed raw type here.
-                let r = <$bits>::try_from((z * z) >> MANTISSA_BITS).unwrap_or(<$bits>::MAX);
+                let r = <$bits>::try_from(mul_u64_small(z, z) >> MANTISSA_BITS).unwrap_or(<$bits>::MAX);
                 let right = 2 * MANTISSA_SCALE - MANTISSA_BITS - 2 * s - frac;
                 Self::narrow_saturating(self.wide_mul(r), right)
             }
@@ -274,10 +274,10 @@ fn normalize_raw_32(v: [i32; 3], frac: u32, fast: bool) -> Option<([i32; 3], i32
         return None;
     }
     let RootPair { inverse, root, s } = root_pair(y, fast && one_step_holds_unit(frac));
-    // inverse < 2³¹.
-    let z = i64::try_from(inverse).unwrap_or(i64::MAX);
+    // inverse < 2³¹: a 32×32→64 product, not a 64×64 one (a library call on the M0).
+    let z = i32::try_from(inverse).unwrap_or(i32::MAX);
     let right = MANTISSA_SCALE - s - frac;
-    let unit = v.map(|c| i32::narrow_saturating(i64::from(c) * z, right));
+    let unit = v.map(|c| i32::narrow_saturating(mul_i32_wide(c, z), right));
     // root < 2⁶³ and the shift at least 30: the rounding bias cannot carry out of u64.
     let length = (root + (1 << (ROOT_SCALE + s - 1))) >> (ROOT_SCALE + s);
     let length = i32::try_from(length).unwrap_or(i32::MAX);
