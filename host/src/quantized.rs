@@ -189,4 +189,30 @@ mod tests {
         assert_eq!(Q16::ratio(1, 3).to_f64(), 21_845.0 / 65_536.0);
         assert_eq!(Q16::resolution(1.0), 1.0 / 65_536.0);
     }
+
+    /// The bound holds for the formats' own powers, of cosines they hold exactly.
+    #[test]
+    fn the_power_rounding_bounds_the_formats_powers() {
+        fn check<S: Scalar>() {
+            let rounding = S::resolution(1.0) / 2.0;
+            for exponent in [1, 2, 3, 7, 40, 255, 2461, 65_535] {
+                for step in 0..=1000 {
+                    let x = S::from_f64(1.0 - f64::from(step) * f64::from(step) / 1e6).unwrap();
+                    let exact = x.to_f64().powi(i32::from(exponent));
+                    let error = (x.powi(exponent).to_f64() - exact).abs();
+                    let bound = power_rounding(x.to_f64(), exponent, rounding);
+                    assert!(
+                        error <= bound,
+                        "{}: {}^{exponent}: off by {error:e}, bound {bound:e}",
+                        S::NAME,
+                        x.to_f64()
+                    );
+                }
+            }
+        }
+        check::<obscura::formats::I16f16>();
+        check::<obscura::formats::I22f10>();
+        check::<obscura::formats::I12f20>();
+        check::<f32>();
+    }
 }
