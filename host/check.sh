@@ -107,6 +107,8 @@ cargo run --release --locked -p obscura-host -- firmware --target m4f --scene wh
 step "firmware under QEMU, the 32-bit splits that hold a 240x240 scene, bit for bit against the host"
 cargo run --release --locked -p obscura-host -- firmware --target m4f --scene whitted,shapes \
     --format i12f20,i14f18
+cargo run --release --locked -p obscura-host -- firmware --target m0 --scene whitted \
+    --format i12f20 --sqrt approx --bias exclude
 for target in m4f m0; do
     cargo run --release --locked -p obscura-host -- firmware --target "$target" \
         --scene host/scenes/tabletop.toml --format i10f22
