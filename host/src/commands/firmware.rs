@@ -125,13 +125,16 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
     let size = firmware::image_size(&elf)?;
     let dir = args.out_dir.join(target.name());
     eprintln!("running {} under QEMU in {}", elf.display(), dir.display());
-    let counts = dir.join("profile-counts.txt");
+    // QEMU runs in `dir`: the plugin names its file from there (a name only: QEMU's options
+    // split at commas, which a path may hold).
+    const COUNTS: &str = "profile-counts.txt";
+    let counts = dir.join(COUNTS);
     let library = if args.profile {
         Some(profile::plugin()?)
     } else {
         None
     };
-    let argument = format!("out={}", counts.display());
+    let argument = format!("out={COUNTS}");
     let plugin = library.as_deref().map(|library| firmware::Plugin {
         library,
         argument: &argument,
