@@ -5,9 +5,10 @@
 /// Calls `$then!` with every format the tracer is built for, from the smallest range to the
 /// largest: the 32-bit fixed formats as `Variant => RawType` (a type of `fixed::types`), then
 /// the 64-bit one, then the floats as `Variant => Type`. The 32-bit formats are the even
-/// splits from i8f24 to i24f8 but i18f14: in the `glass` stress case it draws four pixels
-/// wrong where a ray meets the sphere from inside at its critical angle (42.1° against
-/// 41.8°), which its error model does not explain yet.
+/// splits from i8f24 to i24f8 but i18f14: in the `glass` stress case, by the epsilon method, it
+/// draws four pixels wrong that the stress check does not excuse, where a chain of internal
+/// reflections at 42.1° (critical: 41.8°) leaves total internal reflection after the offsets
+/// of its surface tolerance (the method's error, which the check does not model yet).
 ///
 /// ```
 /// macro_rules! count {
