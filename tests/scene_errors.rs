@@ -368,7 +368,7 @@ fn a_world_too_large_for_the_format_names_the_value_and_the_formats_that_fit() {
     );
     let message = error.to_string();
     assert!(
-        message.contains("formats that hold it: i20f12 i22f10 i24f8 i32f32"),
+        message.contains("formats that hold it: i18f14 i20f12 i22f10 i24f8 i32f32"),
         "{message}"
     );
     assert!(Small::<f32>::build(&desc).is_ok(), "f32 holds it");

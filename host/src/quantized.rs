@@ -163,8 +163,8 @@ impl<S: Scalar> Scalar for Quantized<S> {
 /// per bit of n.
 fn power_rounding(x: f64, exponent: u16, rounding: f64) -> f64 {
     let n = f64::from(exponent);
-    let squares: f64 = (0..16)
-        .map(|j| 2_f64.powi(j + 1))
+    let squares: f64 = (1..=u16::BITS)
+        .map(|j| f64::from(1_u32 << j))
         .take_while(|&square| square <= n)
         .map(|square| n / square * x.powf(n - square))
         .sum();

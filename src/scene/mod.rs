@@ -95,6 +95,20 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
     /// As [`Self::build`], and [`SceneError::MethodUnavailable`] for a method the format does
     /// not have.
     pub fn build_with(desc: &SceneDesc<'_>, methods: Methods) -> Result<Self, SceneError> {
+        Self::build_with_tolerances_of(desc, methods, &FormatInfo::of::<S>())
+    }
+
+    /// [`Self::build_with`], with the surface tolerances ([`SURFACE_TOLERANCE_STEPS`]) that
+    /// format `tolerances` computes rather than `S`'s: the scene a finer format traces to tell
+    /// the offsets of the epsilon method in `tolerances` from its rounding.
+    ///
+    /// # Errors
+    /// As [`Self::build_with`].
+    pub fn build_with_tolerances_of(
+        desc: &SceneDesc<'_>,
+        methods: Methods,
+        tolerances: &FormatInfo,
+    ) -> Result<Self, SceneError> {
         if methods.roots == RootMethod::Approx && !S::FAST_ROOTS {
             return Err(SceneError::MethodUnavailable {
                 method: "sqrt=approx",
@@ -116,6 +130,7 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
             eye,
             world: f64::from(desc.far),
             slack: range::origin_slack(desc, &methods, &FormatInfo::of::<S>()),
+            tolerances: *tolerances,
             _format: PhantomData,
         }
         .scene(desc, frame, methods)
@@ -185,6 +200,9 @@ struct Converter<S> {
     world: f64,
     /// How far beyond the world a ray can start ([`range::origin_slack`]).
     slack: f64,
+    /// The format whose rounding the surface tolerances are sized for: `S`, but for a
+    /// reference scene ([`Scene::build_with_tolerances_of`]).
+    tolerances: FormatInfo,
     _format: PhantomData<S>,
 }
 
@@ -249,9 +267,9 @@ impl<S: Scalar> Converter<S> {
         };
         // The tolerance at the eye, and its growth per unit of a coordinate.
         let (tolerance_base, tolerance_per_unit) = (
-            range::error::<S>(&range::tolerance_terms(0.0, None)),
-            range::error::<S>(&range::tolerance_terms(1.0, None))
-                - range::error::<S>(&range::tolerance_terms(0.0, None)),
+            range::error_with(&range::tolerance_terms(0.0, None), &self.tolerances),
+            range::error_with(&range::tolerance_terms(1.0, None), &self.tolerances)
+                - range::error_with(&range::tolerance_terms(0.0, None), &self.tolerances),
         );
         let settings = Settings {
             ambient: self.colour(Item::Scene, "ambient", desc.ambient)?,
@@ -285,7 +303,7 @@ impl<S: Scalar> Converter<S> {
         let shape = match *shape {
             ShapeDesc::Sphere { center, radius } => {
                 let r = f64::from(radius);
-                tolerance = range::error::<S>(&range::own_tolerance_terms(r));
+                tolerance = range::error_with(&range::own_tolerance_terms(r), &self.tolerances);
                 Shape::Sphere(Sphere::new(
                     self.point(item, "shape.sphere.center", center)?,
                     self.scalar(item, "shape.sphere.radius", r)?,
@@ -335,8 +353,10 @@ impl<S: Scalar> Converter<S> {
                 let origin = self.world + self.slack;
                 let numerators = range::triangle_numerators(origin, self.eye, [a64, b64, c64]);
                 let min_det = numerators * range::RANGE_HEADROOM / S::RANGE;
-                tolerance =
-                    range::error::<S>(&range::triangle_tolerance_terms([a, b, c], self.eye));
+                tolerance = range::error_with(
+                    &range::triangle_tolerance_terms([a, b, c], self.eye),
+                    &self.tolerances,
+                );
                 Shape::Triangle(Triangle::new(
                     corners,
                     self.vector(item, "triangle normal", n)?,

@@ -1,11 +1,13 @@
 //! The checks the stress cases share: an image against the f64 reference with a quarter-pixel
-//! excuse, and the error model's band around a sphere's silhouette.
+//! excuse and the epsilon method's own offsets, and the error model's band around a sphere's
+//! silhouette.
 
 use crate::metrics::accuracy;
 use crate::render::HostScene;
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use obscura::camera::Row;
 use obscura::methods::RootMethod;
+use obscura::scalar::FormatInfo;
 use obscura::scene::range;
 use obscura::{Methods, Ray, RayMethod, Scalar, SceneDesc, SceneError, Vec3};
 
@@ -39,14 +41,18 @@ pub struct ImageCheck {
     pub psnr_db: f64,
     /// Pixels off by more than [`TOLERANCE`], in percent.
     pub wrong_pct: f64,
-    /// Of those, the ones a quarter-pixel nudge of the ray does not excuse.
+    /// Of those, the ones neither a quarter-pixel nudge of the ray nor the method's offsets
+    /// excuse.
     pub unexcused: usize,
 }
 
 /// Renders `desc` at `size`×`size` in `S` by `methods` and in f64 (exact roots, a ray per pixel:
 /// the ideal image), and counts the pixels off by more than [`TOLERANCE`] whose f64 colour does
 /// not itself change by that much when the ray is nudged by up to a quarter pixel in some
-/// direction.
+/// direction, and which f64 does not draw within [`TOLERANCE`] of `S`'s colour when it starts
+/// its secondary rays as far off their surfaces as `S` does (the epsilon method's offsets,
+/// sized for `S`'s rounding, are the method's error, not the rounding's: near the critical
+/// angle they decide whether a chain of internal reflections stays total).
 pub fn image<S: Scalar>(
     desc: &SceneDesc<'_>,
     methods: Methods,
@@ -61,7 +67,9 @@ pub fn image<S: Scalar>(
     };
     let reference = HostScene::<f64>::build_with(desc, ideal)?;
     let ref_camera = reference.camera(size, size)?;
+    let offset = HostScene::<f64>::build_with_tolerances_of(desc, ideal, &FormatInfo::of::<S>())?;
     let trace_f64 = |dir: Vec3<f64>| colour(reference.trace(Ray::new(Vec3::ZERO, dir)).colour);
+    let trace_offset = |dir: Vec3<f64>| colour(offset.trace(Ray::new(Vec3::ZERO, dir)).colour);
     let mut got = image::RgbImage::new(size, size);
     let mut want = image::RgbImage::new(size, size);
     let mut wrong = 0;
@@ -83,13 +91,14 @@ pub fn image<S: Scalar>(
             // Within a quarter pixel, in eight directions at four distances: near a corner of
             // a checkerboard a full quarter pixel may cross two edges at once and change
             // nothing where a shorter nudge crosses one.
-            let excused = NUDGE_DIRECTIONS.iter().any(|&(a, b)| {
-                NUDGE_DISTANCES.iter().any(|&distance| {
-                    let nudge = across * (distance * a) + down * (distance * b);
-                    let dir = (centre + nudge).normalized(RootMethod::Exact);
-                    off(trace_f64(dir), w) > TOLERANCE
-                })
-            });
+            let excused = off(trace_offset(centre), g) <= TOLERANCE
+                || NUDGE_DIRECTIONS.iter().any(|&(a, b)| {
+                    NUDGE_DISTANCES.iter().any(|&distance| {
+                        let nudge = across * (distance * a) + down * (distance * b);
+                        let dir = (centre + nudge).normalized(RootMethod::Exact);
+                        off(trace_f64(dir), w) > TOLERANCE
+                    })
+                });
             unexcused += usize::from(!excused);
         }
     }
@@ -103,13 +112,14 @@ pub fn image<S: Scalar>(
     })
 }
 
-fn colour<S: Scalar>(c: obscura::Rgb<S>) -> [u8; 3] {
+/// A colour as an 8-bit image holds it.
+pub(crate) fn colour<S: Scalar>(c: obscura::Rgb<S>) -> [u8; 3] {
     let q: Rgb888 = c.quantize();
     [q.r(), q.g(), q.b()]
 }
 
 /// The largest channel difference.
-fn off(a: [u8; 3], b: [u8; 3]) -> u8 {
+pub(crate) fn off(a: [u8; 3], b: [u8; 3]) -> u8 {
     a.iter()
         .zip(b)
         .map(|(x, y)| x.abs_diff(y))

@@ -66,6 +66,28 @@ const LIGHTS: [LightDesc; 1] = [LightDesc {
     colour: [1.0; 3],
 }];
 
+/// The case's scene with the eye `offset` radii from the sphere's centre.
+fn scene(offset: f64) -> SceneDesc<'static> {
+    SceneDesc {
+        camera: CameraDesc {
+            eye: [offset as f32, 0.0, 0.0],
+            look_at: [offset as f32, -0.3, 1.0],
+            up: [0.0, 1.0, 0.0],
+            vfov_degrees: 90.0,
+        },
+        objects: &OBJECTS,
+        lights: &LIGHTS,
+        ambient: [0.15; 3],
+        background: BackgroundDesc::Gradient {
+            up: Y_UP,
+            horizon: [0.6, 0.7, 0.9],
+            zenith: [0.1, 0.2, 0.6],
+        },
+        far: 12.0,
+        max_depth: 4,
+    }
+}
+
 struct Job;
 
 impl FormatJob for Job {
@@ -73,33 +95,54 @@ impl FormatJob for Job {
     fn run<S: Scalar>(self) -> Result<Vec<Row>> {
         let mut rows = Vec::new();
         for offset in OFFSETS {
-            let eye = [offset as f32, 0.0, 0.0];
-            let desc = SceneDesc {
-                camera: CameraDesc {
-                    eye,
-                    look_at: [offset as f32, -0.3, 1.0],
-                    up: [0.0, 1.0, 0.0],
-                    vfov_degrees: 90.0,
-                },
-                objects: &OBJECTS,
-                lights: &LIGHTS,
-                ambient: [0.15; 3],
-                background: BackgroundDesc::Gradient {
-                    up: Y_UP,
-                    horizon: [0.6, 0.7, 0.9],
-                    zenith: [0.1, 0.2, 0.6],
-                },
-                far: 12.0,
-                max_depth: 4,
-            };
             for &(bias, name) in BiasMethod::ALL {
                 let methods = Methods {
                     bias,
                     ..Methods::LECTURE
                 };
-                rows.push(image_row::<S>(&desc, methods, name, offset, wrong));
+                rows.push(image_row::<S>(&scene(offset), methods, name, offset, wrong));
             }
         }
         Ok(rows)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::SIZE;
+    use super::*;
+    use crate::render::HostScene;
+    use crate::stress::check::{self, TOLERANCE};
+    use obscura::formats::I18f14;
+    use obscura::scalar::FormatInfo;
+
+    /// At 0.9 radii, i18f14's surface tolerances are what decide a chain of internal
+    /// reflections near the critical angle: f64 started as far off the surfaces draws pixels
+    /// the ideal f64 image does not, and the check excuses i18f14's by them and nothing else.
+    #[test]
+    fn i18f14s_offsets_change_the_chain_and_excuse_its_pixels() {
+        let desc = scene(0.9);
+        let methods = Methods {
+            rays: obscura::RayMethod::PerPixel,
+            roots: obscura::methods::RootMethod::Exact,
+            ..Methods::LECTURE
+        };
+        let ideal = HostScene::<f64>::build_with(&desc, methods).unwrap();
+        let offset =
+            HostScene::<f64>::build_with_tolerances_of(&desc, methods, &FormatInfo::of::<I18f14>())
+                .unwrap();
+        let camera = ideal.camera(SIZE, SIZE).unwrap();
+        let changed = (0..SIZE)
+            .flat_map(|y| (0..SIZE).map(move |x| (x, y)))
+            .filter_map(|(x, y)| camera.ray(x, y))
+            .filter(|&ray| {
+                let [a, b] = [&ideal, &offset].map(|s| check::colour(s.trace(ray).colour));
+                check::off(a, b) > TOLERANCE
+            })
+            .count();
+        assert!(changed > 0, "the offsets changed no pixel");
+        let checked = check::image::<I18f14>(&desc, Methods::LECTURE, SIZE).unwrap();
+        assert!(checked.wrong_pct > 0.0);
+        assert_eq!(checked.unexcused, 0);
     }
 }

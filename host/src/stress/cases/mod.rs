@@ -116,7 +116,7 @@ fn sphere_truth(desc: &SceneDesc<'_>) -> anyhow::Result<HostScene<f64>> {
 }
 
 /// The images the cases compare are this many pixels square.
-const SIZE: u32 = 48;
+pub(super) const SIZE: u32 = 48;
 
 /// The row of `desc` in format `S` by `methods` ([`image`]) where the stressed parameter is
 /// `x`: `y` of the check, within its bound when no pixel is off unexcused; or the build's
