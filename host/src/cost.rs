@@ -238,11 +238,11 @@ mod tests {
             Some(charted("whitted", "i20f12", "lecture"))
         );
         // i24f8 holds neither scene: priced as the 32-bit formats the chart ran on whitted.
-        let kin =
-            ["i12f20", "i14f18", "i16f16", "i20f12"].map(|f| charted("whitted", f, "lecture"));
+        let kin = ["i12f20", "i14f18", "i16f16", "i18f14", "i20f12"]
+            .map(|f| charted("whitted", f, "lecture"));
         assert_eq!(
             cost(Machine::M4f, Format::I24f8, &lecture, false),
-            Some(kin.iter().sum::<f64>() / 4.0)
+            Some(kin.iter().sum::<f64>() / 5.0)
         );
     }
 
