@@ -106,7 +106,7 @@ cargo run --release --locked -p obscura-host -- firmware --target m4f --scene wh
 
 step "firmware under QEMU, the 32-bit splits that hold a 240x240 scene, bit for bit against the host"
 cargo run --release --locked -p obscura-host -- firmware --target m4f --scene whitted,shapes \
-    --format i12f20,i14f18
+    --format i12f20,i14f18,i18f14
 cargo run --release --locked -p obscura-host -- firmware --target m0 --scene whitted \
     --format i12f20 --sqrt approx --bias exclude
 for target in m4f m0; do
