@@ -111,19 +111,8 @@ impl<S: Scalar> Camera<S> {
     /// (x, y) — a sample within the pixel, or beside it — or `None` when (x, y) is outside the
     /// image. An offset of zero is [`Self::ray`].
     #[must_use]
-    pub fn ray_offset(&self, x: u32, y: u32, [across, down]: [S; 2]) -> Option<Ray<S>> {
-        let row = self.row(y)?;
-        (x < self.width).then(|| {
-            let along = |size: u32| S::from_int(i32::try_from(size).unwrap_or(i32::MAX));
-            let fx = pixel_centre::<S>(x, self.width, self.roots)
-                + self.roots.div(across, along(self.width));
-            let fy = self.roots.div(down, along(self.height));
-            let s = row
-                .start
-                .add_scaled(self.down, fy)
-                .add_scaled(self.across, fx);
-            row.through(s)
-        })
+    pub fn ray_offset(&self, x: u32, y: u32, offset: [S; 2]) -> Option<Ray<S>> {
+        self.row(y)?.ray_offset(x, offset)
     }
 }
 
@@ -145,6 +134,24 @@ impl<S: Scalar> Row<S> {
         (x < self.camera.width).then(|| {
             let fx = pixel_centre::<S>(x, self.camera.width, self.camera.roots);
             self.through(self.start.add_scaled(self.camera.across, fx))
+        })
+    }
+
+    /// The primary ray through the point `offset` (across, down) pixels from the centre of
+    /// pixel x (see [`Camera::ray_offset`]), or `None` beyond the row's end.
+    #[must_use]
+    pub fn ray_offset(&self, x: u32, [across, down]: [S; 2]) -> Option<Ray<S>> {
+        let camera = &self.camera;
+        (x < camera.width).then(|| {
+            let along = |size: u32| S::from_int(i32::try_from(size).unwrap_or(i32::MAX));
+            let fx = pixel_centre::<S>(x, camera.width, camera.roots)
+                + camera.roots.div(across, along(camera.width));
+            let fy = camera.roots.div(down, along(camera.height));
+            let s = self
+                .start
+                .add_scaled(camera.down, fy)
+                .add_scaled(camera.across, fx);
+            self.through(s)
         })
     }
 

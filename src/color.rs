@@ -53,6 +53,24 @@ impl<S: Scalar> Rgb<S> {
         Self::new(self.r * k, self.g * k, self.b * k)
     }
 
+    /// What a display can show of the colour, each channel clamped to [0, 1], in 16-bit
+    /// fractions (0 to 2¹⁶, rounded down): the integers a pixel's samples are summed in, the
+    /// same way in every format.
+    #[inline]
+    #[must_use]
+    pub fn to_q16(self) -> [u32; 3] {
+        let unit = |c: S| c.clamp(S::ZERO, S::ONE).to_q16().unsigned_abs();
+        [unit(self.r), unit(self.g), unit(self.b)]
+    }
+
+    /// The colour whose channels are these 16-bit fractions (see [`Self::to_q16`]).
+    #[inline]
+    #[must_use]
+    pub fn from_q16([r, g, b]: [u32; 3]) -> Self {
+        let channel = |c: u32| S::from_q16(i32::try_from(c).unwrap_or(i32::MAX));
+        Self::new(channel(r), channel(g), channel(b))
+    }
+
     /// The brightest channel.
     #[inline]
     #[must_use]

@@ -22,6 +22,10 @@ pub struct SceneDesc<'a> {
     /// The deepest ray tree: 0 traces primary rays only, each level adds one reflection or
     /// refraction.
     pub max_depth: u8,
+    /// Rays per pixel, 1 to [`MAX_SAMPLES`](crate::pattern::MAX_SAMPLES): 1 traces the
+    /// pixel's centre (the lecture's camera); more spread over the pixel by
+    /// [`crate::pattern`] and average (anti-aliasing).
+    pub samples: u16,
 }
 
 impl SceneDesc<'_> {

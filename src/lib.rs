@@ -35,6 +35,7 @@ pub mod desc;
 pub mod light;
 pub mod material;
 pub mod methods;
+pub mod pattern;
 pub mod ray;
 pub mod render;
 pub mod scalar;

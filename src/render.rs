@@ -4,7 +4,8 @@
 //! ([`Presentation`]).
 
 use crate::camera::{Camera, Row};
-use crate::color::{DisplayColor, Dither};
+use crate::color::{DisplayColor, Dither, Rgb};
+use crate::pattern::PixelPattern;
 use crate::scalar::Scalar;
 use crate::scene::Scene;
 use core::fmt;
@@ -116,7 +117,16 @@ where
     Ok(())
 }
 
-/// Traces `row` (row `y` of the image) into `line`, each pixel quantised by `dither`.
+/// A pixel's samples, each at most 2¹⁶ per channel in [`Rgb::to_q16`], sum within a `u32`.
+const _SAMPLE_SUMS_FIT: () = assert!(
+    crate::pattern::MAX_SAMPLES as u64 * 0x1_0000 <= u32::MAX as u64,
+    "MAX_SAMPLES samples of 2^16 overflow a pixel's sum"
+);
+
+/// Traces `row` (row `y` of the image) into `line`, each pixel quantised by `dither`: by its
+/// centre's ray, or by the mean of the scene's samples ([`crate::pattern`]), each clamped to
+/// what a display shows and summed as integers, in 16-bit fractions: the sum cannot overflow
+/// however many samples a pixel takes, and rounds alike in every format.
 fn trace_into<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
     scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
     row: &Row<S>,
@@ -127,8 +137,24 @@ fn trace_into<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize
     S: Scalar,
     C: DisplayColor,
 {
-    for ((x, pixel), ray) in (0..).zip(line.iter_mut()).zip(row.rays()) {
-        *pixel = scene.trace(ray).colour.quantize_at(dither, x, y);
+    let samples = scene.settings.samples;
+    if samples <= 1 {
+        for ((x, pixel), ray) in (0..).zip(line.iter_mut()).zip(row.rays()) {
+            *pixel = scene.trace(ray).colour.quantize_at(dither, x, y);
+        }
+        return;
+    }
+    let n = u32::from(samples);
+    for (x, pixel) in (0..).zip(line.iter_mut()) {
+        let pattern = PixelPattern::of(x, y);
+        let sum = (0..samples)
+            .filter_map(|i| row.ray_offset(x, pattern.offset(i)))
+            .map(|ray| scene.trace(ray).colour.to_q16())
+            .fold([0; 3], |sum: [u32; 3], c| {
+                [sum[0] + c[0], sum[1] + c[1], sum[2] + c[2]]
+            });
+        let mean = Rgb::<S>::from_q16(sum.map(|s| (s + n / 2) / n));
+        *pixel = mean.quantize_at(dither, x, y);
     }
 }
 

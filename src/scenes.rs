@@ -112,6 +112,7 @@ pub const WHITTED: SceneDesc<'static> = SceneDesc {
     },
     far: 30.0,
     max_depth: 5,
+    samples: 1,
 };
 
 const GREEN: MaterialDesc = MaterialDesc {
@@ -213,4 +214,5 @@ pub const SHAPES: SceneDesc<'static> = SceneDesc {
     background: BackgroundDesc::Solid([0.08, 0.1, 0.14]),
     far: 25.0,
     max_depth: 3,
+    samples: 1,
 };

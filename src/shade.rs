@@ -391,6 +391,7 @@ mod tests {
             background: BackgroundDesc::Solid([0.2, 0.4, 0.6]),
             far: 10.0,
             max_depth,
+            samples: 1,
         }
     }
 

@@ -151,6 +151,7 @@ fn random_scenes_build_or_are_refused_and_render_without_panicking() {
             },
             far: r.wild(extent * 4.0),
             max_depth: (r.next() * 5.0) as u8,
+            samples: 1,
         };
         let methods = methods(&mut r);
         let results = [

@@ -1,9 +1,11 @@
 //! The fixed formats' operators do what `Scalar`'s documentation says, over a sweep of operands
 //! of every magnitude and the edges of the range: `+` and `−` exact while the result fits,
 //! `×` the exact product rounded to nearest (half up), `/` truncated towards zero, each
-//! saturating or wrapping beyond the range exactly as documented, and the overflow policy
-//! hearing of every wrap and of nothing else.
+//! saturating or wrapping beyond the range exactly as documented, conversions to and from
+//! Q16.16 rounded down and saturated, and the overflow policy hearing of every wrap and of
+//! nothing else.
 
+use obscura::Scalar;
 use obscura::scalar::{Fx, Operation, Overflow};
 use std::cell::Cell;
 use std::panic::Location;
@@ -95,6 +97,33 @@ macro_rules! sweep {
                 }
                 assert_eq!(raw(-make(a)), (-a).clamp(min, max), "−{a}");
                 assert_eq!(heard(), None, "−{a}");
+                // Q16.16 out: a·2^(16 − frac) rounded down, saturated to i32.
+                let q16 = if frac >= 16 {
+                    a >> (frac - 16)
+                } else {
+                    a << (16 - frac)
+                };
+                let (q_min, q_max) = (i128::from(i32::MIN), i128::from(i32::MAX));
+                assert_eq!(
+                    i128::from(make(a).to_q16()),
+                    q16.clamp(q_min, q_max),
+                    "{a} in Q16"
+                );
+                assert_eq!(heard(), None, "{a} in Q16");
+            }
+            // Q16.16 in: q·2^(frac − 16) rounded down, saturated to the format.
+            for q in operands(32, 300) {
+                let exact = if frac >= 16 {
+                    q << (frac - 16)
+                } else {
+                    q >> (16 - frac)
+                };
+                assert_eq!(
+                    raw(F::from_q16(q as i32)),
+                    exact.clamp(min, max),
+                    "{q} from Q16"
+                );
+                assert_eq!(heard(), None, "{q} from Q16");
             }
         }
     };

@@ -37,6 +37,7 @@ fn scene<'a>(objects: &'a [ObjectDesc], lights: &'a [LightDesc]) -> SceneDesc<'a
         background: BackgroundDesc::Solid([0.0, 0.0, 0.3]),
         far: 20.0,
         max_depth: 3,
+        samples: 1,
     }
 }
 

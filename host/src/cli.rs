@@ -3,9 +3,11 @@
 use crate::cost::Machine;
 use crate::firmware::Target;
 use crate::format::Format;
+use crate::owned::OwnedScene;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use obscura::methods::MethodName;
+use obscura::pattern::MAX_SAMPLES;
 use obscura::{
     BiasMethod, Dither, Methods, RayMethod, RootMethod, RowOrder, SphereMethod, TriangleMethod,
 };
@@ -143,6 +145,24 @@ impl ValueEnum for FormatChoice {
     }
 }
 
+/// How many rays a pixel takes, over the scene's own `samples`.
+#[derive(Clone, Copy, Debug, Args)]
+pub struct SamplingArgs {
+    /// Rays per pixel, 1 to 256, spread over the pixel and averaged (anti-aliasing); the
+    /// scene's own `samples` when not given.
+    #[arg(long, value_parser = clap::value_parser!(u16).range(1..=i64::from(MAX_SAMPLES)))]
+    pub samples: Option<u16>,
+}
+
+impl SamplingArgs {
+    /// `scene` with the counts given here.
+    pub fn apply(&self, scene: &mut OwnedScene) {
+        if let Some(samples) = self.samples {
+            scene.samples = samples;
+        }
+    }
+}
+
 /// How `--format auto` chooses.
 #[derive(Clone, Copy, Debug, Args)]
 pub struct AutoArgs {
@@ -169,6 +189,8 @@ pub struct SceneArgs {
     #[command(flatten)]
     pub methods: MethodArgs,
     #[command(flatten)]
+    pub sampling: SamplingArgs,
+    #[command(flatten)]
     pub auto: AutoArgs,
 }
 
@@ -182,6 +204,8 @@ pub struct AnalyzeArgs {
     pub size: (u32, u32),
     #[command(flatten)]
     pub methods: MethodArgs,
+    #[command(flatten)]
+    pub sampling: SamplingArgs,
     #[command(flatten)]
     pub auto: AutoArgs,
 }
@@ -237,6 +261,8 @@ pub struct BenchArgs {
     pub json: Option<PathBuf>,
     #[command(flatten)]
     pub methods: MethodArgs,
+    #[command(flatten)]
+    pub sampling: SamplingArgs,
 }
 
 /// `obscura firmware`.
@@ -258,6 +284,8 @@ pub struct FirmwareArgs {
     pub target_psnr: f64,
     #[command(flatten)]
     pub methods: MethodArgs,
+    #[command(flatten)]
+    pub sampling: SamplingArgs,
     /// The order of the rows on the display: top-down, or progressive (every 8th row first,
     /// each as a block down to the next; the final frame is the same).
     #[arg(long, value_parser = method::<RowOrder>(), default_value = "top-down")]
@@ -302,6 +330,8 @@ pub struct PreviewArgs {
     pub target_psnr: f64,
     #[command(flatten)]
     pub methods: MethodArgs,
+    #[command(flatten)]
+    pub sampling: SamplingArgs,
     /// The order of the rows: top-down, or progressive (every 8th row first, as blocks).
     #[arg(long, value_parser = method::<RowOrder>(), default_value = "progressive")]
     pub order: RowOrder,

@@ -17,6 +17,7 @@
 
 use crate::analysis::{Analysis, Pick, pick};
 use crate::cli::FormatChoice;
+use crate::cli::SamplingArgs;
 use crate::cost::Machine;
 use crate::firmware::SIDE;
 use crate::format::Format;
@@ -25,6 +26,7 @@ use crate::scene_file::{self, NamedScene};
 use anyhow::{Context, Result, bail};
 use clap::ValueEnum;
 use obscura::methods::MethodName;
+use obscura::pattern::MAX_SAMPLES;
 use obscura::{
     BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, Methods, ObjectDesc,
     Presentation, SceneDesc, ShapeDesc,
@@ -33,8 +35,9 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 /// The environment variables the configuration is read from, as (name, default).
-pub const VARIABLES: [(&str, &str); 7] = [
+pub const VARIABLES: [(&str, &str); 8] = [
     (SCENES, "whitted"),
+    (SAMPLES, SCENES_OWN),
     (FORMATS, "auto"),
     (TARGET_PSNR, "40"),
     (METHODS, "lecture"),
@@ -43,6 +46,9 @@ pub const VARIABLES: [(&str, &str); 7] = [
     (DITHER, "none"),
 ];
 const SCENES: &str = "OBSCURA_SCENES";
+/// Rays per pixel for every scene, or [`SCENES_OWN`]: each scene's own `samples`.
+const SAMPLES: &str = "OBSCURA_SAMPLES";
+const SCENES_OWN: &str = "scene";
 const FORMATS: &str = "OBSCURA_FORMATS";
 const TARGET_PSNR: &str = "OBSCURA_TARGET_PSNR";
 const METHODS: &str = "OBSCURA_METHODS";
@@ -71,6 +77,8 @@ pub struct Configuration {
 pub struct Image<'a> {
     /// Built-in scenes' names, or scene files' paths.
     pub scenes: Vec<String>,
+    /// Rays per pixel for every scene, if not each scene's own.
+    pub samples: Option<u16>,
     /// The formats.
     pub formats: &'a [Format],
     /// The methods.
@@ -85,9 +93,14 @@ impl Image<'_> {
     /// The build script's environment for this image: every variable, so that none is
     /// inherited from the caller's.
     #[must_use]
-    pub fn environment(&self) -> [(&'static str, String); 7] {
+    pub fn environment(&self) -> [(&'static str, String); 8] {
         [
             (SCENES, self.scenes.join(",")),
+            (
+                SAMPLES,
+                self.samples
+                    .map_or_else(|| SCENES_OWN.to_owned(), |n| n.to_string()),
+            ),
             (
                 FORMATS,
                 self.formats
@@ -168,7 +181,7 @@ pub fn configure(
         .ok()
         .filter(|psnr: &f64| psnr.is_finite() && *psnr > 0.0)
         .with_context(|| format!("{TARGET_PSNR} is a PSNR in dB, such as 40"))?;
-    let scenes = value(SCENES)
+    let mut scenes = value(SCENES)
         .split(',')
         .map(str::trim)
         .map(|name| {
@@ -181,6 +194,22 @@ pub fn configure(
             scene_file::load(&name).context(SCENES)
         })
         .collect::<Result<Vec<_>>>()?;
+    let sampling = SamplingArgs {
+        samples: match value(SAMPLES).trim() {
+            SCENES_OWN => None,
+            n => Some(
+                n.parse()
+                    .ok()
+                    .filter(|n| (1..=MAX_SAMPLES).contains(n))
+                    .with_context(|| {
+                        format!("{SAMPLES} is `{SCENES_OWN}` or a number from 1 to {MAX_SAMPLES}, not `{n}`")
+                    })?,
+            ),
+        },
+    };
+    for scene in &mut scenes {
+        sampling.apply(&mut scene.scene);
+    }
     let mut formats = Vec::new();
     for name in value(FORMATS).split(',').map(str::trim) {
         let format = match FormatChoice::from_str(name, false) {
@@ -416,6 +445,7 @@ fn scene_source(desc: &SceneDesc<'_>) -> String {
         background,
         far,
         max_depth,
+        samples,
     } = desc;
     let CameraDesc {
         eye,
@@ -453,7 +483,7 @@ fn scene_source(desc: &SceneDesc<'_>) -> String {
         "obscura::SceneDesc {{\n            camera: obscura::CameraDesc {{ eye: {}, look_at: {}, \
          up: {}, vfov_degrees: {} }},\n            objects: &[\n{}            ],\n            \
          lights: &[{}],\n            ambient: {},\n            background: {background},\n            \
-         far: {},\n            max_depth: {max_depth},\n        }}",
+         far: {},\n            max_depth: {max_depth},\n            samples: {samples},\n        }}",
         vector(eye),
         vector(look_at),
         vector(up),
@@ -594,6 +624,32 @@ mod tests {
             ),
             "{source}"
         );
+        assert!(source.contains("samples: 1,"), "{source}");
+    }
+
+    #[test]
+    fn a_sample_count_holds_for_every_scene() {
+        let configure_samples = |samples| {
+            configure(
+                &workspace(),
+                Machine::M4f,
+                env(&[
+                    (SCENES, "whitted,shapes"),
+                    (FORMATS, "f32"),
+                    (SAMPLES, samples),
+                ]),
+            )
+        };
+        let configuration = configure_samples("4").unwrap();
+        assert!(configuration.scenes.iter().all(|s| s.scene.samples == 4));
+        assert_eq!(configuration.source().matches("samples: 4,").count(), 2);
+        for wrong in ["0", "257", "four"] {
+            let message = format!("{:#}", configure_samples(wrong).unwrap_err());
+            assert!(
+                message.contains(SAMPLES) && message.contains(wrong),
+                "{message}"
+            );
+        }
     }
 
     #[test]

@@ -28,6 +28,9 @@ pub struct OwnedScene {
     /// See [`SceneDesc::max_depth`].
     #[serde(default = "default_max_depth")]
     pub max_depth: u8,
+    /// See [`SceneDesc::samples`].
+    #[serde(default = "default_samples")]
+    pub samples: u16,
 }
 
 fn default_ambient() -> [f32; 3] {
@@ -42,6 +45,10 @@ fn default_max_depth() -> u8 {
     5
 }
 
+fn default_samples() -> u16 {
+    1
+}
+
 impl OwnedScene {
     /// A copy of `desc`.
     pub fn from_desc(desc: &SceneDesc<'_>) -> Self {
@@ -53,6 +60,7 @@ impl OwnedScene {
             background: desc.background,
             far: desc.far,
             max_depth: desc.max_depth,
+            samples: desc.samples,
         }
     }
 
@@ -66,6 +74,7 @@ impl OwnedScene {
             background: self.background,
             far: self.far,
             max_depth: self.max_depth,
+            samples: self.samples,
         }
     }
 

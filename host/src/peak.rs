@@ -87,6 +87,14 @@ impl Scalar for Peak {
         Self(f64::from(n))
     }
 
+    fn from_q16(bits: i32) -> Self {
+        Self(f64::from_q16(bits))
+    }
+
+    fn to_q16(self) -> i32 {
+        self.0.to_q16()
+    }
+
     fn floor_int(self) -> i32 {
         self.0.floor_int()
     }

@@ -121,6 +121,14 @@ impl<S: Scalar> Scalar for Quantized<S> {
         Self::new(S::from_int(n).to_f64())
     }
 
+    fn from_q16(bits: i32) -> Self {
+        Self::new(S::from_q16(bits).to_f64())
+    }
+
+    fn to_q16(self) -> i32 {
+        self.0.to_q16()
+    }
+
     fn floor_int(self) -> i32 {
         self.0.floor_int()
     }

@@ -337,6 +337,7 @@ mod tests {
         let scene = parse(MINIMAL).expect("parses");
         assert_eq!(scene.objects.len(), 2);
         assert_eq!(scene.max_depth, 5);
+        assert_eq!(scene.samples, 1);
         assert_eq!(scene.background, BackgroundDesc::Solid([0.0; 3]));
         let material = scene.objects[0].material;
         assert_eq!(material.colour, [0.9, 0.2, 0.1]);
@@ -390,6 +391,15 @@ mod tests {
         let error = format!("{:#}", parse(&short).expect_err("one number"));
         assert!(error.contains("lights[0].colour has 1 numbers"), "{error}");
         assert!(parse(&four).is_err());
+    }
+
+    #[test]
+    fn a_sample_count_out_of_bounds_is_refused_where_it_is() {
+        let text = MINIMAL.replace("far = 20.0", "far = 20.0\n        samples = 300");
+        let scene = parse(&text).expect("parses");
+        assert_eq!(scene.samples, 300);
+        let error = obscura::Scene::<f32, 4, 4, 8>::build(&scene.desc()).expect_err("too many");
+        assert_eq!(placed(&text, error), "scene.toml:3:19");
     }
 
     #[test]

@@ -105,6 +105,16 @@ impl Scalar for F32Approx {
     }
 
     #[inline]
+    fn from_q16(bits: i32) -> Self {
+        Self(f32::from_q16(bits))
+    }
+
+    #[inline]
+    fn to_q16(self) -> i32 {
+        self.0.to_q16()
+    }
+
+    #[inline]
     fn floor_int(self) -> i32 {
         self.0.floor_int()
     }

@@ -486,6 +486,18 @@ where
     }
 
     #[inline]
+    fn from_q16(bits: i32) -> Self {
+        Self::new(F::saturating_from_num(fixed::types::I16F16::from_bits(
+            bits,
+        )))
+    }
+
+    #[inline]
+    fn to_q16(self) -> i32 {
+        fixed::types::I16F16::saturating_from_num(self.0).to_bits()
+    }
+
+    #[inline]
     fn floor_int(self) -> i32 {
         self.0.floor().saturating_to_num::<i32>()
     }

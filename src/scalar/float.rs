@@ -70,6 +70,17 @@ macro_rules! float_scalar {
             }
 
             #[inline]
+            #[allow(clippy::cast_precision_loss, reason = "rounded as documented")]
+            fn from_q16(bits: i32) -> Self {
+                bits as $t / 65_536.0
+            }
+
+            #[inline]
+            fn to_q16(self) -> i32 {
+                (self * 65_536.0).floor_int()
+            }
+
+            #[inline]
             #[allow(clippy::cast_possible_truncation, reason = "saturating cast intended")]
             #[allow(clippy::cast_precision_loss, reason = "only compared")]
             fn floor_int(self) -> i32 {

@@ -77,6 +77,15 @@ pub trait Scalar:
     /// The integer `n` (saturating when it does not fit).
     fn from_int(n: i32) -> Self;
 
+    /// `bits`·2⁻¹⁶, the number whose Q16.16 representation is `bits`, rounded down to the
+    /// format's resolution (saturating when it does not fit): how a position that integers
+    /// computed, such as a sample's within its pixel ([`crate::pattern`]), enters the format.
+    fn from_q16(bits: i32) -> Self;
+
+    /// The Q16.16 representation of `self`: `self`·2¹⁶ rounded down (saturating), the inverse
+    /// of [`Self::from_q16`] wherever the format is as fine as Q16.16.
+    fn to_q16(self) -> i32;
+
     /// The largest integer not greater than `self`, saturated to `i32`.
     fn floor_int(self) -> i32;
 

@@ -74,6 +74,8 @@ pub(crate) struct Settings<S> {
     /// See [`WEIGHT_CUTOFF`].
     pub(crate) min_weight: S,
     pub(crate) max_depth: u8,
+    /// Rays per pixel ([`SceneDesc::samples`]).
+    pub(crate) samples: u16,
     pub(crate) methods: Methods,
 }
 
@@ -283,6 +285,7 @@ impl<S: Scalar> Converter<S> {
             )?,
             min_weight: S::ratio(1, WEIGHT_CUTOFF),
             max_depth: desc.max_depth,
+            samples: desc.samples,
             methods,
         };
         Ok(Scene {

@@ -4,13 +4,25 @@
 use super::error::{Item, SceneError};
 use crate::camera::Frame;
 use crate::desc::{BackgroundDesc, CameraDesc, LightDesc, MaterialDesc, SceneDesc, ShapeDesc};
+use crate::pattern::MAX_SAMPLES;
 use crate::vec3::Vec3;
+
+/// What `samples` must be, in words: from 1 to [`MAX_SAMPLES`].
+const SAMPLES_EXPECTED: &str = "from 1 to 256";
 
 /// Validates `desc` and returns its camera frame.
 pub(super) fn validate(desc: &SceneDesc<'_>) -> Result<Frame, SceneError> {
     finite(Item::Scene, "far", &[desc.far])?;
     at_least(Item::Scene, "far", desc.far, f32::MIN_POSITIVE, "> 0")?;
     colour(Item::Scene, "ambient", desc.ambient)?;
+    if !(1..=MAX_SAMPLES).contains(&desc.samples) {
+        return Err(out_of_bounds(
+            Item::Scene,
+            "samples",
+            f32::from(desc.samples),
+            SAMPLES_EXPECTED,
+        ));
+    }
     match desc.background {
         BackgroundDesc::Solid(c) => colour(Item::Scene, "background.solid", c)?,
         BackgroundDesc::Gradient {

@@ -477,6 +477,7 @@ mod tests {
             background: BackgroundDesc::Solid([0.0; 3]),
             far: 10.0,
             max_depth: 0,
+            samples: 1,
         };
         Reference::render(&Request {
             desc: &desc,

@@ -10,7 +10,7 @@ use anyhow::Result;
 use std::io;
 
 pub fn run(args: &AnalyzeArgs) -> Result<()> {
-    super::on_scene(&args.scene, |named| analyze(args, named))
+    super::on_scene(&args.scene, &args.sampling, |named| analyze(args, named))
 }
 
 fn analyze(args: &AnalyzeArgs, named: &NamedScene) -> Result<()> {

@@ -43,7 +43,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     if let Some(path) = &args.json {
         output::check_file(path)?;
     }
-    super::on_scene(&args.scene, |named| bench(args, named))
+    super::on_scene(&args.scene, &args.sampling, |named| bench(args, named))
 }
 
 fn bench(args: &BenchArgs, named: &NamedScene) -> Result<()> {

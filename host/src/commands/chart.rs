@@ -71,6 +71,7 @@ pub fn run(args: &ChartArgs) -> Result<()> {
         for (i, formats) in target.chart_images().iter().enumerate() {
             let image = Image {
                 scenes: scenes::BUILT_IN.iter().map(|s| s.name.to_owned()).collect(),
+                samples: None,
                 formats,
                 methods: Methods::LECTURE,
                 variants: true,

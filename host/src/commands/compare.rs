@@ -43,7 +43,9 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     if let Some(path) = &args.json {
         output::check_file(path)?;
     }
-    super::on_scene(&args.scene.scene, |named| compare(args, named))
+    super::on_scene(&args.scene.scene, &args.scene.sampling, |named| {
+        compare(args, named)
+    })
 }
 
 fn compare(args: &CompareArgs, named: &NamedScene) -> Result<()> {

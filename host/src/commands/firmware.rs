@@ -91,7 +91,11 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
     let scenes = args
         .scene
         .iter()
-        .map(|name| scene_file::load(name))
+        .map(|name| {
+            let mut named = scene_file::load(name)?;
+            args.sampling.apply(&mut named.scene);
+            Ok(named)
+        })
         .collect::<Result<Vec<_>>>()?;
     let formats = formats(args, &scenes, methods)?;
     let configuration = Configuration {
@@ -116,6 +120,7 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
                     .map_or_else(|| s.name.clone(), |p| p.display().to_string())
             })
             .collect(),
+        samples: args.sampling.samples,
         formats: &formats,
         methods,
         variants: false,

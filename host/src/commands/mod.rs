@@ -11,7 +11,7 @@ mod render;
 mod stress;
 
 use crate::analysis::{Analysis, Pick, pick};
-use crate::cli::{AutoArgs, Command, FormatChoice, SceneArgs};
+use crate::cli::{AutoArgs, Command, FormatChoice, SamplingArgs, SceneArgs};
 use crate::format::Format;
 use crate::output::say;
 use crate::owned::OwnedScene;
@@ -56,10 +56,16 @@ pub struct Resolved {
     pub methods: Methods,
 }
 
-/// Loads the scene `name` names and runs `command` on it; a refusal of its build is placed at
-/// its line and column when the scene came from a file.
-pub fn on_scene(name: &str, command: impl FnOnce(&NamedScene) -> Result<()>) -> Result<()> {
-    let named = scene_file::load(name)?;
+/// Loads the scene `name` names, with the sample counts `sampling` gives, and runs `command`
+/// on it; a refusal of its build is placed at its line and column when the scene came from a
+/// file.
+pub fn on_scene(
+    name: &str,
+    sampling: &SamplingArgs,
+    command: impl FnOnce(&NamedScene) -> Result<()>,
+) -> Result<()> {
+    let mut named = scene_file::load(name)?;
+    sampling.apply(&mut named.scene);
     command(&named).map_err(|error| named.locate(error))
 }
 

@@ -19,7 +19,7 @@ use std::time::Duration;
 
 pub fn run(args: &PreviewArgs) -> Result<()> {
     crate::output::check_file(&args.output)?;
-    super::on_scene(&args.scene, |named| preview(args, named))
+    super::on_scene(&args.scene, &args.sampling, |named| preview(args, named))
 }
 
 fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {

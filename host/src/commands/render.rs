@@ -9,7 +9,9 @@ use std::time::Instant;
 
 pub fn run(args: &RenderArgs) -> Result<()> {
     output::check_image(&args.output)?;
-    super::on_scene(&args.scene.scene, |named| render(args, named))
+    super::on_scene(&args.scene.scene, &args.scene.sampling, |named| {
+        render(args, named)
+    })
 }
 
 fn render(args: &RenderArgs, named: &NamedScene) -> Result<()> {

@@ -14,6 +14,9 @@ use rand_pcg::Pcg64;
 const MAX_OBJECTS: usize = 8;
 /// The most lights (the host holds 16).
 const MAX_LIGHTS: usize = 4;
+/// The most rays per pixel a generated scene takes.
+const MAX_FUZZ_SAMPLES: u16 = 4;
+
 /// The deepest ray tree (the host's stack holds 15 levels).
 const MAX_DEPTH: u8 = 8;
 
@@ -160,6 +163,7 @@ impl Generator {
             background,
             far: far as f32,
             max_depth: self.0.random_range(0..=MAX_DEPTH),
+            samples: 1,
         };
         let size = self.size();
         // Drawn last, so that every other draw is what it was before scenes had an up.
@@ -168,6 +172,10 @@ impl Generator {
             if self.chance(0.5) {
                 *up = f32s(self.direction());
             }
+        }
+        // A quarter of the scenes anti-aliased, by a few samples: the tries stay quick.
+        if self.chance(0.25) {
+            scene.samples = self.0.random_range(2..=MAX_FUZZ_SAMPLES);
         }
         Generated { scene, size }
     }

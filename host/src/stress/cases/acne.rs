@@ -56,6 +56,7 @@ impl FormatJob for Job {
                 background: BackgroundDesc::Solid([0.0; 3]),
                 far: 25.0,
                 max_depth: 0,
+                samples: 1,
             };
             for &(bias, name) in BiasMethod::ALL {
                 let methods = Methods {

@@ -41,6 +41,7 @@ fn scene(floor: ShapeDesc, far: f32, objects: &mut Vec<ObjectDesc>) -> SceneDesc
         background: BackgroundDesc::Solid([0.1, 0.2, 0.6]),
         far,
         max_depth: 0,
+        samples: 1,
     }
 }
 

@@ -85,6 +85,7 @@ fn scene(offset: f64) -> SceneDesc<'static> {
         },
         far: 12.0,
         max_depth: 4,
+        samples: 1,
     }
 }
 

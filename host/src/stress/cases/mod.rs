@@ -50,6 +50,7 @@ fn bare<'a>(objects: &'a [obscura::ObjectDesc], far: f32) -> SceneDesc<'a> {
         background: BackgroundDesc::Solid([0.0; 3]),
         far,
         max_depth: 0,
+        samples: 1,
     }
 }
 
