@@ -22,6 +22,10 @@ pub struct Camera<S> {
     across: Vec3<S>,
     /// From the top edge to the bottom edge.
     down: Vec3<S>,
+    /// One pixel across: `across` / width, for the samples within a pixel.
+    pixel_across: Vec3<S>,
+    /// One pixel down: `down` / height.
+    pixel_down: Vec3<S>,
     rays: RayMethod,
     roots: RootMethod,
 }
@@ -71,6 +75,8 @@ impl<S: Scalar> Camera<S> {
             top_left: top_left.convert()?,
             across: (frame.right * (2.0 * half_width)).convert()?,
             down: (frame.up * (-2.0 * frame.half_height)).convert()?,
+            pixel_across: (frame.right * (2.0 * half_width / f64::from(width))).convert()?,
+            pixel_down: (frame.up * (-2.0 * frame.half_height / f64::from(height))).convert()?,
             rays: methods.rays,
             roots: methods.roots,
         })
@@ -143,14 +149,12 @@ impl<S: Scalar> Row<S> {
     pub fn ray_offset(&self, x: u32, [across, down]: [S; 2]) -> Option<Ray<S>> {
         let camera = &self.camera;
         (x < camera.width).then(|| {
-            let along = |size: u32| S::from_int(i32::try_from(size).unwrap_or(i32::MAX));
-            let fx = pixel_centre::<S>(x, camera.width, camera.roots)
-                + camera.roots.div(across, along(camera.width));
-            let fy = camera.roots.div(down, along(camera.height));
+            let fx = pixel_centre::<S>(x, camera.width, camera.roots);
             let s = self
                 .start
-                .add_scaled(camera.down, fy)
-                .add_scaled(camera.across, fx);
+                .add_scaled(camera.across, fx)
+                .add_scaled(camera.pixel_across, across)
+                .add_scaled(camera.pixel_down, down);
             self.through(s)
         })
     }
