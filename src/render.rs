@@ -138,23 +138,30 @@ fn trace_into<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize
     C: DisplayColor,
 {
     let samples = scene.settings.samples;
-    if samples <= 1 {
-        for ((x, pixel), ray) in (0..).zip(line.iter_mut()).zip(row.rays()) {
-            *pixel = scene.trace(ray).colour.quantize_at(dither, x, y);
-        }
-        return;
-    }
     let n = u32::from(samples);
+    let mut centres = row.rays();
     for (x, pixel) in (0..).zip(line.iter_mut()) {
-        let pattern = PixelPattern::of(x, y);
-        let sum = (0..samples)
-            .filter_map(|i| row.ray_offset(x, pattern.offset(i)))
-            .map(|ray| scene.trace(ray).colour.to_q16())
-            .fold([0; 3], |sum: [u32; 3], c| {
-                [sum[0] + c[0], sum[1] + c[1], sum[2] + c[2]]
-            });
-        let mean = Rgb::<S>::from_q16(sum.map(|s| (s + n / 2) / n));
-        *pixel = mean.quantize_at(dither, x, y);
+        // One call of the tracer for either kind of pixel: a second would change how the
+        // compiler inlines it, and so the cost of the one-sample image.
+        let centre = centres.next();
+        let pattern = (samples > 1).then(|| PixelPattern::of(x, y));
+        let (mut colour, mut sum) = (Rgb::BLACK, [0_u32; 3]);
+        for i in 0..samples {
+            let ray = match &pattern {
+                None => centre,
+                Some(pattern) => row.ray_offset(x, pattern.offset(i)),
+            };
+            let Some(ray) = ray else { continue };
+            colour = scene.trace(ray).colour;
+            if pattern.is_some() {
+                let c = colour.to_q16();
+                sum = [sum[0] + c[0], sum[1] + c[1], sum[2] + c[2]];
+            }
+        }
+        if pattern.is_some() {
+            colour = Rgb::from_q16(sum.map(|s| (s + n / 2) / n));
+        }
+        *pixel = colour.quantize_at(dither, x, y);
     }
 }
 
