@@ -112,6 +112,50 @@ fn compare_writes_three_images_a_table_and_json() {
 }
 
 #[test]
+fn compare_measures_the_samples_against_a_converged_render() {
+    let dir = scratch("converged");
+    let json = dir.join("report.json");
+    let converged = |samples: &str| {
+        let output = obscura(&[
+            "compare",
+            "shapes",
+            "--format",
+            "f64",
+            "--size",
+            "16x16",
+            "--runs",
+            "1",
+            "--samples",
+            samples,
+            "--converged",
+            "64",
+            "--out-dir",
+            dir.to_str().unwrap(),
+            "--json",
+            json.to_str().unwrap(),
+        ]);
+        assert!(output.status.success(), "{}", stderr(&output));
+        assert!(
+            stdout(&output).contains(&format!("how far {samples} are from converged")),
+            "{}",
+            stdout(&output)
+        );
+        read_json(&json)["converged"].clone()
+    };
+    // Four samples are some way from 64; the format is f64 itself, so both images measure alike.
+    let four = converged("4");
+    assert_eq!(
+        (four["samples"].as_u64(), four["scene_samples"].as_u64()),
+        (Some(64), Some(4))
+    );
+    let psnr = four["psnr_db"].as_f64().unwrap();
+    assert!((10.0..60.0).contains(&psnr), "{four}");
+    assert_eq!(four["reference_psnr_db"], four["psnr_db"]);
+    // 64 samples are the converged render.
+    assert!(converged("64")["psnr_db"].is_null());
+}
+
+#[test]
 fn comparing_f64_with_itself_is_identical() {
     let dir = scratch("identical");
     let json = dir.join("report.json");
@@ -164,7 +208,7 @@ fn bench_reports_ratios_and_thread_speedup() {
 
 #[test]
 fn bad_arguments_fail_with_a_clear_message() {
-    let cases: [(&[&str], &str); 7] = [
+    let cases: [(&[&str], &str); 9] = [
         (
             &["render", "teapot"],
             "give a built-in scene (whitted, shapes) or a scene file",
@@ -187,6 +231,8 @@ fn bad_arguments_fail_with_a_clear_message() {
         (&["render", "whitted", "--size", "0x10"], "1 to 8192"),
         (&["render", "whitted", "--format", "q15"], "i16f16"),
         (&["compare", "whitted", "--runs", "0"], "runs"),
+        (&["compare", "whitted", "--samples", "0"], "1..=256"),
+        (&["compare", "whitted", "--converged", "257"], "1..=256"),
     ];
     for (args, expected) in cases {
         let output = obscura(args);

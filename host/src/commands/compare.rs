@@ -36,6 +36,22 @@ pub struct Report {
     pub rgb565_psnr_db: f64,
     /// The same with the ordered dither ([`obscura::Dither::Ordered`]).
     pub rgb565_dithered_psnr_db: f64,
+    /// With `--converged`: both images against an f64 render with more samples.
+    pub converged: Option<Converged>,
+}
+
+/// Both images against an f64 render with many rays per pixel: how far the scene's samples are
+/// from the converged image (the format's numeric error is the difference between the two).
+#[derive(Debug, Serialize)]
+pub struct Converged {
+    /// The converged render's rays per pixel.
+    pub samples: u16,
+    /// The scene's own rays per pixel.
+    pub scene_samples: u16,
+    /// The format's image against it (`null` when identical).
+    pub psnr_db: f64,
+    /// The f64 image with the scene's samples against it (`null` when identical).
+    pub reference_psnr_db: f64,
 }
 
 pub fn run(args: &CompareArgs) -> Result<()> {
@@ -136,6 +152,27 @@ fn compare(args: &CompareArgs, named: &NamedScene) -> Result<()> {
         runs: args.runs,
         rgb565_psnr_db: rgb565[0].0,
         rgb565_dithered_psnr_db: rgb565[1].0,
+        converged: args
+            .converged
+            .map(|samples| {
+                let mut many = scene.clone();
+                many.samples = samples;
+                let desc = many.desc();
+                let converged = prepare_reference(&Request {
+                    desc: &desc,
+                    ..request
+                })?
+                .render(threads, Some("converged f64"))
+                .context("rendering the converged f64 image")?;
+                let psnr = |image| accuracy(image, &converged, &objects, &objects).psnr_db;
+                Ok::<_, anyhow::Error>(Converged {
+                    samples,
+                    scene_samples: scene.samples,
+                    psnr_db: psnr(&image),
+                    reference_psnr_db: psnr(&truth),
+                })
+            })
+            .transpose()?,
     };
     print_table(&report)?;
     say!(
@@ -146,6 +183,16 @@ fn compare(args: &CompareArgs, named: &NamedScene) -> Result<()> {
         rgb565[0].1.display(),
         rgb565[1].1.display()
     )?;
+    if let Some(c) = &report.converged {
+        say!(
+            "against f64 with {} rays per pixel (how far {} are from converged): {format} {:.2} dB, \
+             {reference} {:.2} dB",
+            c.samples,
+            c.scene_samples,
+            c.psnr_db,
+            c.reference_psnr_db
+        )?;
+    }
     say!(
         "wrote {}, {} and {} (diff: largest channel error per pixel, log scale, legend below)",
         files[0].0.display(),
