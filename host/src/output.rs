@@ -70,8 +70,15 @@ pub fn check_file(path: &Path) -> Result<()> {
         .truncate(false)
         .open(path)
         .with_context(|| format!("cannot write {}", path.display()))?;
+    // Another process checking the same path (two commands writing `out.png` side by side)
+    // may have removed it first: gone is what this wants.
     if !existed {
-        fs::remove_file(path).with_context(|| format!("cannot write {}", path.display()))?;
+        match fs::remove_file(path) {
+            Err(error) if error.kind() != io::ErrorKind::NotFound => {
+                return Err(error).with_context(|| format!("cannot write {}", path.display()));
+            }
+            _ => {}
+        }
     }
     Ok(())
 }
