@@ -9,7 +9,7 @@ pub struct SceneDesc<'a> {
     pub camera: CameraDesc,
     /// Spheres, planes and triangles, each with its material.
     pub objects: &'a [ObjectDesc],
-    /// Point lights.
+    /// Lights: points, or discs casting soft shadows.
     pub lights: &'a [LightDesc],
     /// Light that reaches every surface, shadowed or not (a fraction of the surface colour).
     pub ambient: [f32; 3],
@@ -26,9 +26,32 @@ pub struct SceneDesc<'a> {
     /// pixel's centre (the lecture's camera); more spread over the pixel by
     /// [`crate::pattern`] and average (anti-aliasing).
     pub samples: u16,
+    /// Shadow rays from a point to each light with a [`LightDesc::radius`], 1 to
+    /// [`MAX_SAMPLES`](crate::pattern::MAX_SAMPLES): 1 aims at the light's centre (a hard
+    /// shadow); more spread over the light by [`crate::pattern`], and the share that gets
+    /// through is the light that arrives (soft shadows).
+    pub shadow_samples: u16,
+    /// Adaptive shadow rays: a point takes an area light's first
+    /// [`SHADOW_PROBES`](crate::pattern::SHADOW_PROBES) shadow rays, and the rest only where those
+    /// disagree (in the penumbra). Faster where most points are in full light or full shadow;
+    /// a sliver of penumbra that all the first rays miss is taken for full light or shadow.
+    pub adaptive_shadows: bool,
 }
 
 impl SceneDesc<'_> {
+    /// Whether a pixel takes one ray and a light one shadow ray: no samples spread over the
+    /// pixel, and no area light sampled.
+    #[must_use]
+    pub const fn traces_one_ray(&self) -> bool {
+        let mut rest = self.lights;
+        let mut point_lights = true;
+        while let [first, others @ ..] = rest {
+            point_lights &= first.radius == 0.0;
+            rest = others;
+        }
+        self.samples == 1 && (point_lights || self.shadow_samples == 1)
+    }
+
     /// Whether any object is a triangle (the triangle methods matter only then).
     #[must_use]
     pub const fn has_triangles(&self) -> bool {
@@ -158,15 +181,33 @@ impl MaterialDesc {
     }
 }
 
-/// A point light.
+/// A light: a point, or a disc that faces every point it lights.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct LightDesc {
-    /// Where it is.
+    /// Where it is: the point, or the disc's centre.
     pub position: [f32; 3],
     /// Its colour and intensity (linear RGB; 1 is a white light of unit intensity).
     pub colour: [f32; 3],
+    /// The disc's radius, ≥ 0: 0 is a point light and casts hard shadows; a disc casts
+    /// penumbrae as wide as it looks from the occluder, sampled by
+    /// [`SceneDesc::shadow_samples`] rays. It lights a point as its centre does, times the
+    /// share of it the point sees.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub radius: f32,
+}
+
+impl LightDesc {
+    /// A point light.
+    #[must_use]
+    pub const fn point(position: [f32; 3], colour: [f32; 3]) -> Self {
+        Self {
+            position,
+            colour,
+            radius: 0.0,
+        }
+    }
 }
 
 /// What rays that hit nothing see.

@@ -4,13 +4,21 @@ use crate::color::Rgb;
 use crate::scalar::Scalar;
 use crate::vec3::Vec3;
 
-/// A point light.
+/// A light: a point, or a disc facing every point it lights
+/// ([`LightDesc`](crate::LightDesc)).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Light<S> {
-    /// Where it is, relative to the eye.
+    /// Where it is (the disc's centre), relative to the eye.
     pub position: Vec3<S>,
     /// Its colour and intensity.
     pub colour: Rgb<S>,
+    /// The disc's radius; zero for a point.
+    pub radius: S,
+    /// The shadow rays a point takes to it: 1 for a point light (or a disc at one shadow
+    /// sample), else the scene's [`shadow_samples`](crate::SceneDesc::shadow_samples).
+    pub(crate) shadow_rays: u16,
+    /// Its place in the scene's lights, which chooses its pattern of shadow rays.
+    pub(crate) number: u16,
 }
 
 /// The colour of rays that hit nothing.

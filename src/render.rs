@@ -5,7 +5,7 @@
 
 use crate::camera::{Camera, Row};
 use crate::color::{DisplayColor, Dither, Rgb};
-use crate::pattern::PixelPattern;
+use crate::pattern::{Pattern, SampleId};
 use crate::scalar::Scalar;
 use crate::scene::Scene;
 use core::fmt;
@@ -117,7 +117,8 @@ where
     Ok(())
 }
 
-/// A pixel's samples, each at most 2¹⁶ per channel in [`Rgb::to_q16`], sum within a `u32`.
+/// A pixel's samples, each at most 2¹⁶ per channel in [`Rgb::to_q16`], sum within a `u32`; so
+/// do an area light's shadow samples, each at most 2¹⁶ ([`crate::shade`]).
 const _SAMPLE_SUMS_FIT: () = assert!(
     crate::pattern::MAX_SAMPLES as u64 * 0x1_0000 <= u32::MAX as u64,
     "MAX_SAMPLES samples of 2^16 overflow a pixel's sum"
@@ -144,7 +145,7 @@ fn trace_into<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize
         // One call of the tracer for either kind of pixel: a second would change how the
         // compiler inlines it, and so the cost of the one-sample image.
         let centre = centres.next();
-        let pattern = (samples > 1).then(|| PixelPattern::of(x, y));
+        let pattern = (samples > 1).then(|| Pattern::pixel(x, y));
         let (mut colour, mut sum) = (Rgb::BLACK, [0_u32; 3]);
         for i in 0..samples {
             let ray = match &pattern {
@@ -152,7 +153,7 @@ fn trace_into<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize
                 Some(pattern) => row.ray_offset(x, pattern.offset(i)),
             };
             let Some(ray) = ray else { continue };
-            colour = scene.trace(ray).colour;
+            colour = scene.trace(ray, SampleId { x, y, sample: i }).colour;
             if pattern.is_some() {
                 let c = colour.to_q16();
                 sum = [sum[0] + c[0], sum[1] + c[1], sum[2] + c[2]];

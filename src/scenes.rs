@@ -17,7 +17,7 @@ pub struct BuiltIn {
 }
 
 /// Every built-in scene.
-pub const BUILT_IN: [BuiltIn; 2] = [
+pub const BUILT_IN: [BuiltIn; 3] = [
     BuiltIn {
         name: "whitted",
         summary: "Whitted's 1979 spheres and checkerboard: a glass sphere above a mirrored one",
@@ -28,7 +28,19 @@ pub const BUILT_IN: [BuiltIn; 2] = [
         summary: "the three primitives: spheres, a checkered plane and triangles, two coloured lights",
         desc: SHAPES,
     },
+    BuiltIn {
+        name: "soft",
+        summary: "the lecture's soft shadows: a sphere, a ball and a tetrahedron on a floor under a disc light",
+        desc: SOFT,
+    },
 ];
+
+/// The built-in scenes that trace one ray per pixel and one shadow ray per light, whose cost
+/// and accuracy the methods chart measures (and the cost model reads): the sampling of the
+/// others multiplies both, and is measured on its own axis.
+pub fn one_ray() -> impl Iterator<Item = &'static BuiltIn> {
+    BUILT_IN.iter().filter(|scene| scene.desc.traces_one_ray())
+}
 
 /// The built-in scene called `name`.
 #[must_use]
@@ -87,10 +99,7 @@ const WHITTED_OBJECTS: [ObjectDesc; 3] = [
     },
 ];
 
-const WHITTED_LIGHTS: [LightDesc; 1] = [LightDesc {
-    position: [-5.0, 12.0, -8.0],
-    colour: [1.0, 1.0, 1.0],
-}];
+const WHITTED_LIGHTS: [LightDesc; 1] = [LightDesc::point([-5.0, 12.0, -8.0], [1.0, 1.0, 1.0])];
 
 /// Whitted's "spheres and checkerboard" (1979): a mostly transmissive, slightly reflective glass
 /// sphere in front of and above an opaque reflective sphere, over a red-and-yellow checkerboard,
@@ -113,6 +122,8 @@ pub const WHITTED: SceneDesc<'static> = SceneDesc {
     far: 30.0,
     max_depth: 5,
     samples: 1,
+    shadow_samples: 1,
+    adaptive_shadows: false,
 };
 
 const GREEN: MaterialDesc = MaterialDesc {
@@ -189,14 +200,8 @@ const SHAPES_OBJECTS: [ObjectDesc; 6] = [
 ];
 
 const SHAPES_LIGHTS: [LightDesc; 2] = [
-    LightDesc {
-        position: [-4.0, 7.0, -3.0],
-        colour: [0.75, 0.6, 0.45],
-    },
-    LightDesc {
-        position: [5.0, 6.0, -1.0],
-        colour: [0.35, 0.45, 0.75],
-    },
+    LightDesc::point([-4.0, 7.0, -3.0], [0.75, 0.6, 0.45]),
+    LightDesc::point([5.0, 6.0, -1.0], [0.35, 0.45, 0.75]),
 ];
 
 /// The lecture's three primitives together: two spheres, a checkered plane and a tetrahedron
@@ -215,4 +220,97 @@ pub const SHAPES: SceneDesc<'static> = SceneDesc {
     far: 25.0,
     max_depth: 3,
     samples: 1,
+    shadow_samples: 1,
+    adaptive_shadows: false,
+};
+
+/// The soft scene's tetrahedron: apex and base corners.
+const SOFT_APEX: [f32; 3] = [1.35, 1.9, 1.7];
+const SOFT_BASE: [[f32; 3]; 3] = [[1.35, 0.0, 0.75], [2.2, 0.0, 2.2], [0.5, 0.0, 2.2]];
+const SOFT_TETRAHEDRON: MaterialDesc = MaterialDesc {
+    specular: 0.25,
+    shininess: 20,
+    ..MaterialDesc::matte([0.95, 0.7, 0.2])
+};
+
+const SOFT_OBJECTS: [ObjectDesc; 6] = [
+    ObjectDesc {
+        shape: ShapeDesc::Plane {
+            point: [0.0, 0.0, 0.0],
+            normal: [0.0, 1.0, 0.0],
+            checker: None,
+        },
+        material: MaterialDesc::matte([0.85, 0.85, 0.82]),
+    },
+    ObjectDesc {
+        shape: ShapeDesc::Sphere {
+            center: [-1.15, 0.9, 1.2],
+            radius: 0.9,
+        },
+        material: MaterialDesc {
+            specular: 0.4,
+            shininess: 40,
+            ..MaterialDesc::matte([0.8, 0.15, 0.12])
+        },
+    },
+    ObjectDesc {
+        shape: ShapeDesc::Sphere {
+            center: [0.35, 0.35, -0.6],
+            radius: 0.35,
+        },
+        material: MaterialDesc {
+            specular: 0.5,
+            shininess: 60,
+            ..MaterialDesc::matte([0.15, 0.3, 0.85])
+        },
+    },
+    ObjectDesc {
+        shape: ShapeDesc::Triangle {
+            vertices: [SOFT_BASE[0], SOFT_BASE[1], SOFT_APEX],
+        },
+        material: SOFT_TETRAHEDRON,
+    },
+    ObjectDesc {
+        shape: ShapeDesc::Triangle {
+            vertices: [SOFT_BASE[1], SOFT_BASE[2], SOFT_APEX],
+        },
+        material: SOFT_TETRAHEDRON,
+    },
+    ObjectDesc {
+        shape: ShapeDesc::Triangle {
+            vertices: [SOFT_BASE[2], SOFT_BASE[0], SOFT_APEX],
+        },
+        material: SOFT_TETRAHEDRON,
+    },
+];
+
+const SOFT_LIGHTS: [LightDesc; 1] = [LightDesc {
+    radius: 1.2,
+    ..LightDesc::point([-2.6, 5.5, -2.2], [0.95, 0.92, 0.85])
+}];
+
+/// The lecture's "how do we get these nice, soft shadows?": a large sphere, a small ball and a
+/// tetrahedron on a plain floor under one disc light, 16 shadow rays each point, taken
+/// adaptively. The penumbra widens with the distance from the occluder: narrow where the ball
+/// touches the floor, wide behind the apex.
+pub const SOFT: SceneDesc<'static> = SceneDesc {
+    camera: CameraDesc {
+        eye: [0.0, 3.2, -5.5],
+        look_at: [0.0, 0.6, 1.0],
+        up: [0.0, 1.0, 0.0],
+        vfov_degrees: 45.0,
+    },
+    objects: &SOFT_OBJECTS,
+    lights: &SOFT_LIGHTS,
+    ambient: [0.12, 0.12, 0.12],
+    background: BackgroundDesc::Gradient {
+        up: crate::desc::Y_UP,
+        horizon: [0.6, 0.62, 0.66],
+        zenith: [0.25, 0.3, 0.4],
+    },
+    far: 12.0,
+    max_depth: 2,
+    samples: 1,
+    shadow_samples: 16,
+    adaptive_shadows: true,
 };

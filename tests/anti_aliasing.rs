@@ -92,6 +92,8 @@ fn scene(objects: &[ObjectDesc], samples: u16) -> SceneDesc<'_> {
         far: 4.0,
         max_depth: 0,
         samples,
+        shadow_samples: 1,
+        adaptive_shadows: false,
     }
 }
 

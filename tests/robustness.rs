@@ -129,10 +129,7 @@ fn random_scenes_build_or_are_refused_and_render_without_panicking() {
             .map(|_| object(&mut r, extent))
             .collect();
         let lights: Vec<_> = (0..(r.next() * 3.0) as usize)
-            .map(|_| LightDesc {
-                position: r.point(extent),
-                colour: r.colour().map(|c| c * 2.0),
-            })
+            .map(|_| LightDesc::point(r.point(extent), r.colour().map(|c| c * 2.0)))
             .collect();
         let desc = SceneDesc {
             camera: CameraDesc {
@@ -152,6 +149,8 @@ fn random_scenes_build_or_are_refused_and_render_without_panicking() {
             far: r.wild(extent * 4.0),
             max_depth: (r.next() * 5.0) as u8,
             samples: 1,
+            shadow_samples: 1,
+            adaptive_shadows: false,
         };
         let methods = methods(&mut r);
         let results = [

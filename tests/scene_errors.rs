@@ -23,10 +23,7 @@ const BALL: ObjectDesc = ObjectDesc {
     },
     material: MATTE,
 };
-const LIGHT: LightDesc = LightDesc {
-    position: [2.0, 5.0, -3.0],
-    colour: [1.0, 1.0, 1.0],
-};
+const LIGHT: LightDesc = LightDesc::point([2.0, 5.0, -3.0], [1.0, 1.0, 1.0]);
 
 fn scene<'a>(objects: &'a [ObjectDesc], lights: &'a [LightDesc]) -> SceneDesc<'a> {
     SceneDesc {
@@ -38,6 +35,8 @@ fn scene<'a>(objects: &'a [ObjectDesc], lights: &'a [LightDesc]) -> SceneDesc<'a
         far: 20.0,
         max_depth: 3,
         samples: 1,
+        shadow_samples: 1,
+        adaptive_shadows: false,
     }
 }
 

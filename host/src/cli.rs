@@ -145,13 +145,23 @@ impl ValueEnum for FormatChoice {
     }
 }
 
-/// How many rays a pixel takes, over the scene's own `samples`.
-#[derive(Clone, Copy, Debug, Args)]
+/// How many rays a pixel and an area light take, over the scene's own `samples` and
+/// `shadow_samples`.
+#[derive(Clone, Copy, Debug, Default, Args)]
 pub struct SamplingArgs {
     /// Rays per pixel, 1 to 256, spread over the pixel and averaged (anti-aliasing); the
     /// scene's own `samples` when not given.
     #[arg(long, value_parser = clap::value_parser!(u16).range(1..=i64::from(MAX_SAMPLES)))]
     pub samples: Option<u16>,
+    /// Shadow rays per light with a radius, 1 to 256, spread over the light (soft shadows);
+    /// the scene's own `shadow_samples` when not given.
+    #[arg(long, value_parser = clap::value_parser!(u16).range(1..=i64::from(MAX_SAMPLES)))]
+    pub shadow_samples: Option<u16>,
+    /// Whether a point takes an area light's first 4 shadow rays and the rest only where they
+    /// disagree (`true`), or all of them (`false`); the scene's own `adaptive_shadows` when not
+    /// given.
+    #[arg(long)]
+    pub adaptive_shadows: Option<bool>,
 }
 
 impl SamplingArgs {
@@ -159,6 +169,12 @@ impl SamplingArgs {
     pub fn apply(&self, scene: &mut OwnedScene) {
         if let Some(samples) = self.samples {
             scene.samples = samples;
+        }
+        if let Some(shadow_samples) = self.shadow_samples {
+            scene.shadow_samples = shadow_samples;
+        }
+        if let Some(adaptive) = self.adaptive_shadows {
+            scene.adaptive_shadows = adaptive;
         }
     }
 }

@@ -7,7 +7,7 @@ use crate::firmware::Target;
 use crate::format::Format;
 use clap::ValueEnum;
 use obscura::Methods;
-use obscura::scenes::{BUILT_IN, BuiltIn};
+use obscura::scenes::{self, BuiltIn};
 use std::fmt;
 use std::sync::OnceLock;
 
@@ -152,8 +152,7 @@ pub fn cost(
             if matters { of(&label) } else { None }.or_else(|| of("lecture"))
         };
         let mean = |alike: bool| {
-            let costs: Vec<f64> = BUILT_IN
-                .iter()
+            let costs: Vec<f64> = scenes::one_ray()
                 .filter(|scene| (scene.desc.has_triangles() == has_triangles) == alike)
                 .filter_map(on)
                 .collect();

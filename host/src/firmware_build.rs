@@ -35,9 +35,11 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 /// The environment variables the configuration is read from, as (name, default).
-pub const VARIABLES: [(&str, &str); 8] = [
+pub const VARIABLES: [(&str, &str); 10] = [
     (SCENES, "whitted"),
     (SAMPLES, SCENES_OWN),
+    (SHADOW_SAMPLES, SCENES_OWN),
+    (ADAPTIVE_SHADOWS, SCENES_OWN),
     (FORMATS, "auto"),
     (TARGET_PSNR, "40"),
     (METHODS, "lecture"),
@@ -48,6 +50,14 @@ pub const VARIABLES: [(&str, &str); 8] = [
 const SCENES: &str = "OBSCURA_SCENES";
 /// Rays per pixel for every scene, or [`SCENES_OWN`]: each scene's own `samples`.
 const SAMPLES: &str = "OBSCURA_SAMPLES";
+/// Shadow rays per area light for every scene, or [`SCENES_OWN`]: each scene's own
+/// `shadow_samples`.
+const SHADOW_SAMPLES: &str = "OBSCURA_SHADOW_SAMPLES";
+/// Adaptive shadow rays for every scene (`true` or `false`), or [`SCENES_OWN`]: each scene's
+/// own `adaptive_shadows`.
+const ADAPTIVE_SHADOWS: &str = "OBSCURA_ADAPTIVE_SHADOWS";
+/// The value of [`SAMPLES`], [`SHADOW_SAMPLES`] or [`ADAPTIVE_SHADOWS`] that keeps each scene's
+/// own.
 const SCENES_OWN: &str = "scene";
 const FORMATS: &str = "OBSCURA_FORMATS";
 const TARGET_PSNR: &str = "OBSCURA_TARGET_PSNR";
@@ -77,8 +87,8 @@ pub struct Configuration {
 pub struct Image<'a> {
     /// Built-in scenes' names, or scene files' paths.
     pub scenes: Vec<String>,
-    /// Rays per pixel for every scene, if not each scene's own.
-    pub samples: Option<u16>,
+    /// Rays per pixel and per area light for every scene, where not each scene's own.
+    pub sampling: SamplingArgs,
     /// The formats.
     pub formats: &'a [Format],
     /// The methods.
@@ -93,14 +103,16 @@ impl Image<'_> {
     /// The build script's environment for this image: every variable, so that none is
     /// inherited from the caller's.
     #[must_use]
-    pub fn environment(&self) -> [(&'static str, String); 8] {
+    pub fn environment(&self) -> [(&'static str, String); 10] {
+        fn given<T: ToString>(value: Option<T>) -> String {
+            value.map_or_else(|| SCENES_OWN.to_owned(), |v| v.to_string())
+        }
+        let sampling = &self.sampling;
         [
             (SCENES, self.scenes.join(",")),
-            (
-                SAMPLES,
-                self.samples
-                    .map_or_else(|| SCENES_OWN.to_owned(), |n| n.to_string()),
-            ),
+            (SAMPLES, given(sampling.samples)),
+            (SHADOW_SAMPLES, given(sampling.shadow_samples)),
+            (ADAPTIVE_SHADOWS, given(sampling.adaptive_shadows)),
             (
                 FORMATS,
                 self.formats
@@ -194,18 +206,29 @@ pub fn configure(
             scene_file::load(&name).context(SCENES)
         })
         .collect::<Result<Vec<_>>>()?;
+    let count = |variable| match value(variable).trim() {
+        SCENES_OWN => Ok(None),
+        n => n
+            .parse()
+            .ok()
+            .filter(|n| (1..=MAX_SAMPLES).contains(n))
+            .map(Some)
+            .with_context(|| {
+                format!(
+                    "{variable} is `{SCENES_OWN}` or a number from 1 to {MAX_SAMPLES}, not `{n}`"
+                )
+            }),
+    };
+    let adaptive_shadows = match value(ADAPTIVE_SHADOWS).trim() {
+        SCENES_OWN => None,
+        given => Some(given.parse().ok().with_context(|| {
+            format!("{ADAPTIVE_SHADOWS} is `{SCENES_OWN}`, `true` or `false`, not `{given}`")
+        })?),
+    };
     let sampling = SamplingArgs {
-        samples: match value(SAMPLES).trim() {
-            SCENES_OWN => None,
-            n => Some(
-                n.parse()
-                    .ok()
-                    .filter(|n| (1..=MAX_SAMPLES).contains(n))
-                    .with_context(|| {
-                        format!("{SAMPLES} is `{SCENES_OWN}` or a number from 1 to {MAX_SAMPLES}, not `{n}`")
-                    })?,
-            ),
-        },
+        samples: count(SAMPLES)?,
+        shadow_samples: count(SHADOW_SAMPLES)?,
+        adaptive_shadows,
     };
     for scene in &mut scenes {
         sampling.apply(&mut scene.scene);
@@ -446,6 +469,8 @@ fn scene_source(desc: &SceneDesc<'_>) -> String {
         far,
         max_depth,
         samples,
+        shadow_samples,
+        adaptive_shadows,
     } = desc;
     let CameraDesc {
         eye,
@@ -456,13 +481,20 @@ fn scene_source(desc: &SceneDesc<'_>) -> String {
     let objects: Vec<String> = objects.iter().map(object_source).collect();
     let lights: Vec<String> = lights
         .iter()
-        .map(|LightDesc { position, colour }| {
-            format!(
-                "obscura::LightDesc {{ position: {}, colour: {} }}",
-                vector(position),
-                vector(colour)
-            )
-        })
+        .map(
+            |LightDesc {
+                 position,
+                 colour,
+                 radius,
+             }| {
+                format!(
+                    "obscura::LightDesc {{ position: {}, colour: {}, radius: {} }}",
+                    vector(position),
+                    vector(colour),
+                    number(*radius)
+                )
+            },
+        )
         .collect();
     let background = match background {
         BackgroundDesc::Solid(colour) => {
@@ -483,7 +515,8 @@ fn scene_source(desc: &SceneDesc<'_>) -> String {
         "obscura::SceneDesc {{\n            camera: obscura::CameraDesc {{ eye: {}, look_at: {}, \
          up: {}, vfov_degrees: {} }},\n            objects: &[\n{}            ],\n            \
          lights: &[{}],\n            ambient: {},\n            background: {background},\n            \
-         far: {},\n            max_depth: {max_depth},\n            samples: {samples},\n        }}",
+         far: {},\n            max_depth: {max_depth},\n            samples: {samples},\n            shadow_samples: \
+         {shadow_samples},\n            adaptive_shadows: {adaptive_shadows},\n        }}",
         vector(eye),
         vector(look_at),
         vector(up),
@@ -628,25 +661,59 @@ mod tests {
     }
 
     #[test]
-    fn a_sample_count_holds_for_every_scene() {
-        let configure_samples = |samples| {
+    fn sampling_holds_for_every_scene() {
+        let configure_sampling = |variable, value| {
             configure(
                 &workspace(),
                 Machine::M4f,
                 env(&[
                     (SCENES, "whitted,shapes"),
                     (FORMATS, "f32"),
-                    (SAMPLES, samples),
+                    (variable, value),
                 ]),
             )
         };
-        let configuration = configure_samples("4").unwrap();
+        let configuration = configure_sampling(SAMPLES, "4").unwrap();
         assert!(configuration.scenes.iter().all(|s| s.scene.samples == 4));
-        assert_eq!(configuration.source().matches("samples: 4,").count(), 2);
-        for wrong in ["0", "257", "four"] {
-            let message = format!("{:#}", configure_samples(wrong).unwrap_err());
+        assert_eq!(configuration.source().matches(" samples: 4,").count(), 2);
+        let configuration = configure_sampling(SHADOW_SAMPLES, "16").unwrap();
+        assert!(
+            configuration
+                .scenes
+                .iter()
+                .all(|s| s.scene.shadow_samples == 16)
+        );
+        assert_eq!(
+            configuration
+                .source()
+                .matches("shadow_samples: 16,")
+                .count(),
+            2
+        );
+        let configuration = configure_sampling(ADAPTIVE_SHADOWS, "true").unwrap();
+        assert!(
+            configuration
+                .scenes
+                .iter()
+                .all(|s| s.scene.adaptive_shadows)
+        );
+        assert_eq!(
+            configuration
+                .source()
+                .matches("adaptive_shadows: true,")
+                .count(),
+            2
+        );
+        for (variable, wrong) in [
+            (SAMPLES, "0"),
+            (SAMPLES, "257"),
+            (SAMPLES, "four"),
+            (SHADOW_SAMPLES, "0"),
+            (ADAPTIVE_SHADOWS, "yes"),
+        ] {
+            let message = format!("{:#}", configure_sampling(variable, wrong).unwrap_err());
             assert!(
-                message.contains(SAMPLES) && message.contains(wrong),
+                message.contains(variable) && message.contains(wrong),
                 "{message}"
             );
         }

@@ -31,6 +31,12 @@ pub struct OwnedScene {
     /// See [`SceneDesc::samples`].
     #[serde(default = "default_samples")]
     pub samples: u16,
+    /// See [`SceneDesc::shadow_samples`].
+    #[serde(default = "default_samples")]
+    pub shadow_samples: u16,
+    /// See [`SceneDesc::adaptive_shadows`].
+    #[serde(default)]
+    pub adaptive_shadows: bool,
 }
 
 fn default_ambient() -> [f32; 3] {
@@ -61,6 +67,8 @@ impl OwnedScene {
             far: desc.far,
             max_depth: desc.max_depth,
             samples: desc.samples,
+            shadow_samples: desc.shadow_samples,
+            adaptive_shadows: desc.adaptive_shadows,
         }
     }
 
@@ -75,6 +83,8 @@ impl OwnedScene {
             far: self.far,
             max_depth: self.max_depth,
             samples: self.samples,
+            shadow_samples: self.shadow_samples,
+            adaptive_shadows: self.adaptive_shadows,
         }
     }
 
@@ -116,6 +126,7 @@ impl OwnedScene {
             .iter()
             .map(|light| LightDesc {
                 position: point(light.position),
+                radius: light.radius * s,
                 ..*light
             })
             .collect();

@@ -11,6 +11,7 @@ use embedded_graphics::primitives::Rectangle;
 use image::RgbImage;
 use indicatif::{ProgressBar, ProgressStyle};
 use obscura::camera::Row;
+use obscura::pattern::SampleId;
 use obscura::{
     Camera, Methods, Presentation, RootMethod, Scalar, Scene, SceneDesc, SceneError, render_frame,
     render_rows,
@@ -160,7 +161,7 @@ impl<S: Scalar> Prepared<S> {
         let (first, pixel) = (0..self.camera.width())
             .zip(self.camera.row(y).into_iter().flat_map(Row::rays))
             .find_map(|(x, ray)| {
-                checked::catch(|| self.scene.trace(ray))
+                checked::catch(|| self.scene.trace(ray, SampleId { x, y, sample: 0 }))
                     .err()
                     .map(|o| (o, (x, y)))
             })
@@ -203,10 +204,11 @@ impl<S: Scalar> Prepared<S> {
             Err(overflowed) => {
                 let y = (0..height)
                     .find(|&y| {
-                        let row = self.camera.row(y);
-                        row.into_iter()
-                            .flat_map(Row::rays)
-                            .any(|ray| checked::catch(|| self.scene.trace(ray)).is_err())
+                        let row = self.camera.row(y).into_iter().flat_map(Row::rays);
+                        (0..).zip(row).any(|(x, ray)| {
+                            let id = SampleId { x, y, sample: 0 };
+                            checked::catch(|| self.scene.trace(ray, id)).is_err()
+                        })
                     })
                     .unwrap_or(0);
                 return Err(self.overflow_at(y, overflowed));
@@ -246,11 +248,10 @@ impl<S: Scalar> Prepared<S> {
         let mut met = Vec::new();
         for y in 0..self.camera.height() {
             let row = checked::catch(|| {
-                self.camera
-                    .row(y)
-                    .into_iter()
-                    .flat_map(Row::rays)
-                    .map(|ray| self.scene.trace(ray).met)
+                let row = self.camera.row(y).into_iter().flat_map(Row::rays);
+                (0..)
+                    .zip(row)
+                    .map(|(x, ray)| self.scene.trace(ray, SampleId { x, y, sample: 0 }).met)
                     .collect::<Vec<_>>()
             });
             met.extend(row.map_err(|overflowed| self.overflow_at(y, overflowed))?);
@@ -264,7 +265,7 @@ impl Prepared<f64> {
     /// (x, y) sees, or `None` outside the image.
     pub fn sample(&self, x: u32, y: u32, offset: [f64; 2]) -> Option<obscura::Sample<f64>> {
         let ray = self.camera.ray_offset(x, y, offset)?;
-        Some(self.scene.trace(ray))
+        Some(self.scene.trace(ray, SampleId { x, y, sample: 0 }))
     }
 }
 

@@ -338,6 +338,8 @@ mod tests {
         assert_eq!(scene.objects.len(), 2);
         assert_eq!(scene.max_depth, 5);
         assert_eq!(scene.samples, 1);
+        assert_eq!((scene.shadow_samples, scene.adaptive_shadows), (1, false));
+        assert_eq!(scene.lights[0].radius, 0.0);
         assert_eq!(scene.background, BackgroundDesc::Solid([0.0; 3]));
         let material = scene.objects[0].material;
         assert_eq!(material.colour, [0.9, 0.2, 0.1]);
@@ -400,6 +402,38 @@ mod tests {
         assert_eq!(scene.samples, 300);
         let error = obscura::Scene::<f32, 4, 4, 8>::build(&scene.desc()).expect_err("too many");
         assert_eq!(placed(&text, error), "scene.toml:3:19");
+    }
+
+    #[test]
+    fn an_area_light_and_its_shadow_rays_are_read_and_refused_where_they_are_wrong() {
+        let text = MINIMAL
+            .replace(
+                "far = 20.0",
+                "far = 20.0\n        shadow_samples = 16\n        adaptive_shadows = true",
+            )
+            .replace(
+                "colour = [1.0, 1.0, 1.0]",
+                "colour = [1.0, 1.0, 1.0]\n        radius = 0.5",
+            );
+        let scene = parse(&text).expect("parses");
+        assert_eq!((scene.shadow_samples, scene.adaptive_shadows), (16, true));
+        assert_eq!(scene.lights[0].radius, 0.5);
+        assert!(obscura::Scene::<f32, 4, 4, 8>::build(&scene.desc()).is_ok());
+
+        let none = text.replace("shadow_samples = 16", "shadow_samples = 0");
+        let error = obscura::Scene::<f32, 4, 4, 8>::build(&parse(&none).unwrap().desc())
+            .expect_err("no shadow rays");
+        assert_eq!(placed(&none, error), "scene.toml:3:26");
+        let negative = text.replace("radius = 0.5", "radius = -0.5");
+        let error = obscura::Scene::<f32, 4, 4, 8>::build(&parse(&negative).unwrap().desc())
+            .expect_err("a negative radius");
+        assert!(error.to_string().contains("radius"), "{error}");
+        assert_eq!(placed(&negative, error), "scene.toml:17:18");
+        // A disc reaching beyond the world: the light's table is the place.
+        let wide = text.replace("radius = 0.5", "radius = 15.0");
+        let error = obscura::Scene::<f32, 4, 4, 8>::build(&parse(&wide).unwrap().desc())
+            .expect_err("beyond the world");
+        assert!(matches!(error, SceneError::OutsideWorld { .. }), "{error}");
     }
 
     #[test]

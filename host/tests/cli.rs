@@ -208,10 +208,10 @@ fn bench_reports_ratios_and_thread_speedup() {
 
 #[test]
 fn bad_arguments_fail_with_a_clear_message() {
-    let cases: [(&[&str], &str); 9] = [
+    let cases: [(&[&str], &str); 11] = [
         (
             &["render", "teapot"],
-            "give a built-in scene (whitted, shapes) or a scene file",
+            "give a built-in scene (whitted, shapes, soft) or a scene file",
         ),
         (
             &["analyze", "whitted", "--target-psnr", "lots"],
@@ -232,6 +232,8 @@ fn bad_arguments_fail_with_a_clear_message() {
         (&["render", "whitted", "--format", "q15"], "i16f16"),
         (&["compare", "whitted", "--runs", "0"], "runs"),
         (&["compare", "whitted", "--samples", "0"], "1..=256"),
+        (&["compare", "soft", "--shadow-samples", "300"], "1..=256"),
+        (&["compare", "soft", "--adaptive-shadows", "maybe"], "true"),
         (&["compare", "whitted", "--converged", "257"], "1..=256"),
     ];
     for (args, expected) in cases {

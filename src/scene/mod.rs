@@ -76,6 +76,8 @@ pub(crate) struct Settings<S> {
     pub(crate) max_depth: u8,
     /// Rays per pixel ([`SceneDesc::samples`]).
     pub(crate) samples: u16,
+    /// See [`SceneDesc::adaptive_shadows`].
+    pub(crate) adaptive_shadows: bool,
     pub(crate) methods: Methods,
 }
 
@@ -234,6 +236,14 @@ impl<S: Scalar> Converter<S> {
             let light = Light {
                 position: self.point(item, "position", light.position)?,
                 colour: self.colour(item, "colour", light.colour)?,
+                radius: self.scalar(item, "radius", f64::from(light.radius))?,
+                shadow_rays: if light.radius > 0.0 {
+                    desc.shadow_samples
+                } else {
+                    1
+                },
+                // Fewer lights than the capacity, far fewer than 2¹⁶.
+                number: u16::try_from(i).unwrap_or(u16::MAX),
             };
             lights
                 .push(light)
@@ -286,6 +296,7 @@ impl<S: Scalar> Converter<S> {
             min_weight: S::ratio(1, WEIGHT_CUTOFF),
             max_depth: desc.max_depth,
             samples: desc.samples,
+            adaptive_shadows: desc.adaptive_shadows,
             methods,
         };
         Ok(Scene {

@@ -5,8 +5,9 @@
 //! # What the bounds rest on
 //!
 //! Positions are relative to the eye. Validation puts every sphere (centre plus radius),
-//! triangle corner and light within the world radius R = `far`, and every plane within R of
-//! the eye; the tracer then keeps every value within these:
+//! triangle corner and light (an area light's centre plus its radius) within the world radius
+//! R = `far`, and every plane within R of the eye; the tracer then keeps every value within
+//! these:
 //!
 //! - **Ray origins** are the eye or points on surfaces, moved off them by the surface
 //!   tolerance τ. A sphere's surface point is c + r·n, within |c| + r ≤ R; a triangle's is
@@ -40,6 +41,9 @@
 //! | triangle | a + u·e1 + v·e2 | a convex combination of the corners: O |
 //! | shading | cosines, mirror direction d + 2(cos)·n, Phong's power of a cosine clamped to 1 | at most 3: a direction's reflection |
 //! | shading | the light's direction and distance | normalised from \|L − o\| ≤ R + O in the wide integer: no square forms |
+//! | area light | two unit vectors across the light's direction: 1/(1 + \|l_z\|) and products of unit coordinates | within 2 |
+//! | area light | a point of its disc, L + r·a·u + r·b·v with a² + b² ≤ 1 | within \|L\| + r ≤ R, as a light; its direction and distance as a light's |
+//! | area light | the shadow rays' transmittances, summed in 16-bit fractions | integers: at most [`MAX_SAMPLES`](crate::pattern::MAX_SAMPLES) · 2¹⁶ < 2³² (const-asserted) |
 //! | refraction | (d + cos·n)·η, its squared length | η² in Snell's law |
 //! | colour | each level's ambient, Lambert, Phong times the light, times its weight; the sum | a pixel's sum of colours over its ray tree |
 //! | quotients, roots | every division and root | total: they saturate (fixed point) or reach infinity (floats) |
@@ -589,14 +593,15 @@ pub fn features<'a>(
         };
         // A shadow ray starts a tolerance off its surface and looks for occluders between
         // there and the light, from anywhere in the world: a light nearer a surface than such a
-        // ray can tell is on either side of it at random.
+        // ray can tell is on either side of it at random. For an area light, that is every
+        // point within its radius.
         let position = Vec3::from_f32(light.position);
-        let reach = world + distance(light.position, eye);
+        let reach = world + distance(light.position, eye) + f64::from(light.radius);
         let clear = desc.objects.iter().map(move |object| Feature {
             item,
-            quantity: "its distance from a surface, against the error with which a shadow ray \
-                       finds the surface",
-            value: clearance(object, position),
+            quantity: "its distance from a surface (less its radius), against the error with \
+                       which a shadow ray finds the surface",
+            value: clearance(object, position) - f64::from(light.radius),
             terms: locating(object, methods, reach, eye),
             steps: SIDE_STEPS,
             remedy: Remedy::MoveLight,

@@ -7,7 +7,7 @@ use crate::desc::{BackgroundDesc, CameraDesc, LightDesc, MaterialDesc, SceneDesc
 use crate::pattern::MAX_SAMPLES;
 use crate::vec3::Vec3;
 
-/// What `samples` must be, in words: from 1 to [`MAX_SAMPLES`].
+/// What `samples` and `shadow_samples` must be, in words: from 1 to [`MAX_SAMPLES`].
 const SAMPLES_EXPECTED: &str = "from 1 to 256";
 
 /// Validates `desc` and returns its camera frame.
@@ -15,13 +15,18 @@ pub(super) fn validate(desc: &SceneDesc<'_>) -> Result<Frame, SceneError> {
     finite(Item::Scene, "far", &[desc.far])?;
     at_least(Item::Scene, "far", desc.far, f32::MIN_POSITIVE, "> 0")?;
     colour(Item::Scene, "ambient", desc.ambient)?;
-    if !(1..=MAX_SAMPLES).contains(&desc.samples) {
-        return Err(out_of_bounds(
-            Item::Scene,
-            "samples",
-            f32::from(desc.samples),
-            SAMPLES_EXPECTED,
-        ));
+    for (field, count) in [
+        ("samples", desc.samples),
+        ("shadow_samples", desc.shadow_samples),
+    ] {
+        if !(1..=MAX_SAMPLES).contains(&count) {
+            return Err(out_of_bounds(
+                Item::Scene,
+                field,
+                f32::from(count),
+                SAMPLES_EXPECTED,
+            ));
+        }
     }
     match desc.background {
         BackgroundDesc::Solid(c) => colour(Item::Scene, "background.solid", c)?,
@@ -53,10 +58,14 @@ pub(super) fn validate(desc: &SceneDesc<'_>) -> Result<Frame, SceneError> {
         let LightDesc {
             position,
             colour: c,
+            radius,
         } = *light;
         finite(item, "position", &position)?;
         colour(item, "colour", c)?;
-        inside_world(item, distance(position, desc.camera.eye), desc.far)?;
+        finite(item, "radius", &[radius])?;
+        at_least(item, "radius", radius, 0.0, "≥ 0")?;
+        let reach = distance(position, desc.camera.eye) + f64::from(radius);
+        inside_world(item, reach, desc.far)?;
     }
     Ok(frame)
 }

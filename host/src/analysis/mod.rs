@@ -518,10 +518,11 @@ mod tests {
         assert!((extents.nearest - 3.0).abs() < 1e-9, "{extents:?}");
     }
 
-    /// The scenes the analysis is held to: the built-in ones, as they are and scaled.
+    /// The scenes the analysis is held to: the built-in ones of one ray per pixel and light, as
+    /// they are and scaled.
     fn scenes() -> Vec<(String, OwnedScene)> {
         let mut all = Vec::new();
-        for built_in in &scenes::BUILT_IN {
+        for built_in in scenes::one_ray() {
             let scene = OwnedScene::from_desc(&built_in.desc);
             for factor in [0.25, 1.0, 4.0] {
                 all.push((format!("{} ×{factor}", built_in.name), scene.scaled(factor)));

@@ -478,6 +478,8 @@ mod tests {
             far: 10.0,
             max_depth: 0,
             samples: 1,
+            shadow_samples: 1,
+            adaptive_shadows: false,
         };
         Reference::render(&Request {
             desc: &desc,

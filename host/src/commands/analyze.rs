@@ -48,6 +48,16 @@ fn analyze(args: &AnalyzeArgs, named: &NamedScene) -> Result<()> {
             "without triangles"
         }
     )?;
+    let scene = &named.scene;
+    if !scene.desc().traces_one_ray() {
+        say!(
+            "The chart measures one ray per pixel and one shadow ray per light; this scene takes \
+             {} rays per pixel and up to {} shadow rays per area light, which multiply the costs \
+             below (`obscura firmware` measures them).\n",
+            scene.samples,
+            scene.shadow_samples
+        )?;
+    }
     say!(
         "| format | holds the scene | predicted PSNR ≥ (dB) | shift (px) | predicted object \
          mismatch ≤ | measured PSNR (dB) | M4F instr/px | M0 instr/px | host ns/px |"

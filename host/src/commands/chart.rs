@@ -3,7 +3,7 @@
 //! the Cortex-M0, counted under QEMU; host time per pixel, timed in one run), error two ways
 //! (PSNR and object mismatch against f64), and the Pareto front of each pairing.
 
-use crate::cli::ChartArgs;
+use crate::cli::{ChartArgs, SamplingArgs};
 use crate::cost;
 use crate::firmware::{self, Target};
 use crate::firmware_build::Image;
@@ -37,7 +37,7 @@ struct Variant {
 fn variants() -> Vec<Variant> {
     let base = Methods::LECTURE;
     let mut all = Vec::new();
-    for scene in &scenes::BUILT_IN {
+    for scene in scenes::one_ray() {
         for &format in Format::FIRMWARE {
             for methods in base.variants() {
                 if format.methods_matter(&methods, &base, scene.desc.has_triangles()) {
@@ -70,8 +70,8 @@ pub fn run(args: &ChartArgs) -> Result<()> {
         firmware::check_prerequisites(target)?;
         for (i, formats) in target.chart_images().iter().enumerate() {
             let image = Image {
-                scenes: scenes::BUILT_IN.iter().map(|s| s.name.to_owned()).collect(),
-                samples: None,
+                scenes: scenes::one_ray().map(|s| s.name.to_owned()).collect(),
+                sampling: SamplingArgs::default(),
                 formats,
                 methods: Methods::LECTURE,
                 variants: true,
@@ -356,8 +356,7 @@ fn print_recommendations(measured: &[&Variant], points: &[SpeedPoint]) -> io::Re
         let mut best: Option<(f64, Format, Methods)> = None;
         for candidate in measured {
             let (format, methods) = (candidate.format, candidate.methods);
-            let runs: Option<Vec<&SpeedPoint>> = scenes::BUILT_IN
-                .iter()
+            let runs: Option<Vec<&SpeedPoint>> = scenes::one_ray()
                 .map(|scene| {
                     let applies = format.methods_matter(
                         &methods,

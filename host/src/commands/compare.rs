@@ -157,6 +157,7 @@ fn compare(args: &CompareArgs, named: &NamedScene) -> Result<()> {
             .map(|samples| {
                 let mut many = scene.clone();
                 many.samples = samples;
+                many.shadow_samples = samples;
                 let desc = many.desc();
                 let converged = prepare_reference(&Request {
                     desc: &desc,

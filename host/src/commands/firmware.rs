@@ -120,7 +120,7 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
                     .map_or_else(|| s.name.clone(), |p| p.display().to_string())
             })
             .collect(),
-        samples: args.sampling.samples,
+        sampling: args.sampling,
         formats: &formats,
         methods,
         variants: false,

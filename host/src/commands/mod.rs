@@ -28,7 +28,7 @@ pub fn run(command: Command) -> Result<()> {
                 say!("{:10} {}", scene.name, scene.summary)?;
             }
             say!(
-                "(all commands but `firmware` take a TOML scene file as well; host/scenes/ has an example)"
+                "(every command that takes a scene takes a TOML scene file as well; host/scenes/ has examples)"
             )?;
             Ok(())
         }

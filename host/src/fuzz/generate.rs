@@ -16,6 +16,9 @@ const MAX_OBJECTS: usize = 8;
 const MAX_LIGHTS: usize = 4;
 /// The most rays per pixel a generated scene takes.
 const MAX_FUZZ_SAMPLES: u16 = 4;
+/// The most shadow rays per area light a generated scene takes (more than
+/// [`obscura::pattern::SHADOW_PROBES`], so that adaptive shadows stop early or go on).
+const MAX_FUZZ_SHADOW_SAMPLES: u16 = 8;
 
 /// The deepest ray tree (the host's stack holds 15 levels).
 const MAX_DEPTH: u8 = 8;
@@ -164,6 +167,8 @@ impl Generator {
             far: far as f32,
             max_depth: self.0.random_range(0..=MAX_DEPTH),
             samples: 1,
+            shadow_samples: 1,
+            adaptive_shadows: false,
         };
         let size = self.size();
         // Drawn last, so that every other draw is what it was before scenes had an up.
@@ -176,6 +181,17 @@ impl Generator {
         // A quarter of the scenes anti-aliased, by a few samples: the tries stay quick.
         if self.chance(0.25) {
             scene.samples = self.0.random_range(2..=MAX_FUZZ_SAMPLES);
+        }
+        // A quarter with area lights: each a disc from a ten-thousandth of its distance from
+        // the eye to as wide as that (some reach out of the world or into a surface, and are
+        // refused), taking a few shadow rays, adaptively or not.
+        if self.chance(0.25) {
+            for light in &mut scene.lights {
+                let reach = norm(sub(f64s(light.position), eye)).max(1e-3);
+                light.radius = (reach * self.log_uniform(1e-4, 1.0)) as f32;
+            }
+            scene.shadow_samples = self.0.random_range(2..=MAX_FUZZ_SHADOW_SAMPLES);
+            scene.adaptive_shadows = self.chance(0.5);
         }
         Generated { scene, size }
     }
@@ -332,10 +348,7 @@ impl Generator {
         } else {
             1.0
         };
-        let light = LightDesc {
-            position: f32s(anchor),
-            colour: self.colour().map(|c| c * intensity as f32),
-        };
+        let light = LightDesc::point(f32s(anchor), self.colour().map(|c| c * intensity as f32));
         (light, norm(sub(anchor, eye)))
     }
 }

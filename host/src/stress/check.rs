@@ -7,6 +7,7 @@ use crate::render::HostScene;
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use obscura::camera::Row;
 use obscura::methods::RootMethod;
+use obscura::pattern::SampleId;
 use obscura::scalar::FormatInfo;
 use obscura::scene::range;
 use obscura::{Methods, Ray, RayMethod, Scalar, SceneDesc, SceneError, Vec3};
@@ -68,18 +69,22 @@ pub fn image<S: Scalar>(
     let reference = HostScene::<f64>::build_with(desc, ideal)?;
     let ref_camera = reference.camera(size, size)?;
     let offset = HostScene::<f64>::build_with_tolerances_of(desc, ideal, &FormatInfo::of::<S>())?;
-    let trace_f64 = |dir: Vec3<f64>| colour(reference.trace(Ray::new(Vec3::ZERO, dir)).colour);
-    let trace_offset = |dir: Vec3<f64>| colour(offset.trace(Ray::new(Vec3::ZERO, dir)).colour);
+    // Each pixel's rays, its nudged ones too, take the pixel's pattern on an area light.
+    let trace_f64 =
+        |dir: Vec3<f64>, id| colour(reference.trace(Ray::new(Vec3::ZERO, dir), id).colour);
+    let trace_offset =
+        |dir: Vec3<f64>, id| colour(offset.trace(Ray::new(Vec3::ZERO, dir), id).colour);
     let mut got = image::RgbImage::new(size, size);
     let mut want = image::RgbImage::new(size, size);
     let mut wrong = 0;
     let mut unexcused = 0;
     for y in 0..size {
         for (x, ray) in (0..size).zip(camera.row(y).into_iter().flat_map(Row::rays)) {
-            let g = colour(scene.trace(ray).colour);
+            let id = SampleId { x, y, sample: 0 };
+            let g = colour(scene.trace(ray, id).colour);
             let ray_at = |x, y| ref_camera.ray(x, y).map_or(Vec3::ZERO, |ray| ray.dir);
             let centre = ray_at(x, y);
-            let w = trace_f64(centre);
+            let w = trace_f64(centre, id);
             got.put_pixel(x, y, image::Rgb(g));
             want.put_pixel(x, y, image::Rgb(w));
             if off(g, w) <= TOLERANCE {
@@ -91,12 +96,12 @@ pub fn image<S: Scalar>(
             // Within a quarter pixel, in eight directions at four distances: near a corner of
             // a checkerboard a full quarter pixel may cross two edges at once and change
             // nothing where a shorter nudge crosses one.
-            let excused = off(trace_offset(centre), g) <= TOLERANCE
+            let excused = off(trace_offset(centre, id), g) <= TOLERANCE
                 || NUDGE_DIRECTIONS.iter().any(|&(a, b)| {
                     NUDGE_DISTANCES.iter().any(|&distance| {
                         let nudge = across * (distance * a) + down * (distance * b);
                         let dir = (centre + nudge).normalized(RootMethod::Exact);
-                        off(trace_f64(dir), w) > TOLERANCE
+                        off(trace_f64(dir, id), w) > TOLERANCE
                     })
                 });
             unexcused += usize::from(!excused);

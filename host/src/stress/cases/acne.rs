@@ -39,10 +39,10 @@ impl FormatJob for Job {
         for elevation in log_sweep(30.0, 0.3, 5) {
             let (sin, cos) = elevation.to_radians().sin_cos();
             // Far off in +z, bright enough that the lit floor stands well clear of the ambient.
-            let light = [LightDesc {
-                position: [0.0, (-1.5 + 20.0 * sin) as f32, (20.0 * cos) as f32],
-                colour: [(0.7 / sin) as f32; 3],
-            }];
+            let light = [LightDesc::point(
+                [0.0, (-1.5 + 20.0 * sin) as f32, (20.0 * cos) as f32],
+                [(0.7 / sin) as f32; 3],
+            )];
             let desc = SceneDesc {
                 camera: CameraDesc {
                     eye: [0.0; 3],
@@ -57,6 +57,8 @@ impl FormatJob for Job {
                 far: 25.0,
                 max_depth: 0,
                 samples: 1,
+                shadow_samples: 1,
+                adaptive_shadows: false,
             };
             for &(bias, name) in BiasMethod::ALL {
                 let methods = Methods {

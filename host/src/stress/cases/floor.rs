@@ -42,13 +42,12 @@ fn scene(floor: ShapeDesc, far: f32, objects: &mut Vec<ObjectDesc>) -> SceneDesc
         far,
         max_depth: 0,
         samples: 1,
+        shadow_samples: 1,
+        adaptive_shadows: false,
     }
 }
 
-const LIGHTS: [LightDesc; 1] = [LightDesc {
-    position: [3.0, 8.0, 1.0],
-    colour: [1.0; 3],
-}];
+const LIGHTS: [LightDesc; 1] = [LightDesc::point([3.0, 8.0, 1.0], [1.0; 3])];
 
 struct Job;
 

@@ -61,10 +61,7 @@ const OBJECTS: [ObjectDesc; 3] = [
     },
 ];
 
-const LIGHTS: [LightDesc; 1] = [LightDesc {
-    position: [3.0, 5.0, -2.0],
-    colour: [1.0; 3],
-}];
+const LIGHTS: [LightDesc; 1] = [LightDesc::point([3.0, 5.0, -2.0], [1.0; 3])];
 
 /// The case's scene with the eye `offset` radii from the sphere's centre.
 fn scene(offset: f64) -> SceneDesc<'static> {
@@ -86,6 +83,8 @@ fn scene(offset: f64) -> SceneDesc<'static> {
         far: 12.0,
         max_depth: 4,
         samples: 1,
+        shadow_samples: 1,
+        adaptive_shadows: false,
     }
 }
 
@@ -115,6 +114,7 @@ mod tests {
     use crate::render::HostScene;
     use crate::stress::check::{self, TOLERANCE};
     use obscura::formats::I18f14;
+    use obscura::pattern::SampleId;
     use obscura::scalar::FormatInfo;
 
     /// At 0.9 radii, i18f14's surface tolerances are what decide a chain of internal
@@ -137,7 +137,8 @@ mod tests {
             .flat_map(|y| (0..SIZE).map(move |x| (x, y)))
             .filter_map(|(x, y)| camera.ray(x, y))
             .filter(|&ray| {
-                let [a, b] = [&ideal, &offset].map(|s| check::colour(s.trace(ray).colour));
+                let [a, b] = [&ideal, &offset]
+                    .map(|s| check::colour(s.trace(ray, SampleId::default()).colour));
                 check::off(a, b) > TOLERANCE
             })
             .count();
