@@ -215,3 +215,69 @@ fn adaptive_shadow_rays_spend_the_rest_where_the_first_disagree() {
     check::<f32>();
     check::<I16F16>();
 }
+
+/// A disc light shrinking to a point converges to the point's hard shadow (a ball's, on a
+/// floor, 64×64): fewer pixels differ from it at each tenth of the radius (about 100 at 0.5),
+/// none at 10⁻⁶; in `i16f16` that radius is below the format's resolution, rounds to 0 and
+/// draws the hard shadow bit for bit.
+#[test]
+fn a_radius_shrinking_to_zero_converges_to_the_hard_shadow() {
+    fn differing<S: Scalar>(radius: f32) -> usize {
+        let objects = [
+            ObjectDesc {
+                shape: ShapeDesc::Plane {
+                    point: [0.0; 3],
+                    normal: [0.0, 1.0, 0.0],
+                    checker: None,
+                },
+                material: MaterialDesc::matte([0.8; 3]),
+            },
+            ObjectDesc {
+                shape: ShapeDesc::Sphere {
+                    center: [0.0, 0.8, 0.0],
+                    radius: 0.5,
+                },
+                material: MaterialDesc::matte([0.8; 3]),
+            },
+        ];
+        let lights = |radius| {
+            [LightDesc {
+                radius,
+                ..LightDesc::point([-3.0, 4.0, 1.0], [0.9; 3])
+            }]
+        };
+        let (hard, soft) = (lights(0.0), lights(radius));
+        let desc = |lights| SceneDesc {
+            camera: CameraDesc {
+                eye: [0.0, 4.0, -4.5],
+                look_at: [0.0, 0.0, 0.5],
+                up: [0.0, 1.0, 0.0],
+                vfov_degrees: 60.0,
+            },
+            shadow_samples: 16,
+            ..floor_scene(&objects, lights, false)
+        };
+        let [hard, soft] =
+            [&hard, &soft].map(|l| render::<S>(&desc(l), 64, 64, Methods::LECTURE).0);
+        hard.pixels
+            .iter()
+            .zip(&soft.pixels)
+            .filter(|(h, s)| h != s)
+            .count()
+    }
+    fn check<S: Scalar>() -> Vec<usize> {
+        let counts: Vec<usize> = [0.5, 0.05, 0.005, 5e-4, 1e-6]
+            .into_iter()
+            .map(differing::<S>)
+            .collect();
+        assert!(counts[0] > 50, "{}: {counts:?}", S::NAME);
+        assert!(
+            counts.windows(2).all(|w| w[1] <= w[0]),
+            "{}: {counts:?}",
+            S::NAME
+        );
+        counts
+    }
+    assert_eq!(check::<f64>().last(), Some(&0));
+    assert_eq!(check::<I16F16>().last(), Some(&0));
+}

@@ -6,6 +6,7 @@ mod floor;
 mod glass;
 mod grazing;
 mod mesh;
+mod penumbra;
 mod plane;
 mod scale;
 mod sliver;
@@ -17,7 +18,7 @@ use anyhow::Context as _;
 use obscura::{BackgroundDesc, CameraDesc, MaterialDesc, Methods, Scalar, SceneDesc, SceneError};
 
 /// Every case, in the order they run.
-pub static CASES: [Case; 9] = [
+pub static CASES: [Case; 10] = [
     grazing::CASE,
     distant::CASE,
     floor::CASE,
@@ -27,6 +28,7 @@ pub static CASES: [Case; 9] = [
     acne::CASE,
     glass::CASE,
     scale::CASE,
+    penumbra::CASE,
 ];
 
 /// A camera at the origin looking along +z, for cases that shoot their own rays.
