@@ -253,9 +253,9 @@ pub struct CompareArgs {
     /// Single-thread renders to time per format; the median is reported.
     #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u16).range(1..=1000))]
     pub runs: u16,
-    /// Also measure both images against an f64 render with this many rays per pixel (such as
-    /// 256): how far the scene's samples are from the converged image, beside the format's
-    /// numeric error.
+    /// Also measure both images against an f64 render with this many rays per pixel and
+    /// shadow rays per disc light, all of them traced (such as 256): how far the scene's
+    /// samples are from the converged image, beside the format's numeric error.
     #[arg(long, value_parser = clap::value_parser!(u16).range(1..=i64::from(MAX_SAMPLES)))]
     pub converged: Option<u16>,
 }

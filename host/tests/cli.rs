@@ -379,6 +379,16 @@ fn analyze_tables_the_bits_the_formats_and_the_cheapest() {
     ] {
         assert!(text.contains(expected), "{expected}: {text}");
     }
+    // The chart prices one ray per pixel and per light: said where a scene takes more.
+    let one_ray = "The chart measures one ray per pixel and one shadow ray per light";
+    assert!(!text.contains(one_ray), "{text}");
+    let output = obscura(&["analyze", "soft", "--size", "16x16"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    assert!(
+        text.contains(one_ray) && text.contains("up to 16 shadow rays per area light"),
+        "{text}"
+    );
 }
 
 #[test]

@@ -44,7 +44,7 @@ pub struct Report {
 /// from the converged image (the format's numeric error is the difference between the two).
 #[derive(Debug, Serialize)]
 pub struct Converged {
-    /// The converged render's rays per pixel.
+    /// The converged render's rays per pixel, and shadow rays per disc light.
     pub samples: u16,
     /// The scene's own rays per pixel.
     pub scene_samples: u16,
@@ -158,6 +158,7 @@ fn compare(args: &CompareArgs, named: &NamedScene) -> Result<()> {
                 let mut many = scene.clone();
                 many.samples = samples;
                 many.shadow_samples = samples;
+                many.adaptive_shadows = false;
                 let desc = many.desc();
                 let converged = prepare_reference(&Request {
                     desc: &desc,
