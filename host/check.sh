@@ -108,6 +108,9 @@ step "firmware under QEMU (m4f), four rays per pixel, bit for bit against the ho
 cargo run --release --locked -p obscura-host -- firmware --target m4f --scene whitted,shapes \
     --format i16f16,f32 --samples 4
 
+step "firmware under QEMU (m4f), soft shadows from a disc light, bit for bit against the host"
+cargo run --release --locked -p obscura-host -- firmware --target m4f --scene soft --format i16f16
+
 step "firmware under QEMU, the 32-bit splits that hold a 240x240 scene, bit for bit against the host"
 cargo run --release --locked -p obscura-host -- firmware --target m4f --scene whitted,shapes \
     --format i12f20,i14f18,i18f14
