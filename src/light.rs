@@ -14,11 +14,12 @@ pub struct Light<S> {
     pub colour: Rgb<S>,
     /// The disc's radius; zero for a point.
     pub radius: S,
-    /// The shadow rays a point takes to it: 1 for a point light (or a disc at one shadow
-    /// sample), else the scene's [`shadow_samples`](crate::SceneDesc::shadow_samples).
+    /// The shadow rays a point takes to it: 1 for a point light (a radius of 0, or one that
+    /// rounds to 0 in the format) or a disc at one shadow sample, else the scene's
+    /// [`shadow_samples`](crate::SceneDesc::shadow_samples).
     pub(crate) shadow_rays: u16,
     /// Its place in the scene's lights, which chooses its pattern of shadow rays.
-    pub(crate) number: u16,
+    pub(crate) index: u16,
 }
 
 /// The colour of rays that hit nothing.

@@ -247,7 +247,7 @@ impl<S: Scalar> Tracer<'_, S> {
                 continue;
             }
             let shadow = if light.shadow_rays > 1 {
-                self.penumbra(light, above, this_side, met)
+                self.visible_share(light, above, facing, this_side, met)
             } else {
                 self.transmittance(&Ray::new(above, l), distance, this_side, met)
             };
@@ -361,22 +361,33 @@ impl<S: Scalar> Tracer<'_, S> {
         passed
     }
 
-    /// How much of area light `light` reaches `origin`: the mean transmittance of the scene's shadow samples, each aimed
-    /// at a point of the disc that faces `origin`, summed in 16-bit fractions as a pixel's samples
-    /// are (they fit however many). With adaptive shadows, when the first [`SHADOW_PROBES`]
+    /// The share of area light `light` that reaches `origin`, on a surface facing `facing`: the
+    /// mean transmittance of the light's shadow rays, each aimed at a point of the disc that
+    /// faces `origin`, in 16-bit fractions summed as a pixel's samples are (they fit however
+    /// many). A point of the disc behind the surface's own horizon is hidden by the surface,
+    /// whichever the bias method. With adaptive shadows, when the first [`SHADOW_PROBES`]
     /// agree, the point is taken to be in full light, full shadow or behind the same glass for
-    /// all of them, and the rest are not traced.
+    /// all of them, and the rest are not traced: the answer is what all of them would give if
+    /// they agreed too.
     ///
     /// Out of line: it runs for area lights alone, and inlined into the light loop it slowed
-    /// the images of point lights too.
+    /// the images of point lights too. It finds the light's direction again rather than take
+    /// it from the loop, which costs the point lights' loop less.
     #[inline(never)]
-    fn penumbra(&self, light: &Light<S>, origin: Vec3<S>, from: Leaving<S>, met: &mut u64) -> S {
+    fn visible_share(
+        &self,
+        light: &Light<S>,
+        origin: Vec3<S>,
+        facing: Vec3<S>,
+        from: Leaving<S>,
+        met: &mut u64,
+    ) -> S {
         let roots = self.settings.methods.roots;
-        let pattern = Pattern::light(self.id, light.number);
+        let pattern = Pattern::light(self.id, light.index);
         let l = (light.position - origin).normalized(roots);
         let [across, up] = perpendiculars(l, roots);
         let n = light.shadow_rays;
-        let (mut first, mut agree, mut sum) = (S::ZERO, true, 0_u32);
+        let (mut first, mut agree, mut sum) = (0, true, 0_u32);
         for i in 0..n {
             let [a, b] = pattern.disc::<S>(i);
             let target = light
@@ -384,18 +395,24 @@ impl<S: Scalar> Tracer<'_, S> {
                 .add_scaled(across, light.radius * a)
                 .add_scaled(up, light.radius * b);
             let (dir, distance) = (target - origin).normalized_with_length(roots);
-            let passed = self.transmittance(&Ray::new(origin, dir), distance, from, met);
+            let passed = if facing.dot(dir) > S::ZERO {
+                self.transmittance(&Ray::new(origin, dir), distance, from, met)
+            } else {
+                S::ZERO
+            };
+            // At most 2¹⁶.
+            let passed = passed.clamp(S::ZERO, S::ONE).to_q16().unsigned_abs();
             if i == 0 {
                 first = passed;
             }
             agree &= passed == first;
             if agree && i + 1 == SHADOW_PROBES && self.settings.adaptive_shadows {
-                return first;
+                return S::from_q16(first as i32);
             }
-            sum += passed.clamp(S::ZERO, S::ONE).to_q16().unsigned_abs();
+            sum += passed;
         }
         let n = u32::from(n);
-        S::from_q16(i32::try_from((sum + n / 2) / n).unwrap_or(i32::MAX))
+        S::from_q16(((sum + n / 2) / n) as i32)
     }
 }
 

@@ -233,17 +233,19 @@ impl<S: Scalar> Converter<S> {
         let mut lights = Vec::new();
         for (i, light) in desc.lights.iter().enumerate() {
             let item = Item::Light(i);
+            let radius = self.scalar(item, "radius", f64::from(light.radius))?;
             let light = Light {
                 position: self.point(item, "position", light.position)?,
                 colour: self.colour(item, "colour", light.colour)?,
-                radius: self.scalar(item, "radius", f64::from(light.radius))?,
-                shadow_rays: if light.radius > 0.0 {
+                radius,
+                // A radius below the format's resolution is a point light's.
+                shadow_rays: if radius > S::ZERO {
                     desc.shadow_samples
                 } else {
                     1
                 },
                 // Fewer lights than the capacity, far fewer than 2¹⁶.
-                number: u16::try_from(i).unwrap_or(u16::MAX),
+                index: i as u16,
             };
             lights
                 .push(light)

@@ -42,7 +42,7 @@
 //! | shading | cosines, mirror direction d + 2(cos)·n, Phong's power of a cosine clamped to 1 | at most 3: a direction's reflection |
 //! | shading | the light's direction and distance | normalised from \|L − o\| ≤ R + O in the wide integer: no square forms |
 //! | area light | two unit vectors across the light's direction: 1/(1 + \|l_z\|) and products of unit coordinates | within 2 |
-//! | area light | a point of its disc, L + r·a·u + r·b·v with a² + b² ≤ 1 | within \|L\| + r ≤ R, as a light; its direction and distance as a light's |
+//! | area light | a point of its disc, L + r·a·u + r·b·v with a² + b² ≤ 1 | within \|L\| + r ≤ R, as a light, but for the 16-bit rounding of a and b and the rounding of u and v: a few steps, within the headroom; its direction and distance as a light's |
 //! | area light | the shadow rays' transmittances, summed in 16-bit fractions | integers: at most [`MAX_SAMPLES`](crate::pattern::MAX_SAMPLES) · 2¹⁶ < 2³² (const-asserted) |
 //! | refraction | (d + cos·n)·η, its squared length | η² in Snell's law |
 //! | colour | each level's ambient, Lambert, Phong times the light, times its weight; the sum | a pixel's sum of colours over its ray tree |
