@@ -1,5 +1,7 @@
 //! [`Camera`]: the pinhole camera of the lecture, which turns a pixel into a primary ray
-//! r(t) = e + t·(s − e) through the pixel's centre s on the image plane.
+//! r(t) = e + t·(s − e) through the pixel's centre s on the image plane; and its [`Lens`], a
+//! thin lens about the eye that starts each of a pixel's rays from another point of it, aimed
+//! at the point the pinhole's ray meets on the focal plane (depth of field).
 
 use crate::desc::CameraDesc;
 use crate::methods::{Methods, RayMethod, RootMethod};
@@ -26,8 +28,25 @@ pub struct Camera<S> {
     pixel_across: Vec3<S>,
     /// One pixel down: `down` / height.
     pixel_down: Vec3<S>,
+    lens: Option<Lens<S>>,
     rays: RayMethod,
     roots: RootMethod,
+}
+
+/// A thin lens of radius A about the eye, focused on the plane f ahead (Cook, Porter and
+/// Carpenter, 1984). A point (a, b) of the unit disc is the lens point o = A·(a·right + b·up);
+/// the pinhole's ray through s on the image plane (one unit ahead) meets the focal plane at f·s,
+/// so o's ray there has the direction f·s − o, or, divided by f, s − (A/f)·(a·right + b·up).
+/// Every ray through one point of the focal plane meets there whichever the lens point: the
+/// plane is sharp, and a point off it spreads over a disc that grows with A.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lens<S> {
+    /// A·right and A·up: the lens point of (a, b) is a·across + b·up.
+    across: Vec3<S>,
+    up: Vec3<S>,
+    /// The same over f: how far the lens point of (a, b) turns its ray on the image plane.
+    tilt_across: Vec3<S>,
+    tilt_up: Vec3<S>,
 }
 
 /// The camera's frame in double precision: where it looks and how wide, per unit distance.
@@ -38,6 +57,9 @@ pub(crate) struct Frame {
     pub(crate) up: Vec3<f64>,
     /// tan(vfov / 2): half the image plane's height one unit ahead.
     pub(crate) half_height: f64,
+    /// The lens's radius (0 for a pinhole) and its focus distance.
+    pub(crate) aperture: f64,
+    pub(crate) focus: f64,
 }
 
 impl Frame {
@@ -48,12 +70,28 @@ impl Frame {
         let right = forward.cross(Vec3::from_f32(desc.up)).direction()?;
         let up = right.cross(forward);
         let half_height = libm::tan(f64::from(desc.vfov_degrees).to_radians() / 2.0);
+        let focus = desc.focus_distance.map_or_else(
+            || (Vec3::from_f32(desc.look_at) - Vec3::from_f32(desc.eye)).length(),
+            f64::from,
+        );
         Some(Self {
             forward,
             right,
             up,
             half_height,
+            aperture: f64::from(desc.aperture),
+            focus,
         })
+    }
+
+    /// How far the lens's edge turns a ray on the image plane one unit ahead: A/f (0 for a
+    /// pinhole).
+    pub(crate) fn lens_tilt(&self) -> f64 {
+        if self.aperture > 0.0 {
+            self.aperture / self.focus
+        } else {
+            0.0
+        }
     }
 
     /// Half the image plane's width one unit ahead, for an image of this size.
@@ -69,6 +107,19 @@ impl<S: Scalar> Camera<S> {
     pub(crate) fn new(frame: &Frame, width: u32, height: u32, methods: &Methods) -> Option<Self> {
         let half_width = frame.half_width(width, height);
         let top_left = frame.forward - frame.right * half_width + frame.up * frame.half_height;
+        let lens = if frame.aperture > 0.0 {
+            let tilt = frame.lens_tilt();
+            let lens = Lens {
+                across: (frame.right * frame.aperture).convert()?,
+                up: (frame.up * frame.aperture).convert()?,
+                tilt_across: (frame.right * tilt).convert()?,
+                tilt_up: (frame.up * tilt).convert()?,
+            };
+            // A lens below the format's resolution is a pinhole.
+            (lens.across != Vec3::ZERO || lens.up != Vec3::ZERO).then_some(lens)
+        } else {
+            None
+        };
         Some(Self {
             width,
             height,
@@ -77,6 +128,7 @@ impl<S: Scalar> Camera<S> {
             down: (frame.up * (-2.0 * frame.half_height)).convert()?,
             pixel_across: (frame.right * (2.0 * half_width / f64::from(width))).convert()?,
             pixel_down: (frame.up * (-2.0 * frame.half_height / f64::from(height))).convert()?,
+            lens,
             rays: methods.rays,
             roots: methods.roots,
         })
@@ -92,6 +144,12 @@ impl<S: Scalar> Camera<S> {
     #[must_use]
     pub const fn height(&self) -> u32 {
         self.height
+    }
+
+    /// The lens, or `None` for a pinhole.
+    #[must_use]
+    pub const fn lens(&self) -> Option<&Lens<S>> {
+        self.lens.as_ref()
     }
 
     /// Row y of the image (counting down from the top), ready to give its pixels' rays, or
@@ -120,6 +178,14 @@ impl<S: Scalar> Camera<S> {
     pub fn ray_offset(&self, x: u32, y: u32, offset: [S; 2]) -> Option<Ray<S>> {
         self.row(y)?.ray_offset(x, offset)
     }
+
+    /// The ray from the lens point `lens` (a point of the unit disc, see [`Lens`]) through
+    /// the focal plane where the pinhole's ray through `offset` from pixel (x, y)'s centre
+    /// meets it: [`Self::ray_offset`] for a pinhole, or `None` outside the image.
+    #[must_use]
+    pub fn ray_through_lens(&self, x: u32, y: u32, offset: [S; 2], lens: [S; 2]) -> Option<Ray<S>> {
+        self.row(y)?.ray_through_lens(x, offset, lens)
+    }
 }
 
 /// One row of a camera's image.
@@ -146,17 +212,41 @@ impl<S: Scalar> Row<S> {
     /// The primary ray through the point `offset` (across, down) pixels from the centre of
     /// pixel x (see [`Camera::ray_offset`]), or `None` beyond the row's end.
     #[must_use]
-    pub fn ray_offset(&self, x: u32, [across, down]: [S; 2]) -> Option<Ray<S>> {
+    pub fn ray_offset(&self, x: u32, offset: [S; 2]) -> Option<Ray<S>> {
+        Some(self.through(self.offset_point(x, offset)?))
+    }
+
+    /// The ray from lens point `lens` through the focal plane where the pinhole's ray through
+    /// `offset` from pixel x's centre meets it (see [`Camera::ray_through_lens`]), or `None`
+    /// beyond the row's end.
+    #[must_use]
+    pub fn ray_through_lens(&self, x: u32, offset: [S; 2], [a, b]: [S; 2]) -> Option<Ray<S>> {
+        let s = self.offset_point(x, offset)?;
+        let Some(lens) = &self.camera.lens else {
+            return Some(self.through(s));
+        };
+        let origin = (lens.across * a).add_scaled(lens.up, b);
+        let aim = s - (lens.tilt_across * a).add_scaled(lens.tilt_up, b);
+        Some(Ray::new(origin, aim.normalized(self.camera.roots)))
+    }
+
+    /// The point of the image plane `offset` (across, down) pixels from pixel x's centre, or
+    /// `None` beyond the row's end.
+    fn offset_point(&self, x: u32, [across, down]: [S; 2]) -> Option<Vec3<S>> {
         let camera = &self.camera;
         (x < camera.width).then(|| {
             let fx = pixel_centre::<S>(x, camera.width, camera.roots);
-            let s = self
-                .start
+            self.start
                 .add_scaled(camera.across, fx)
                 .add_scaled(camera.pixel_across, across)
-                .add_scaled(camera.pixel_down, down);
-            self.through(s)
+                .add_scaled(camera.pixel_down, down)
         })
+    }
+
+    /// Whether the camera has a lens (see [`Camera::lens`]).
+    #[must_use]
+    pub const fn has_lens(&self) -> bool {
+        self.camera.lens.is_some()
     }
 
     /// The primary rays of the row's pixels, left to right, by the camera's [`RayMethod`].
@@ -235,12 +325,8 @@ mod tests {
     use super::*;
     use crate::test_util::{assert_close, for_each_format};
 
-    const DESC: CameraDesc = CameraDesc {
-        eye: [1.0, 2.0, 3.0],
-        look_at: [1.0, 2.0, 10.0],
-        up: [0.0, 1.0, 0.0],
-        vfov_degrees: 90.0,
-    };
+    const DESC: CameraDesc =
+        CameraDesc::pinhole([1.0, 2.0, 3.0], [1.0, 2.0, 10.0], [0.0, 1.0, 0.0], 90.0);
 
     #[test]
     fn centre_pixel_looks_at_the_target_and_corners_span_the_field_of_view() {

@@ -66,8 +66,9 @@ impl SceneDesc<'_> {
     }
 }
 
-/// A pinhole camera. Coordinates are right-handed: with +y up and the camera looking along +z,
-/// +x points to the left of the image.
+/// A camera: a pinhole, or a thin lens that blurs what is off its focal plane (depth of field).
+/// Coordinates are right-handed: with +y up and the camera looking along +z, +x points to the
+/// left of the image.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
@@ -80,6 +81,41 @@ pub struct CameraDesc {
     pub up: [f32; 3],
     /// The vertical field of view in degrees, in (0, 180).
     pub vfov_degrees: f32,
+    /// The lens's radius, ≥ 0: 0 is the lecture's pinhole, every point sharp. A lens of this
+    /// radius about the eye, facing `look_at`, brings to a point only what lies on the plane
+    /// `focus_distance` ahead; nearer and farther points blur into discs that grow with the
+    /// aperture (Cook, Porter and Carpenter's thin lens). Each of a pixel's
+    /// [`SceneDesc::samples`] rays starts from another point of the lens.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub aperture: f32,
+    /// How far ahead, along the view direction, the lens focuses: the distance from the eye to
+    /// `look_at` where it is not given. Matters only with an `aperture`.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    pub focus_distance: Option<f32>,
+}
+
+impl CameraDesc {
+    /// A pinhole camera at `eye` looking at `look_at`, `up` being up, seeing `vfov_degrees`
+    /// from the top of the image to the bottom.
+    #[must_use]
+    pub const fn pinhole(
+        eye: [f32; 3],
+        look_at: [f32; 3],
+        up: [f32; 3],
+        vfov_degrees: f32,
+    ) -> Self {
+        Self {
+            eye,
+            look_at,
+            up,
+            vfov_degrees,
+            aperture: 0.0,
+            focus_distance: None,
+        }
+    }
 }
 
 /// One object: a shape and what it is made of.

@@ -1,21 +1,28 @@
 //! Where the rays of distributed ray tracing go: a pixel's when it takes several
-//! ([`SceneDesc::samples`]), an area light's when a point samples it
-//! ([`SceneDesc::shadow_samples`]). Both are the first points of Sobol's (0, 2)-sequence — van
-//! der Corput's radical inverse across, Sobol's second dimension down —, scrambled by XOR with
-//! an integer hash of the pixel (and for a light, of the pixel's sample and the light), all in
-//! 32-bit integers. Every format, the f64 reference and the firmware compute the very same
-//! positions, so the difference between their images stays a measure of their arithmetic
-//! alone.
+//! ([`SceneDesc::samples`]), a lens's ([`CameraDesc::aperture`]), an area light's when a point
+//! samples it ([`SceneDesc::shadow_samples`]). A pixel's positions are the first points of
+//! Sobol's sequence in its first two dimensions — van der Corput's radical inverse across,
+//! Sobol's second dimension down —, and its lens positions the same points' third and fourth
+//! dimensions, so that a pixel's samples spread over the pixel and the lens together (Cook's
+//! four-dimensional sampling) rather than each pixel position always taking the same lens
+//! position. An area light's are the first two dimensions again, for another scramble. Each
+//! is scrambled by XOR with an integer hash of the pixel (and for a light, of the pixel's sample
+//! and the light), all in 32-bit integers. Every format, the f64 reference and the firmware
+//! compute the very same positions, so the difference between their images stays a measure of
+//! their arithmetic alone.
 //!
-//! Any 2ᵐ consecutive points from the start form a (0, m, 2)-net, and XOR scrambling keeps it
-//! one: every box of the square 2⁻ᵃ wide and 2⁻ᵇ high with a + b = m holds exactly one point.
-//! So 16 samples split every row of a 4×4 grid, every 16th of the pixel across and every 16th
-//! down exactly once, and an edge along either axis is covered to within a sample. On a light
-//! the square is mapped onto a disc keeping areas ([`Pattern::disc`]), so the disc's cells are
-//! as even as the square's.
+//! In the first two dimensions any 2ᵐ consecutive points from the start form a (0, m, 2)-net,
+//! and XOR scrambling keeps it one: every box of the square 2⁻ᵃ wide and 2⁻ᵇ high with
+//! a + b = m holds exactly one point. So 16 samples split every row of a 4×4 grid, every 16th
+//! of the pixel across and every 16th down exactly once, and an edge along either axis is
+//! covered to within a sample. The third and fourth form a (1, m, 2)-net from 16 points on
+//! (every box holds two points where boxes of half the area would each hold one), and a
+//! (2, 3, 2)-net of 8. On a lens or a light the square is mapped onto a disc keeping areas
+//! ([`Pattern::disc`]), so the disc's cells are as even as the square's.
 //!
 //! [`SceneDesc::samples`]: crate::SceneDesc::samples
 //! [`SceneDesc::shadow_samples`]: crate::SceneDesc::shadow_samples
+//! [`CameraDesc::aperture`]: crate::CameraDesc::aperture
 
 use crate::scalar::Scalar;
 
@@ -41,12 +48,23 @@ pub struct SampleId {
     pub sample: u16,
 }
 
-/// One scramble of the sequence: the sample positions of a pixel, or of an area light as one
-/// sample of a pixel sees it.
+/// One scramble of two dimensions of the sequence: the sample positions of a pixel, of its
+/// lens, or of an area light as one sample of a pixel sees it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Pattern {
     /// The bits to flip, per axis.
     scramble: [u32; 2],
+    /// Which two of Sobol's dimensions.
+    dimensions: Dimensions,
+}
+
+/// Two dimensions of Sobol's sequence.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Dimensions {
+    /// The first and second: a pixel's positions, an area light's.
+    FirstAndSecond,
+    /// The third and fourth: a lens's.
+    ThirdAndFourth,
 }
 
 impl Pattern {
@@ -54,6 +72,17 @@ impl Pattern {
     #[must_use]
     pub fn pixel(x: u32, y: u32) -> Self {
         Self::seeded(mix(x ^ mix(y)))
+    }
+
+    /// The lens positions of pixel (`x`, `y`)'s samples, the third and fourth dimensions of
+    /// the points whose first two are [`Self::pixel`]'s, scrambled apart from them.
+    #[must_use]
+    pub fn lens(x: u32, y: u32) -> Self {
+        let [_, seed] = Self::pixel(x, y).scramble;
+        Self {
+            dimensions: Dimensions::ThirdAndFourth,
+            ..Self::seeded(mix(!seed))
+        }
     }
 
     /// The pattern of light number `light` as the trace `id` sees it: another for each
@@ -69,6 +98,7 @@ impl Pattern {
     const fn seeded(seed: u32) -> Self {
         Self {
             scramble: [seed, mix(seed)],
+            dimensions: Dimensions::FirstAndSecond,
         }
     }
 
@@ -78,7 +108,11 @@ impl Pattern {
     pub fn point(&self, i: u16) -> [u32; 2] {
         let [across, down] = self.scramble;
         let i = u32::from(i);
-        [i.reverse_bits() ^ across, sobol_second(i) ^ down]
+        let point = match self.dimensions {
+            Dimensions::FirstAndSecond => [i.reverse_bits(), sobol(i, &SECOND)],
+            Dimensions::ThirdAndFourth => [sobol(i, &THIRD), sobol(i, &FOURTH)],
+        };
+        [point[0] ^ across, point[1] ^ down]
     }
 
     /// Sample `i`'s offset from the pixel's centre, in pixels (across, down), each in
@@ -89,7 +123,8 @@ impl Pattern {
             .map(|u| S::from_q16((u >> 16) as i32 - 0x8000))
     }
 
-    /// Point `i` mapped onto the unit disc (the centre at 0), each coordinate to 16 bits.
+    /// Point `i` mapped onto the unit disc (the centre at 0), each coordinate to 16 bits: a
+    /// point of an area light, or of a lens.
     #[must_use]
     pub fn disc<S: Scalar>(&self, i: u16) -> [S; 2] {
         concentric(self.point(i)).map(S::from_q16)
@@ -163,16 +198,63 @@ const fn taylor(k: u32) -> i64 {
     (term * (1_u64 << 30) as f64 + 0.5) as i64
 }
 
-/// The second dimension of Sobol's sequence: the XOR of the direction numbers of `i`'s set
-/// bits, each the one before shifted right and XORed with itself (all its m_k are 1).
-const fn sobol_second(mut i: u32) -> u32 {
-    let (mut direction, mut point) = (1_u32 << 31, 0);
-    while i != 0 {
+/// Sobol's second, third and fourth dimensions: the direction numbers of the primitive
+/// polynomials x + 1, x² + x + 1 and x³ + x + 1 with Joe and Kuo's initial numbers (2008), one
+/// per bit of a point's index (indices are 16-bit). The first dimension, van der Corput's, is
+/// the index's bits reversed.
+const SECOND: [u32; 16] = directions(1, 0, [1, 0, 0]);
+const THIRD: [u32; 16] = directions(2, 1, [1, 3, 0]);
+const FOURTH: [u32; 16] = directions(3, 1, [1, 3, 1]);
+
+/// The direction numbers of the dimension whose primitive polynomial has degree `degree` and
+/// inner coefficients `a` (their bits, highest power first), from its first `degree` odd
+/// numbers m: m_k = 2ˢm_(k−s) ⊕ m_(k−s) ⊕ ⊕_j 2ʲ a_j m_(k−j), the kth number m_k·2⁻ᵏ as 32
+/// bits.
+#[allow(
+    clippy::indexing_slicing,
+    reason = "evaluated by the compiler, for the constants above only: an index out of bounds \
+              would fail the build"
+)]
+const fn directions(degree: usize, a: u32, initial: [u32; 3]) -> [u32; 16] {
+    let mut m = [0_u32; 16];
+    let mut k = 0;
+    while k < 16 {
+        m[k] = if k < degree {
+            initial[k]
+        } else {
+            let mut next = m[k - degree] ^ (m[k - degree] << degree);
+            let mut j = 1;
+            while j < degree {
+                if (a >> (degree - 1 - j)) & 1 != 0 {
+                    next ^= m[k - j] << j;
+                }
+                j += 1;
+            }
+            next
+        };
+        k += 1;
+    }
+    let mut directions = [0_u32; 16];
+    let mut k = 0;
+    while k < 16 {
+        directions[k] = m[k] << (31 - k);
+        k += 1;
+    }
+    directions
+}
+
+/// Point `i` of the dimension with these direction numbers: the XOR of those of `i`'s set
+/// bits.
+fn sobol(mut i: u32, directions: &[u32; 16]) -> u32 {
+    let mut point = 0;
+    for d in directions {
+        if i == 0 {
+            break;
+        }
         if i & 1 != 0 {
-            point ^= direction;
+            point ^= d;
         }
         i >>= 1;
-        direction ^= direction >> 1;
     }
     point
 }
@@ -213,6 +295,78 @@ mod tests {
         }
     }
 
+    /// The first points of Sobol's third and fourth dimensions (Joe and Kuo's numbers, as
+    /// fractions of 2³²), and the second's recurrence (every m_k is 1).
+    #[test]
+    fn the_direction_numbers_are_sobols() {
+        assert_eq!(
+            THIRD[..6],
+            [
+                0x8000_0000,
+                0xc000_0000,
+                0x6000_0000,
+                0x9000_0000,
+                0xe800_0000,
+                0x5c00_0000
+            ]
+        );
+        assert_eq!(
+            FOURTH[..6],
+            [
+                0x8000_0000,
+                0xc000_0000,
+                0x2000_0000,
+                0x5000_0000,
+                0xf800_0000,
+                0x7400_0000
+            ]
+        );
+        let mut direction = 1_u32 << 31;
+        for d in SECOND {
+            assert_eq!(d, direction);
+            direction ^= direction >> 1;
+        }
+    }
+
+    /// The lens's points: for 2ᵐ samples every box of the square of area 2ᵗ⁻ᵐ holds 2ᵗ of
+    /// them, t at most 1 from 16 samples on (2 at 8); and jointly with the pixel's, each lens
+    /// axis against each pixel axis is as even (so no pixel position is tied to one lens
+    /// position).
+    #[test]
+    fn lens_points_are_a_net_and_independent_of_the_pixels() {
+        let t_of = |m: u32, point: &dyn Fn(u16) -> [u32; 2]| {
+            (0..=m)
+                .find(|&t| {
+                    (0..=m - t).all(|a| {
+                        let b = m - t - a;
+                        let mut boxes = vec![0_u16; 1 << (m - t)];
+                        for i in 0..1_u16 << m {
+                            let [u, v] = point(i);
+                            let across = if a == 0 { 0 } else { u >> (32 - a) };
+                            let down = if b == 0 { 0 } else { v >> (32 - b) };
+                            boxes[((across << b) | down) as usize] += 1;
+                        }
+                        boxes.iter().all(|&n| n == 1 << t)
+                    })
+                })
+                .unwrap_or(m)
+        };
+        for (x, y) in [(0, 0), (5, 9), (100, 3)] {
+            let (pixel, lens) = (Pattern::pixel(x, y), Pattern::lens(x, y));
+            for m in 1..=8_u32 {
+                let most = if m >= 4 { 1 } else { 2 };
+                assert!(t_of(m, &|i| lens.point(i)) <= most, "lens, m {m}");
+                for (p, l) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
+                    let t = t_of(m, &|i| [pixel.point(i)[p], lens.point(i)[l]]);
+                    assert!(
+                        t <= 2,
+                        "pixel axis {p} against lens axis {l}, m {m}: t = {t}"
+                    );
+                }
+            }
+        }
+    }
+
     /// Neighbouring pixels take different patterns, and a pixel always the same one.
     #[test]
     fn each_pixel_has_its_own_scramble() {
@@ -222,6 +376,9 @@ mod tests {
         for other in [(11, 20), (10, 21), (20, 10), (9, 20)] {
             assert_ne!(a, Pattern::pixel(other.0, other.1), "{other:?}");
         }
+        let lens = Pattern::lens(10, 20);
+        assert_ne!(lens.scramble, a.scramble);
+        assert_ne!(lens.scramble, Pattern::lens(11, 20).scramble);
     }
 
     /// Shadow rays of one light take another pattern for each sample of a pixel, and each

@@ -127,7 +127,8 @@ const _SAMPLE_SUMS_FIT: () = assert!(
 /// Traces `row` (row `y` of the image) into `line`, each pixel quantised by `dither`: by its
 /// centre's ray, or by the mean of the scene's samples ([`crate::pattern`]), each clamped to
 /// what a display shows and summed as integers, in 16-bit fractions: the sum cannot overflow
-/// however many samples a pixel takes, and rounds alike in every format.
+/// however many samples a pixel takes, and rounds alike in every format. Through a lens, each
+/// sample starts from its own lens point (one sample: the pixel's centre from one lens point).
 fn trace_into<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
     scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
     row: &Row<S>,
@@ -140,17 +141,27 @@ fn trace_into<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize
 {
     let samples = scene.settings.samples;
     let n = u32::from(samples);
+    let lens = row.has_lens();
     let mut centres = row.rays();
     for (x, pixel) in (0..).zip(line.iter_mut()) {
-        // One call of the tracer for either kind of pixel: a second would change how the
+        // One call of the tracer for every kind of pixel: a second would change how the
         // compiler inlines it, and so the cost of the one-sample image.
         let centre = centres.next();
         let pattern = (samples > 1).then(|| Pattern::pixel(x, y));
+        let lens_pattern = lens.then(|| Pattern::lens(x, y));
         let (mut colour, mut sum) = (Rgb::BLACK, [0_u32; 3]);
         for i in 0..samples {
-            let ray = match &pattern {
-                None => centre,
-                Some(pattern) => row.ray_offset(x, pattern.offset(i)),
+            let offset = |pattern: &Pattern| pattern.offset(i);
+            let ray = match &lens_pattern {
+                None => match &pattern {
+                    None => centre,
+                    Some(pattern) => row.ray_offset(x, offset(pattern)),
+                },
+                Some(lens) => row.ray_through_lens(
+                    x,
+                    pattern.as_ref().map_or([S::ZERO; 2], offset),
+                    lens.disc(i),
+                ),
             };
             let Some(ray) = ray else { continue };
             colour = scene.trace(ray, SampleId { x, y, sample: i }).colour;

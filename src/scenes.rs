@@ -17,7 +17,7 @@ pub struct BuiltIn {
 }
 
 /// Every built-in scene.
-pub const BUILT_IN: [BuiltIn; 3] = [
+pub const BUILT_IN: [BuiltIn; 4] = [
     BuiltIn {
         name: "whitted",
         summary: "Whitted's 1979 spheres and checkerboard: a glass sphere above a mirrored one",
@@ -32,6 +32,11 @@ pub const BUILT_IN: [BuiltIn; 3] = [
         name: "soft",
         summary: "the lecture's soft shadows: a sphere, a ball and a tetrahedron on a floor under a disc light",
         desc: SOFT,
+    },
+    BuiltIn {
+        name: "focus",
+        summary: "depth of field: five spheres in a row, the lens focused on the middle one",
+        desc: FOCUS,
     },
 ];
 
@@ -105,12 +110,7 @@ const WHITTED_LIGHTS: [LightDesc; 1] = [LightDesc::point([-5.0, 12.0, -8.0], [1.
 /// sphere in front of and above an opaque reflective sphere, over a red-and-yellow checkerboard,
 /// under a blue sky, lit by one point light with hard shadows.
 pub const WHITTED: SceneDesc<'static> = SceneDesc {
-    camera: CameraDesc {
-        eye: [0.0, 3.0, -6.0],
-        look_at: [-0.2, 1.0, 2.0],
-        up: [0.0, 1.0, 0.0],
-        vfov_degrees: 45.0,
-    },
+    camera: CameraDesc::pinhole([0.0, 3.0, -6.0], [-0.2, 1.0, 2.0], [0.0, 1.0, 0.0], 45.0),
     objects: &WHITTED_OBJECTS,
     lights: &WHITTED_LIGHTS,
     ambient: [0.12, 0.12, 0.14],
@@ -207,12 +207,7 @@ const SHAPES_LIGHTS: [LightDesc; 2] = [
 /// The lecture's three primitives together: two spheres, a checkered plane and a tetrahedron
 /// of triangles, lit by a warm and a cool light that cast coloured shadows.
 pub const SHAPES: SceneDesc<'static> = SceneDesc {
-    camera: CameraDesc {
-        eye: [0.0, 2.4, -4.5],
-        look_at: [0.0, 0.8, 2.4],
-        up: [0.0, 1.0, 0.0],
-        vfov_degrees: 50.0,
-    },
+    camera: CameraDesc::pinhole([0.0, 2.4, -4.5], [0.0, 0.8, 2.4], [0.0, 1.0, 0.0], 50.0),
     objects: &SHAPES_OBJECTS,
     lights: &SHAPES_LIGHTS,
     ambient: [0.1, 0.1, 0.1],
@@ -294,12 +289,7 @@ const SOFT_LIGHTS: [LightDesc; 1] = [LightDesc {
 /// adaptively. The penumbra widens with the distance from the occluder: narrow where the ball
 /// touches the floor, wide behind the apex.
 pub const SOFT: SceneDesc<'static> = SceneDesc {
-    camera: CameraDesc {
-        eye: [0.0, 3.2, -5.5],
-        look_at: [0.0, 0.6, 1.0],
-        up: [0.0, 1.0, 0.0],
-        vfov_degrees: 45.0,
-    },
+    camera: CameraDesc::pinhole([0.0, 3.2, -5.5], [0.0, 0.6, 1.0], [0.0, 1.0, 0.0], 45.0),
     objects: &SOFT_OBJECTS,
     lights: &SOFT_LIGHTS,
     ambient: [0.12, 0.12, 0.12],
@@ -313,4 +303,69 @@ pub const SOFT: SceneDesc<'static> = SceneDesc {
     samples: 1,
     shadow_samples: 16,
     adaptive_shadows: true,
+};
+
+/// A sphere of the focus scene: `k` steps along the row, of `colour`.
+const fn focus_sphere(k: f32, material: MaterialDesc) -> ObjectDesc {
+    ObjectDesc {
+        shape: ShapeDesc::Sphere {
+            center: [-0.9 + 0.45 * k, 0.5, -1.5 + 2.0 * k],
+            radius: 0.5,
+        },
+        material,
+    }
+}
+
+/// A shiny sphere of the focus scene.
+const fn focus_ball(colour: [f32; 3]) -> MaterialDesc {
+    MaterialDesc {
+        specular: 0.5,
+        shininess: 50,
+        ..MaterialDesc::matte(colour)
+    }
+}
+
+const FOCUS_OBJECTS: [ObjectDesc; 6] = [
+    ObjectDesc {
+        shape: ShapeDesc::Plane {
+            point: [0.0, 0.0, 0.0],
+            normal: [0.0, 1.0, 0.0],
+            checker: Some(CheckerDesc {
+                colour: [0.2, 0.2, 0.22],
+                size: 1.0,
+            }),
+        },
+        material: MaterialDesc::matte([0.85, 0.85, 0.82]),
+    },
+    focus_sphere(0.0, focus_ball([0.85, 0.2, 0.12])),
+    focus_sphere(1.0, focus_ball([0.95, 0.7, 0.1])),
+    focus_sphere(2.0, MIRRORED),
+    focus_sphere(3.0, focus_ball([0.2, 0.7, 0.3])),
+    focus_sphere(4.0, focus_ball([0.2, 0.35, 0.9])),
+];
+
+const FOCUS_LIGHTS: [LightDesc; 1] = [LightDesc::point([-4.0, 7.0, -3.0], [1.0, 0.97, 0.92])];
+
+/// The lecture's "depth of field: can we ray trace it?": five spheres in a row receding over a
+/// checkerboard, seen through a lens of radius 0.25 focused on the middle, mirrored one (its
+/// centre is where the camera looks). The nearest sphere and the farthest blur, and so does the
+/// checkerboard away from the middle; 16 rays per pixel spread over pixel and lens.
+pub const FOCUS: SceneDesc<'static> = SceneDesc {
+    camera: CameraDesc {
+        aperture: 0.25,
+        ..CameraDesc::pinhole([0.9, 1.3, -6.0], [0.0, 0.5, 2.5], [0.0, 1.0, 0.0], 45.0)
+    },
+    objects: &FOCUS_OBJECTS,
+    lights: &FOCUS_LIGHTS,
+    ambient: [0.12, 0.12, 0.12],
+    background: BackgroundDesc::Gradient {
+        up: crate::desc::Y_UP,
+        horizon: [0.7, 0.74, 0.8],
+        zenith: [0.3, 0.42, 0.65],
+    },
+    far: 16.0,
+    max_depth: 2,
+    samples: 16,
+    shadow_samples: 1,
+    adaptive_shadows: false,
 };

@@ -453,12 +453,8 @@ mod tests {
     use crate::test_util::{for_each_format, v};
     use crate::vec3::Vec3;
 
-    const CAMERA: CameraDesc = CameraDesc {
-        eye: [0.0, 0.0, 0.0],
-        look_at: [0.0, 0.0, 1.0],
-        up: [0.0, 1.0, 0.0],
-        vfov_degrees: 60.0,
-    };
+    const CAMERA: CameraDesc =
+        CameraDesc::pinhole([0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 60.0);
 
     fn desc<'a>(
         objects: &'a [ObjectDesc],

@@ -79,12 +79,7 @@ fn edge(vertical: bool) -> ObjectDesc {
 /// `samples` rays per pixel.
 fn scene(objects: &[ObjectDesc], samples: u16) -> SceneDesc<'_> {
     SceneDesc {
-        camera: CameraDesc {
-            eye: [0.0; 3],
-            look_at: [0.0, 0.0, 1.0],
-            up: [0.0, 1.0, 0.0],
-            vfov_degrees: 90.0,
-        },
+        camera: CameraDesc::pinhole([0.0; 3], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 90.0),
         objects,
         lights: &[],
         ambient: [1.0; 3],

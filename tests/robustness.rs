@@ -132,12 +132,12 @@ fn random_scenes_build_or_are_refused_and_render_without_panicking() {
             .map(|_| LightDesc::point(r.point(extent), r.colour().map(|c| c * 2.0)))
             .collect();
         let desc = SceneDesc {
-            camera: CameraDesc {
-                eye: r.point(extent / 2.0),
-                look_at: r.point(extent / 2.0),
-                up: [0.0, 1.0, 0.0],
-                vfov_degrees: r.wild_range(10.0, 120.0),
-            },
+            camera: CameraDesc::pinhole(
+                r.point(extent / 2.0),
+                r.point(extent / 2.0),
+                [0.0, 1.0, 0.0],
+                r.wild_range(10.0, 120.0),
+            ),
             objects: &objects,
             lights: &lights,
             ambient: r.colour().map(|c| c * 0.3),

@@ -9,12 +9,8 @@ use obscura::{
 
 type Small<S> = Scene<S, 4, 2, 4>;
 
-const CAMERA: CameraDesc = CameraDesc {
-    eye: [0.0, 1.0, -5.0],
-    look_at: [0.0, 1.0, 0.0],
-    up: [0.0, 1.0, 0.0],
-    vfov_degrees: 45.0,
-};
+const CAMERA: CameraDesc =
+    CameraDesc::pinhole([0.0, 1.0, -5.0], [0.0, 1.0, 0.0], [0.0, 1.0, 0.0], 45.0);
 const MATTE: MaterialDesc = MaterialDesc::matte([0.5, 0.5, 0.5]);
 const BALL: ObjectDesc = ObjectDesc {
     shape: ShapeDesc::Sphere {
@@ -187,6 +183,50 @@ fn zero_area_triangles() {
         SceneError::DegenerateTriangle {
             item: Item::Object(1)
         }
+    );
+}
+
+/// A lens must be a non-negative radius clear of every surface, focused a positive distance
+/// ahead; its error names the surface it reaches.
+#[test]
+fn lenses_that_reach_a_surface_or_focus_nowhere() {
+    let objects = [BALL, plane([0.0, 1.0, 0.0], None)];
+    let lens = |aperture, focus_distance| SceneDesc {
+        camera: CameraDesc {
+            aperture,
+            focus_distance,
+            ..CAMERA
+        },
+        ..scene(&objects, &[LIGHT])
+    };
+    assert!(build(&lens(0.5, Some(3.0))).is_ok());
+    // The eye is 1 above the floor (object 1).
+    assert!(matches!(
+        build(&lens(1.0, None)).unwrap_err(),
+        SceneError::LensTouches { object: 1, clearance, aperture: 1.0 } if clearance == 1.0
+    ));
+    let bounds = [
+        (lens(-0.1, None), "aperture"),
+        (lens(0.1, Some(0.0)), "focus_distance"),
+        (lens(0.1, Some(-2.0)), "focus_distance"),
+    ];
+    for (desc, field) in bounds {
+        assert!(
+            matches!(build(&desc).unwrap_err(), SceneError::OutOfBounds { item: Item::Camera, field: f, .. } if f == field),
+            "{field}"
+        );
+    }
+    assert_eq!(
+        build(&lens(f32::NAN, None)).unwrap_err(),
+        SceneError::NotFinite {
+            item: Item::Camera,
+            field: "aperture"
+        }
+    );
+    let message = build(&lens(2.0, None)).unwrap_err().to_string();
+    assert!(
+        message.contains("object 1") && message.contains("make the aperture smaller"),
+        "{message}"
     );
 }
 
@@ -436,6 +476,11 @@ fn every_message_says_what_to_do() {
             item: Item::Object(0),
         },
         SceneError::UpParallelToView,
+        SceneError::LensTouches {
+            object: 2,
+            clearance: 0.5,
+            aperture: 0.75,
+        },
         SceneError::TooMany {
             what: "objects",
             count: 9,
@@ -485,6 +530,14 @@ fn messages_without_figures_keep_the_words_and_drop_the_numbers() {
                 far: 100.0,
             },
             "123.25",
+        ),
+        (
+            SceneError::LensTouches {
+                object: 0,
+                clearance: 0.5,
+                aperture: 0.75,
+            },
+            "0.75",
         ),
         (
             SceneError::OutOfRange {

@@ -58,12 +58,7 @@ fn floor_scene<'a>(
     adaptive_shadows: bool,
 ) -> SceneDesc<'a> {
     SceneDesc {
-        camera: CameraDesc {
-            eye: EYE.map(|c| c as f32),
-            look_at: [0.0; 3],
-            up: [0.0, 1.0, 0.0],
-            vfov_degrees: 40.0,
-        },
+        camera: CameraDesc::pinhole(EYE.map(|c| c as f32), [0.0; 3], [0.0, 1.0, 0.0], 40.0),
         objects,
         lights,
         ambient: [0.0; 3],
@@ -267,12 +262,7 @@ fn a_radius_shrinking_to_zero_converges_to_the_hard_shadow() {
         };
         let (hard, soft) = (lights(0.0), lights(radius));
         let desc = |lights| SceneDesc {
-            camera: CameraDesc {
-                eye: [0.0, 4.0, -4.5],
-                look_at: [0.0, 0.0, 0.5],
-                up: [0.0, 1.0, 0.0],
-                vfov_degrees: 60.0,
-            },
+            camera: CameraDesc::pinhole([0.0, 4.0, -4.5], [0.0, 0.0, 0.5], [0.0, 1.0, 0.0], 60.0),
             shadow_samples: 16,
             ..floor_scene(&objects, lights, false)
         };

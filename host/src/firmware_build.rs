@@ -477,6 +477,8 @@ fn scene_source(desc: &SceneDesc<'_>) -> String {
         look_at,
         up,
         vfov_degrees,
+        aperture,
+        focus_distance,
     } = camera;
     let objects: Vec<String> = objects.iter().map(object_source).collect();
     let lights: Vec<String> = lights
@@ -513,7 +515,7 @@ fn scene_source(desc: &SceneDesc<'_>) -> String {
     };
     format!(
         "obscura::SceneDesc {{\n            camera: obscura::CameraDesc {{ eye: {}, look_at: {}, \
-         up: {}, vfov_degrees: {} }},\n            objects: &[\n{}            ],\n            \
+         up: {}, vfov_degrees: {}, aperture: {}, focus_distance: {} }},\n            objects: &[\n{}            ],\n            \
          lights: &[{}],\n            ambient: {},\n            background: {background},\n            \
          far: {},\n            max_depth: {max_depth},\n            samples: {samples},\n            shadow_samples: \
          {shadow_samples},\n            adaptive_shadows: {adaptive_shadows},\n        }}",
@@ -521,6 +523,8 @@ fn scene_source(desc: &SceneDesc<'_>) -> String {
         vector(look_at),
         vector(up),
         number(*vfov_degrees),
+        number(*aperture),
+        focus_distance.map_or_else(|| "None".to_owned(), |f| format!("Some({})", number(f))),
         objects
             .iter()
             .map(|o| format!("                {o},\n"))

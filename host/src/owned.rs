@@ -133,6 +133,8 @@ impl OwnedScene {
         Self {
             camera: CameraDesc {
                 look_at: point(self.camera.look_at),
+                aperture: s * self.camera.aperture,
+                focus_distance: self.camera.focus_distance.map(|f| s * f),
                 ..self.camera
             },
             objects,

@@ -437,6 +437,31 @@ mod tests {
     }
 
     #[test]
+    fn a_lens_is_read_and_refused_where_it_is_wrong() {
+        let text = MINIMAL.replace(
+            "vfov_degrees = 50.0 }",
+            "vfov_degrees = 50.0, aperture = 0.2, focus_distance = 4.0 }",
+        );
+        let scene = parse(&text).expect("parses");
+        assert_eq!(
+            (scene.camera.aperture, scene.camera.focus_distance),
+            (0.2, Some(4.0))
+        );
+        assert_eq!(parse(MINIMAL).unwrap().camera.focus_distance, None);
+        assert!(obscura::Scene::<f32, 4, 4, 8>::build(&scene.desc()).is_ok());
+        // The eye is 1 above the floor: a lens of radius 1.5 reaches it.
+        let wide = text.replace("aperture = 0.2", "aperture = 1.5");
+        let error = obscura::Scene::<f32, 4, 4, 8>::build(&parse(&wide).unwrap().desc())
+            .expect_err("the lens reaches the floor");
+        assert!(error.to_string().contains("object 1"), "{error}");
+        assert_eq!(placed(&wide, error), "scene.toml:3:125");
+        let nowhere = text.replace("focus_distance = 4.0", "focus_distance = 0.0");
+        let error = obscura::Scene::<f32, 4, 4, 8>::build(&parse(&nowhere).unwrap().desc())
+            .expect_err("no focus");
+        assert_eq!(placed(&nowhere, error), "scene.toml:3:147");
+    }
+
+    #[test]
     fn a_refusal_of_the_build_points_at_the_value_or_else_its_item() {
         let radius = SceneError::OutOfBounds {
             item: Item::Object(0),

@@ -59,6 +59,9 @@ pub enum Remedy {
     LargerTriangle,
     /// The eye too near a surface.
     MoveEye,
+    /// A lens whose tilt the format cannot resolve: so small an aperture, or so far a focus,
+    /// that its rays meet off the focal plane.
+    WiderAperture,
     /// A light too near a surface.
     MoveLight,
     /// A light too bright for a format's steps.
@@ -82,6 +85,9 @@ impl fmt::Display for Remedy {
             Self::SmallerTriangle => "split the triangle into smaller ones",
             Self::LargerTriangle => "make the triangle larger or look at it from farther away",
             Self::MoveEye => "move the eye away from the surface",
+            Self::WiderAperture => {
+                "open the aperture or focus nearer (or make the camera a pinhole: aperture = 0)"
+            }
             Self::MoveLight => "move the light away from the surface",
             Self::DimLight => "dim the light",
         })
@@ -157,6 +163,17 @@ pub enum SceneError {
         distance: f64,
         /// The world's radius.
         far: f32,
+    },
+    /// The lens reaches a surface: some point within `aperture` of the eye is on it or behind
+    /// it. Make the aperture smaller than the surface's distance from the eye, or move the eye
+    /// away from it.
+    LensTouches {
+        /// Which object.
+        object: usize,
+        /// Its surface's distance from the eye.
+        clearance: f64,
+        /// The lens's radius.
+        aperture: f32,
     },
     /// A value the tracer computes for this scene would leave the format's range. Use a
     /// format with a wider range (the message lists those that hold it), or change the scene
@@ -235,7 +252,7 @@ impl SceneError {
             | Self::OutsideWorld { item, .. }
             | Self::OutOfRange { item, .. }
             | Self::BelowResolution { item, .. } => Some(item),
-            Self::UpParallelToView => Some(Item::Camera),
+            Self::UpParallelToView | Self::LensTouches { .. } => Some(Item::Camera),
             Self::DepthExceedsStack { .. } => Some(Item::Scene),
             Self::TooMany { .. } | Self::MethodUnavailable { .. } | Self::ImageSize { .. } => None,
         }
@@ -255,6 +272,7 @@ impl SceneError {
             }
             Self::DegenerateTriangle { .. } => Some("shape.triangle.vertices"),
             Self::UpParallelToView => Some("up"),
+            Self::LensTouches { .. } => Some("aperture"),
             Self::DepthExceedsStack { .. } => Some("max_depth"),
             Self::TooMany { .. }
             | Self::OutsideWorld { .. }
@@ -348,6 +366,24 @@ impl<const FIGURES: bool> fmt::Display for Message<'_, FIGURES> {
                     write!(f, "is {value}, but it ")?;
                 }
                 write!(f, "must be {expected}")
+            }
+            SceneError::LensTouches {
+                object,
+                clearance,
+                aperture,
+            } => {
+                f.write_str("the camera: the lens ")?;
+                if FIGURES {
+                    write!(f, "of aperture {aperture} ")?;
+                }
+                write!(f, "reaches the surface of object {object}")?;
+                if FIGURES {
+                    write!(f, ", {clearance:.4} from the eye")?;
+                }
+                f.write_str(
+                    "; make the aperture smaller than the surface's distance from the eye, or \
+                     move the eye away from it",
+                )
             }
             SceneError::OutsideWorld {
                 item,

@@ -152,14 +152,15 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
             return Err(SceneError::ImageSize { width, height });
         }
         let half_width = self.frame.half_width(width, height);
+        let tilt = self.frame.lens_tilt();
         range::check_camera(
             &FormatInfo::of::<S>(),
             half_width,
             self.frame.half_height,
-            width,
-            height,
+            (width, height),
+            tilt,
         )?;
-        let (corner, _) = range::camera(half_width, self.frame.half_height, width, height);
+        let (corner, _, _) = range::camera(half_width, self.frame.half_height, width, height, tilt);
         Camera::new(&self.frame, width, height, &self.settings.methods).ok_or(
             SceneError::OutOfRange {
                 item: Item::Camera,

@@ -9,8 +9,9 @@
 //! R = `far`, and every plane within R of the eye; the tracer then keeps every value within
 //! these:
 //!
-//! - **Ray origins** are the eye or points on surfaces, moved off them by the surface
-//!   tolerance τ. A sphere's surface point is c + r·n, within |c| + r ≤ R; a triangle's is
+//! - **Ray origins** are the eye, points of its lens (within the aperture A of it, which
+//!   validation keeps below every surface's distance from the eye and below R), or points on
+//!   surfaces, moved off them by the surface tolerance τ. A sphere's surface point is c + r·n, within |c| + r ≤ R; a triangle's is
 //!   a + u·e1 + v·e2 with u, v, u + v in [0, 1], a convex combination of its corners; a plane's
 //!   is a hit that passed the world test (|p| ≤ R) projected onto the plane, which moves it by
 //!   the rounding of its t. So |o| ≤ O = R + s, the slack s ([`origin_slack`]) being τ and the
@@ -26,7 +27,8 @@
 //!
 //! | where | what | bound |
 //! |---|---|---|
-//! | camera | image-plane points, their normalisation | \|s\|² of an image corner ([`crate::Scene::camera`]) |
+//! | camera | image-plane points, their normalisation | \|s\|² of an image corner ([`crate::Scene::camera`]), with a lens the corner plus the lens's tilt A/f |
+//! | lens | a lens point A·(a·right + b·up), its tilt (A/f)·(a·right + b·up) | within A ≤ R and A/f, a² + b² ≤ 1 |
 //! | every shape | o + t·d, o − (corner or centre) and their sums | [`magnitudes`]: a point along a ray, P |
 //! | plane | n·d·t for t in the span, offset − n·o | a ray's length T, and P |
 //! | plane | the world test | coordinates tested against R first, then scaled within 1 |
@@ -330,6 +332,7 @@ pub fn magnitudes<'a>(
 ) -> impl Iterator<Item = Magnitude> + 'a {
     let world = f64::from(desc.far);
     let eye = desc.camera.eye;
+    let aperture = f64::from(desc.camera.aperture);
     let origin = world + slack;
     let length = 2.0 * world;
     let along = origin + length;
@@ -406,7 +409,7 @@ pub fn magnitudes<'a>(
                         // parallel to the triangle: the primary rays' must stay above it, or it
                         // misses a triangle it faces.
                         let seen = (methods.triangle == TriangleMethod::MollerTrumbore)
-                            .then(|| smallest_determinant(eye, corners))
+                            .then(|| smallest_determinant(eye, aperture, corners))
                             .flatten()
                             .map(|det| {
                                 (
@@ -449,16 +452,18 @@ pub(crate) fn triangle_numerators(origin: f64, eye: Vec3<f64>, [a, b, c]: [Vec3<
     (s * e1 * e2).max(s * e1.max(e2)).max(e1 * e2)
 }
 
-/// The smallest |det| = |d·(e1 × e2)| of a unit ray from `eye` that meets the triangle: |e1 ×
-/// e2| times the cosine at its farthest corner, h/|v − eye| with h the eye's distance from the
-/// triangle's plane; `None` where the eye is in that plane (no primary ray meets it).
-fn smallest_determinant(eye: Vec3<f64>, [a, b, c]: [Vec3<f64>; 3]) -> Option<f64> {
+/// The smallest |det| = |d·(e1 × e2)| of a unit ray from the eye, or from a point of its lens
+/// within `aperture` of it, that meets the triangle: |e1 × e2| times the cosine at its
+/// farthest corner, h/|v − o| with h the origin's distance from the triangle's plane (at least
+/// the eye's less the aperture); `None` where the origin can be in that plane (no primary ray
+/// meets it).
+fn smallest_determinant(eye: Vec3<f64>, aperture: f64, [a, b, c]: [Vec3<f64>; 3]) -> Option<f64> {
     let cross = (b - a).cross(c - a);
     let area = cross.length();
-    let h = (cross.dot(a - eye) / area).abs();
+    let h = (cross.dot(a - eye) / area).abs() - aperture;
     let farthest = [a, b, c]
         .iter()
-        .map(|&v| (v - eye).length())
+        .map(|&v| (v - eye).length() + aperture)
         .fold(0.0, f64::max);
     (h > 0.0 && area > 0.0).then(|| area * h / farthest)
 }
@@ -623,6 +628,9 @@ fn object_features(
 ) -> [Option<Feature>; OBJECT_FEATURES] {
     let world = f64::from(desc.far);
     let eye = desc.camera.eye;
+    // A lens starts primary rays up to its aperture from the eye: nearer a surface, farther
+    // from a sphere's far side.
+    let aperture = f64::from(desc.camera.aperture);
     let item = Item::Object(i);
     let feature = |quantity, value, terms, remedy| Feature {
         item,
@@ -632,24 +640,24 @@ fn object_features(
         steps: MIN_FEATURE_STEPS,
         remedy,
     };
-    // The surface tolerance is a dead zone in front of every surface: the eye must stand
-    // well clear of it, or the tolerance bends every ray it sends there. The surface's
-    // own coordinates, rounded at their size, place it only so precisely.
+    // The surface tolerance is a dead zone in front of every surface: the eye (and all its
+    // lens) must stand well clear of it, or the tolerance bends every ray it sends there. The
+    // surface's own coordinates, rounded at their size, place it only so precisely.
     let gap = clearance(object, Vec3::from_f32(eye));
-    let clearance = |value, reach: f64| {
+    let clearance = |reach: f64| {
         feature(
-            "the eye's distance from its surface, against the error with which a ray \
-             from the eye finds the surface",
-            value,
-            locating(object, methods, reach, eye),
+            "the eye's distance from its surface (less the aperture), against the error with \
+             which a ray from the eye finds the surface",
+            gap - aperture,
+            locating(object, methods, reach + aperture, eye),
             Remedy::MoveEye,
         )
     };
     match object.shape {
         ShapeDesc::Sphere { center, radius } => {
             let r = f64::from(radius);
-            let from_eye = distance(center, eye);
-            // Seen from the eye the sphere must keep its shape; seen from anywhere in the
+            let from_eye = distance(center, eye) + aperture;
+            // Seen from the eye (or its lens) the sphere must keep its shape; seen from anywhere in the
             // world (a secondary ray's origin) it must at least not vanish.
             let across_world = Feature {
                 steps: 1.0,
@@ -674,7 +682,7 @@ fn object_features(
                     tolerance_terms(from_eye + r, Some(r)),
                     Remedy::LargerSphere,
                 )),
-                Some(clearance(gap, from_eye + r)),
+                Some(clearance(from_eye + r)),
             ]
         }
         ShapeDesc::Plane { checker, point, .. } => {
@@ -704,7 +712,7 @@ fn object_features(
                 ]
             });
             let [square, reciprocal] = checker.map_or([None, None], |[a, b]| [Some(a), Some(b)]);
-            [square, reciprocal, Some(clearance(gap, reach)), None]
+            [square, reciprocal, Some(clearance(reach)), None]
         }
         ShapeDesc::Triangle { vertices } => {
             // The tests' determinants are twice the area seen along the ray; their
@@ -712,7 +720,7 @@ fn object_features(
             // way from the ray's origin to a corner and e the longest edge.
             let corners = vertices.map(Vec3::from_f32);
             let (e1, e2) = (corners[1] - corners[0], corners[2] - corners[0]);
-            let s = world + distance(vertices[0], eye);
+            let s = world + distance(vertices[0], eye) + aperture;
             let longest = e1.length().max(e2.length());
             let area = e1.cross(e2).length();
             let reach = vertices
@@ -731,14 +739,15 @@ fn object_features(
                 )
             });
             // Cramer's rule and Möller–Trumbore find t as a triple product (t·det, a
-            // length times twice an area) over det: for a hit as near as the eye is, the
-            // product must resolve against its rounding (the stored e1 × e2 rounded at
-            // its size, times |s|, and its own).
+            // length times twice an area) over det: for a hit as near as the eye (or its
+            // lens) is, the product must resolve against its rounding (the stored e1 × e2
+            // rounded at its size, times |s|, and its own).
+            let near = gap - aperture;
             let product = (methods.triangle != TriangleMethod::Watertight).then(|| {
                 feature(
                     "t·det of a hit as near as the eye, against its rounding",
-                    gap * area,
-                    Terms::new(&[(3.0_f64.sqrt() * s, area), (1.0, gap * area)]),
+                    near * area,
+                    Terms::new(&[(3.0_f64.sqrt() * s, area), (1.0, near * area)]),
                     Remedy::LargerTriangle,
                 )
             });
@@ -749,7 +758,7 @@ fn object_features(
                     area_error(s, longest, area),
                     Remedy::FatterTriangle,
                 )),
-                Some(clearance(gap, reach)),
+                Some(clearance(reach)),
                 reciprocal,
                 product,
             ]
@@ -774,14 +783,25 @@ fn discriminant_error(method: SphereMethod, r: f64, f: f64) -> Terms {
     }
 }
 
-/// The camera's bound and feature for an image of `width × height` pixels whose image plane,
-/// one unit ahead, reaches `half_width` and `half_height` from its centre: the corner of the
-/// image plane, and the angle between neighbouring pixels there, where the plane is seen most
-/// obliquely (the pitch over |s|²), against the rounding of a direction (its unit vector, and
-/// the image-plane point rounded at its size).
+/// The camera's bound and features for an image of `width × height` pixels whose image plane,
+/// one unit ahead, reaches `half_width` and `half_height` from its centre, through a lens that
+/// tilts rays by up to `tilt` = A/f on it (0 for a pinhole): the corner of the image plane
+/// (plus the tilt), the angle between neighbouring pixels there, where the plane is seen most
+/// obliquely (the pitch over |s|²), and the angle by which the lens's edge turns a ray there
+/// (the tilt over |s|²), each against the rounding of a direction (its unit vector, and the
+/// image-plane point rounded at its size). At fewer than [`MIN_FEATURE_STEPS`] errors of the
+/// tilt, the rays through one point of the focal plane meet more than a sixteenth of the focus
+/// distance off it.
 #[must_use]
-pub fn camera(half_width: f64, half_height: f64, width: u32, height: u32) -> (Magnitude, Feature) {
+pub fn camera(
+    half_width: f64,
+    half_height: f64,
+    width: u32,
+    height: u32,
+    tilt: f64,
+) -> (Magnitude, Feature, Option<Feature>) {
     let corner = (1.0 + half_width * half_width + half_height * half_height).sqrt();
+    let aim = corner + tilt;
     let pitch = (2.0 * half_width / f64::from(width)).min(2.0 * half_height / f64::from(height));
     // A field of view so wide that its corner is more than twice as far as its centre crams
     // the corner's pixels together; otherwise the pixels are simply too many or too narrow.
@@ -792,29 +812,39 @@ pub fn camera(half_width: f64, half_height: f64, width: u32, height: u32) -> (Ma
     };
     let magnitude = Magnitude {
         item: Item::Camera,
-        quantity: "a corner of the image plane, one unit ahead",
-        value: corner,
+        quantity: "a corner of the image plane, one unit ahead (plus the lens's tilt)",
+        value: aim,
         remedy: Remedy::NarrowerView,
     };
+    let error = Terms::new(&[(1.0 / corner, aim)]).units(1.0);
     let feature = Feature {
         item: Item::Camera,
         quantity: "the angle between neighbouring pixels at the image's corner",
         value: pitch / (corner * corner),
-        terms: Terms::new(&[(1.0 / corner, corner)]).units(1.0),
+        terms: error,
         steps: MIN_PIXEL_STEPS,
         remedy,
     };
-    (magnitude, feature)
+    let lens = (tilt > 0.0).then(|| Feature {
+        item: Item::Camera,
+        quantity: "aperture / focus_distance, the angle by which the lens's edge turns a ray at \
+                   the image's corner",
+        value: tilt / (corner * corner),
+        terms: error,
+        steps: MIN_FEATURE_STEPS,
+        remedy: Remedy::WiderAperture,
+    });
+    (magnitude, feature, lens)
 }
 
-/// Proves that `format` aims the rays of an image of `width × height` pixels (see
-/// [`camera`]), or says why not.
+/// Proves that `format` aims the rays of an image of `width × height` pixels through a lens
+/// of tilt `tilt` (see [`camera`]), or says why not.
 pub(super) fn check_camera(
     format: &FormatInfo,
     half_width: f64,
     half_height: f64,
-    width: u32,
-    height: u32,
+    (width, height): (u32, u32),
+    tilt: f64,
 ) -> Result<(), SceneError> {
     // A pixel's centre is the ratio (2i + 1)/2n of two integers the format holds.
     let side = Magnitude {
@@ -826,12 +856,14 @@ pub(super) fn check_camera(
     if !fits(side.value, format.range) {
         return Err(out_of_range(format, &side));
     }
-    let (m, f) = camera(half_width, half_height, width, height);
+    let (m, pixels, lens) = camera(half_width, half_height, width, height, tilt);
     if !fits(m.value, format.range) {
         return Err(out_of_range(format, &m));
     }
-    if f.value < f.minimum_with(format) {
-        return Err(below_resolution(format, &f, None));
+    for f in core::iter::once(pixels).chain(lens) {
+        if f.value < f.minimum_with(format) {
+            return Err(below_resolution(format, &f, None));
+        }
     }
     Ok(())
 }

@@ -2,6 +2,7 @@
 //! intervals, non-degenerate geometry, everything inside the world.
 
 use super::error::{Item, SceneError};
+use super::range;
 use crate::camera::Frame;
 use crate::desc::{BackgroundDesc, CameraDesc, LightDesc, MaterialDesc, SceneDesc, ShapeDesc};
 use crate::pattern::MAX_SAMPLES;
@@ -47,11 +48,23 @@ pub(super) fn validate(desc: &SceneDesc<'_>) -> Result<Frame, SceneError> {
         }
     }
     let frame = camera(&desc.camera)?;
+    inside_world(Item::Camera, frame.aperture, desc.far)?;
+    let eye = Vec3::from_f32(desc.camera.eye);
     for (i, object) in desc.objects.iter().enumerate() {
         let item = Item::Object(i);
         material(item, &object.material)?;
         let reach = shape(item, &object.shape, desc.camera.eye)?;
         inside_world(item, reach, desc.far)?;
+        // Every lens point must be on the eye's side of every surface (the eye itself must
+        // be clear of them by the format's error: the range proof's).
+        let clearance = range::clearance(object, eye);
+        if frame.aperture > 0.0 && frame.aperture >= clearance {
+            return Err(SceneError::LensTouches {
+                object: i,
+                clearance,
+                aperture: desc.camera.aperture,
+            });
+        }
     }
     for (i, light) in desc.lights.iter().enumerate() {
         let item = Item::Light(i);
@@ -93,6 +106,12 @@ fn camera(camera: &CameraDesc) -> Result<Frame, SceneError> {
     }
     if Vec3::from_f32(camera.up).length() == 0.0 {
         return Err(SceneError::ZeroLength { item, field: "up" });
+    }
+    finite(item, "aperture", &[camera.aperture])?;
+    at_least(item, "aperture", camera.aperture, 0.0, "≥ 0")?;
+    if let Some(focus) = camera.focus_distance {
+        finite(item, "focus_distance", &[focus])?;
+        at_least(item, "focus_distance", focus, f32::MIN_POSITIVE, "> 0")?;
     }
     Frame::new(camera).ok_or(SceneError::UpParallelToView)
 }

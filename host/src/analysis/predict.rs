@@ -304,7 +304,7 @@ fn psnr(mse: f64) -> f64 {
 fn pixel_angle(desc: &SceneDesc<'_>, width: u32, height: u32) -> f64 {
     let half_height = (f64::from(desc.camera.vfov_degrees).to_radians() / 2.0).tan();
     let half_width = half_height * f64::from(width) / f64::from(height);
-    let (corner, _) = range::camera(half_width, half_height, width, height);
+    let (corner, _, _) = range::camera(half_width, half_height, width, height, 0.0);
     let pitch = (2.0 * half_width / f64::from(width)).min(2.0 * half_height / f64::from(height));
     pitch / (corner.value * corner.value)
 }
@@ -465,12 +465,7 @@ mod tests {
             },
         }];
         let desc = SceneDesc {
-            camera: CameraDesc {
-                eye: [0.0; 3],
-                look_at: [0.0, 0.0, 1.0],
-                up: [0.0, 1.0, 0.0],
-                vfov_degrees: 30.0,
-            },
+            camera: CameraDesc::pinhole([0.0; 3], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 30.0),
             objects: &objects,
             lights: &[],
             ambient: [1.0; 3],

@@ -154,12 +154,7 @@ impl Generator {
             }
         };
         let scene = OwnedScene {
-            camera: CameraDesc {
-                eye: f32s(eye),
-                look_at: f32s(look_at),
-                up: f32s(up),
-                vfov_degrees: vfov as f32,
-            },
+            camera: CameraDesc::pinhole(f32s(eye), f32s(look_at), f32s(up), vfov as f32),
             objects,
             lights,
             ambient: self.bright().map(|c| c * 0.3),

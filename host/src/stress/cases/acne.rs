@@ -44,12 +44,7 @@ impl FormatJob for Job {
                 [(0.7 / sin) as f32; 3],
             )];
             let desc = SceneDesc {
-                camera: CameraDesc {
-                    eye: [0.0; 3],
-                    look_at: [0.0, -1.5, 4.0],
-                    up: [0.0, 1.0, 0.0],
-                    vfov_degrees: 60.0,
-                },
+                camera: CameraDesc::pinhole([0.0; 3], [0.0, -1.5, 4.0], [0.0, 1.0, 0.0], 60.0),
                 objects: &FLOOR,
                 lights: &light,
                 ambient: [0.1; 3],

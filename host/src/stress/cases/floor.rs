@@ -29,12 +29,7 @@ fn scene(floor: ShapeDesc, far: f32, objects: &mut Vec<ObjectDesc>) -> SceneDesc
         material: MATTE,
     });
     SceneDesc {
-        camera: CameraDesc {
-            eye: [0.0, 2.0, 0.0],
-            look_at: [0.0, 0.0, 4.0],
-            up: [0.0, 1.0, 0.0],
-            vfov_degrees: 45.0,
-        },
+        camera: CameraDesc::pinhole([0.0, 2.0, 0.0], [0.0, 0.0, 4.0], [0.0, 1.0, 0.0], 45.0),
         objects,
         lights: &LIGHTS,
         ambient: [0.2; 3],

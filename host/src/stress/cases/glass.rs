@@ -66,12 +66,12 @@ const LIGHTS: [LightDesc; 1] = [LightDesc::point([3.0, 5.0, -2.0], [1.0; 3])];
 /// The case's scene with the eye `offset` radii from the sphere's centre.
 fn scene(offset: f64) -> SceneDesc<'static> {
     SceneDesc {
-        camera: CameraDesc {
-            eye: [offset as f32, 0.0, 0.0],
-            look_at: [offset as f32, -0.3, 1.0],
-            up: [0.0, 1.0, 0.0],
-            vfov_degrees: 90.0,
-        },
+        camera: CameraDesc::pinhole(
+            [offset as f32, 0.0, 0.0],
+            [offset as f32, -0.3, 1.0],
+            [0.0, 1.0, 0.0],
+            90.0,
+        ),
         objects: &OBJECTS,
         lights: &LIGHTS,
         ambient: [0.15; 3],

@@ -32,12 +32,8 @@ pub static CASES: [Case; 10] = [
 ];
 
 /// A camera at the origin looking along +z, for cases that shoot their own rays.
-const CAMERA: CameraDesc = CameraDesc {
-    eye: [0.0, 0.0, 0.0],
-    look_at: [0.0, 0.0, 1.0],
-    up: [0.0, 1.0, 0.0],
-    vfov_degrees: 45.0,
-};
+const CAMERA: CameraDesc =
+    CameraDesc::pinhole([0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 45.0);
 
 /// A grey matte surface.
 const MATTE: MaterialDesc = MaterialDesc::matte([0.7, 0.7, 0.7]);

@@ -49,12 +49,7 @@ const LIGHTS: [(&str, [f32; 3]); 2] = [
 /// The scene: the ball on the floor seen from above and in front, under `light`.
 fn scene(light: &[LightDesc]) -> SceneDesc<'_> {
     SceneDesc {
-        camera: CameraDesc {
-            eye: [0.0, 4.0, -4.5],
-            look_at: [0.0, 0.0, 0.5],
-            up: [0.0, 1.0, 0.0],
-            vfov_degrees: 60.0,
-        },
+        camera: CameraDesc::pinhole([0.0, 4.0, -4.5], [0.0, 0.0, 0.5], [0.0, 1.0, 0.0], 60.0),
         objects: &OBJECTS,
         lights: light,
         ambient: [0.15; 3],
