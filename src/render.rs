@@ -6,6 +6,7 @@
 use crate::camera::{Camera, Row};
 use crate::color::{DisplayColor, Dither, Rgb};
 use crate::pattern::{Pattern, SampleId};
+use crate::ray::Ray;
 use crate::scalar::Scalar;
 use crate::scene::Scene;
 use core::fmt;
@@ -125,10 +126,9 @@ const _SAMPLE_SUMS_FIT: () = assert!(
 );
 
 /// Traces `row` (row `y` of the image) into `line`, each pixel quantised by `dither`: by its
-/// centre's ray, or by the mean of the scene's samples ([`crate::pattern`]), each clamped to
-/// what a display shows and summed as integers, in 16-bit fractions: the sum cannot overflow
-/// however many samples a pixel takes, and rounds alike in every format. Through a lens, each
-/// sample starts from its own lens point (one sample: the pixel's centre from one lens point).
+/// centre's ray, or by the mean of its samples ([`PixelPatterns`]), each clamped to what a
+/// display shows and summed as integers, in 16-bit fractions: the sum cannot overflow however
+/// many samples a pixel takes, and rounds alike in every format.
 fn trace_into<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
     scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
     row: &Row<S>,
@@ -141,27 +141,18 @@ fn trace_into<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize
 {
     let samples = scene.settings.samples;
     let n = u32::from(samples);
-    let lens = row.has_lens();
+    let sampled = samples > 1 || row.has_lens();
     let mut centres = row.rays();
     for (x, pixel) in (0..).zip(line.iter_mut()) {
-        // One call of the tracer for every kind of pixel: a second would change how the
+        // One call of the tracer for either kind of pixel: a second would change how the
         // compiler inlines it, and so the cost of the one-sample image.
         let centre = centres.next();
-        let pattern = (samples > 1).then(|| Pattern::pixel(x, y));
-        let lens_pattern = lens.then(|| Pattern::lens(x, y));
+        let pattern = sampled.then(|| PixelPatterns::new(row, x, y));
         let (mut colour, mut sum) = (Rgb::BLACK, [0_u32; 3]);
         for i in 0..samples {
-            let offset = |pattern: &Pattern| pattern.offset(i);
-            let ray = match &lens_pattern {
-                None => match &pattern {
-                    None => centre,
-                    Some(pattern) => row.ray_offset(x, offset(pattern)),
-                },
-                Some(lens) => row.ray_through_lens(
-                    x,
-                    pattern.as_ref().map_or([S::ZERO; 2], offset),
-                    lens.disc(i),
-                ),
+            let ray = match &pattern {
+                None => centre,
+                Some(pattern) => pattern.ray(row, x, i, samples),
             };
             let Some(ray) = ray else { continue };
             colour = scene.trace(ray, SampleId { x, y, sample: i }).colour;
@@ -174,6 +165,40 @@ fn trace_into<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize
             colour = Rgb::from_q16(sum.map(|s| (s + n / 2) / n));
         }
         *pixel = colour.quantize_at(dither, x, y);
+    }
+}
+
+/// The patterns of one pixel's samples: their points of the pixel, and with a lens their lens
+/// points ([`Pattern::lens`]).
+struct PixelPatterns {
+    pixel: Pattern,
+    lens: Option<Pattern>,
+}
+
+impl PixelPatterns {
+    /// Out of line, as [`Self::ray`] is, so that the loop over a pinhole's one-sample pixels
+    /// stays as small as it is.
+    #[inline(never)]
+    fn new<S: Scalar>(row: &Row<S>, x: u32, y: u32) -> Self {
+        Self {
+            pixel: Pattern::pixel(x, y),
+            lens: row.has_lens().then(|| Pattern::lens(x, y)),
+        }
+    }
+
+    /// The ray of sample `i` of `samples` of pixel `x` of `row`: through its point of the pixel
+    /// (the centre, for one sample), and through a lens from its lens point.
+    #[inline(never)]
+    fn ray<S: Scalar>(&self, row: &Row<S>, x: u32, i: u16, samples: u16) -> Option<Ray<S>> {
+        let offset = if samples > 1 {
+            self.pixel.offset(i)
+        } else {
+            [S::ZERO; 2]
+        };
+        match &self.lens {
+            Some(lens) => row.ray_through_lens(x, offset, lens.disc(i)),
+            None => row.ray_offset(x, offset),
+        }
     }
 }
 

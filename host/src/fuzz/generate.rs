@@ -1,11 +1,13 @@
 //! Random scene descriptions for the fuzzer: over every range a scene file accepts (sizes and
 //! distances from 10⁻⁶ to 10⁶, near-degenerate geometry, grazing and narrow cameras, lights on
-//! surfaces, extreme materials), with enough plausible ones among them that every format builds
-//! some. A scene is a function of its seed alone.
+//! surfaces, extreme materials, area lights, lenses and several samples), with enough plausible
+//! ones among them that every format builds some. A scene is a function of its seed alone.
 
 use crate::owned::OwnedScene;
+use obscura::scene::range;
 use obscura::{
-    BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, ObjectDesc, ShapeDesc, Y_UP,
+    BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, ObjectDesc, ShapeDesc, Vec3,
+    Y_UP,
 };
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
@@ -187,6 +189,21 @@ impl Generator {
             }
             scene.shadow_samples = self.0.random_range(2..=MAX_FUZZ_SHADOW_SAMPLES);
             scene.adaptive_shadows = self.chance(0.5);
+        }
+        // A quarter through a lens: from a ten-thousandth of the nearest surface's distance
+        // to a little beyond it (refused: the lens reaches the surface), focused where the
+        // camera looks or anywhere from a twentieth of the scene's unit to twenty of them.
+        if self.chance(0.25) {
+            let eye = Vec3::from_f32(scene.camera.eye);
+            let nearest = scene
+                .objects
+                .iter()
+                .map(|object| range::clearance(object, eye))
+                .fold(unit, f64::min);
+            scene.camera.aperture = (nearest * self.log_uniform(1e-4, 1.2)) as f32;
+            if self.chance(0.5) {
+                scene.camera.focus_distance = Some((unit * self.log_uniform(0.05, 20.0)) as f32);
+            }
         }
         Generated { scene, size }
     }
@@ -410,5 +427,10 @@ mod tests {
         assert!(kinds(|s| matches!(s, ShapeDesc::Sphere { .. })) > 100);
         assert!(kinds(|s| matches!(s, ShapeDesc::Plane { .. })) > 100);
         assert!(kinds(|s| matches!(s, ShapeDesc::Triangle { .. })) > 100);
+        let count = |f: fn(&OwnedScene) -> bool| scenes.iter().filter(|g| f(&g.scene)).count();
+        assert!(count(|s| s.samples > 1) > 75);
+        assert!(count(|s| s.lights.iter().any(|l| l.radius > 0.0)) > 75);
+        assert!(count(|s| s.camera.aperture > 0.0) > 75);
+        assert!(count(|s| s.camera.focus_distance.is_some()) > 30);
     }
 }
