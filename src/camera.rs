@@ -213,34 +213,47 @@ impl<S: Scalar> Row<S> {
     /// pixel x (see [`Camera::ray_offset`]), or `None` beyond the row's end.
     #[must_use]
     pub fn ray_offset(&self, x: u32, offset: [S; 2]) -> Option<Ray<S>> {
-        Some(self.through(self.offset_point(x, offset)?))
+        Some(self.through(self.beside(self.centre(x)?, offset)))
     }
 
     /// The ray from lens point `lens` through the focal plane where the pinhole's ray through
     /// `offset` from pixel x's centre meets it (see [`Camera::ray_through_lens`]), or `None`
     /// beyond the row's end.
     #[must_use]
-    pub fn ray_through_lens(&self, x: u32, offset: [S; 2], [a, b]: [S; 2]) -> Option<Ray<S>> {
-        let s = self.offset_point(x, offset)?;
-        let Some(lens) = &self.camera.lens else {
-            return Some(self.through(s));
-        };
-        let origin = (lens.across * a).add_scaled(lens.up, b);
-        let aim = s - (lens.tilt_across * a).add_scaled(lens.tilt_up, b);
-        Some(Ray::new(origin, aim.normalized(self.camera.roots)))
+    pub fn ray_through_lens(&self, x: u32, offset: [S; 2], lens: [S; 2]) -> Option<Ray<S>> {
+        Some(self.sample(self.centre(x)?, offset, lens))
     }
 
-    /// The point of the image plane `offset` (across, down) pixels from pixel x's centre, or
-    /// `None` beyond the row's end.
-    fn offset_point(&self, x: u32, [across, down]: [S; 2]) -> Option<Vec3<S>> {
+    /// Pixel x's centre on the image plane, s = top_left + down·(y + ½)/height +
+    /// across·(x + ½)/width, or `None` beyond the row's end: where a pixel's samples start.
+    #[must_use]
+    pub fn centre(&self, x: u32) -> Option<Vec3<S>> {
         let camera = &self.camera;
         (x < camera.width).then(|| {
             let fx = pixel_centre::<S>(x, camera.width, camera.roots);
-            self.start
-                .add_scaled(camera.across, fx)
-                .add_scaled(camera.pixel_across, across)
-                .add_scaled(camera.pixel_down, down)
+            self.start.add_scaled(camera.across, fx)
         })
+    }
+
+    /// The ray through the point `offset` (across, down) pixels from `centre`, a pixel's
+    /// [`Self::centre`]: from the eye, or through a lens from lens point `lens` (see
+    /// [`Camera::ray_through_lens`]).
+    #[must_use]
+    pub fn sample(&self, centre: Vec3<S>, offset: [S; 2], [a, b]: [S; 2]) -> Ray<S> {
+        let s = self.beside(centre, offset);
+        let Some(lens) = &self.camera.lens else {
+            return self.through(s);
+        };
+        let origin = (lens.across * a).add_scaled(lens.up, b);
+        let aim = s - (lens.tilt_across * a).add_scaled(lens.tilt_up, b);
+        Ray::new(origin, aim.normalized(self.camera.roots))
+    }
+
+    /// The point of the image plane `offset` (across, down) pixels from `centre`.
+    fn beside(&self, centre: Vec3<S>, [across, down]: [S; 2]) -> Vec3<S> {
+        centre
+            .add_scaled(self.camera.pixel_across, across)
+            .add_scaled(self.camera.pixel_down, down)
     }
 
     /// Whether the camera has a lens (see [`Camera::lens`]).

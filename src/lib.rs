@@ -2,9 +2,11 @@
 //!
 //! A `no_std` ray tracer for microcontroller displays that computes in fixed point: Whitted's
 //! ray tracer (pinhole camera, spheres, planes and triangles, shadows, reflection, refraction)
-//! written once over a [`Scalar`] number format, drawing scanline by scanline onto any
-//! embedded-graphics [`DrawTarget`](embedded_graphics_core::draw_target::DrawTarget) through a
-//! single line buffer.
+//! and from distributed ray tracing several rays per pixel, soft shadows from disc lights and
+//! depth of field through a thin lens, written once over a [`Scalar`] number format, drawing
+//! scanline by scanline onto any embedded-graphics
+//! [`DrawTarget`](embedded_graphics_core::draw_target::DrawTarget) through a single line
+//! buffer.
 //!
 //! ```
 //! use embedded_graphics::{mock_display::MockDisplay, pixelcolor::Rgb565};

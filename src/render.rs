@@ -9,6 +9,7 @@ use crate::pattern::{Pattern, SampleId};
 use crate::ray::Ray;
 use crate::scalar::Scalar;
 use crate::scene::Scene;
+use crate::vec3::Vec3;
 use core::fmt;
 use core::ops::Range;
 use embedded_graphics_core::draw_target::DrawTarget;
@@ -126,7 +127,7 @@ const _SAMPLE_SUMS_FIT: () = assert!(
 );
 
 /// Traces `row` (row `y` of the image) into `line`, each pixel quantised by `dither`: by its
-/// centre's ray, or by the mean of its samples ([`PixelPatterns`]), each clamped to what a
+/// centre's ray, or by the mean of its samples ([`PixelSamples`]), each clamped to what a
 /// display shows and summed as integers, in 16-bit fractions: the sum cannot overflow however
 /// many samples a pixel takes, and rounds alike in every format.
 fn trace_into<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
@@ -147,12 +148,12 @@ fn trace_into<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize
         // One call of the tracer for either kind of pixel: a second would change how the
         // compiler inlines it, and so the cost of the one-sample image.
         let centre = centres.next();
-        let pattern = sampled.then(|| PixelPatterns::new(row, x, y));
+        let pattern = sampled.then(|| PixelSamples::new(row, x, y));
         let (mut colour, mut sum) = (Rgb::BLACK, [0_u32; 3]);
         for i in 0..samples {
             let ray = match &pattern {
                 None => centre,
-                Some(pattern) => pattern.ray(row, x, i, samples),
+                Some(pattern) => pattern.ray(row, i, samples),
             };
             let Some(ray) = ray else { continue };
             colour = scene.trace(ray, SampleId { x, y, sample: i }).colour;
@@ -168,37 +169,37 @@ fn trace_into<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize
     }
 }
 
-/// The patterns of one pixel's samples: their points of the pixel, and with a lens their lens
-/// points ([`Pattern::lens`]).
-struct PixelPatterns {
+/// One pixel's samples: its centre on the image plane, and the patterns of their points of
+/// the pixel and, with a lens, of their lens points ([`Pattern::lens`]).
+struct PixelSamples<S> {
+    centre: Option<Vec3<S>>,
     pixel: Pattern,
     lens: Option<Pattern>,
 }
 
-impl PixelPatterns {
+impl<S: Scalar> PixelSamples<S> {
     /// Out of line, as [`Self::ray`] is, so that the loop over a pinhole's one-sample pixels
     /// stays as small as it is.
     #[inline(never)]
-    fn new<S: Scalar>(row: &Row<S>, x: u32, y: u32) -> Self {
+    fn new(row: &Row<S>, x: u32, y: u32) -> Self {
         Self {
+            centre: row.centre(x),
             pixel: Pattern::pixel(x, y),
             lens: row.has_lens().then(|| Pattern::lens(x, y)),
         }
     }
 
-    /// The ray of sample `i` of `samples` of pixel `x` of `row`: through its point of the pixel
-    /// (the centre, for one sample), and through a lens from its lens point.
+    /// The ray of sample `i` of `samples` in `row`: through its point of the pixel (the
+    /// centre, for one sample), and through a lens from its lens point.
     #[inline(never)]
-    fn ray<S: Scalar>(&self, row: &Row<S>, x: u32, i: u16, samples: u16) -> Option<Ray<S>> {
+    fn ray(&self, row: &Row<S>, i: u16, samples: u16) -> Option<Ray<S>> {
         let offset = if samples > 1 {
             self.pixel.offset(i)
         } else {
             [S::ZERO; 2]
         };
-        match &self.lens {
-            Some(lens) => row.ray_through_lens(x, offset, lens.disc(i)),
-            None => row.ray_offset(x, offset),
-        }
+        let lens = self.lens.map_or([S::ZERO; 2], |lens| lens.disc(i));
+        Some(row.sample(self.centre?, offset, lens))
     }
 }
 

@@ -789,9 +789,10 @@ fn discriminant_error(method: SphereMethod, r: f64, f: f64) -> Terms {
 /// (plus the tilt), the angle between neighbouring pixels there, where the plane is seen most
 /// obliquely (the pitch over |s|²), and the angle by which the lens's edge turns a ray there
 /// (the tilt over |s|²), each against the rounding of a direction (its unit vector, and the
-/// image-plane point rounded at its size). At fewer than [`MIN_FEATURE_STEPS`] errors of the
-/// tilt, the rays through one point of the focal plane meet more than a sixteenth of the focus
-/// distance off it.
+/// image-plane point rounded at its size; for a lens ray also the tilt's products, and the miss
+/// as a vector). At fewer than [`MIN_FEATURE_STEPS`] errors of the tilt, the rays through one
+/// point of the focal plane meet more than a sixteenth of the focus distance off it (the stress
+/// case `focal-plane` measures it).
 #[must_use]
 pub fn camera(
     half_width: f64,
@@ -825,12 +826,17 @@ pub fn camera(
         steps: MIN_PIXEL_STEPS,
         remedy,
     };
+    // A lens ray's aim s − (A/f)·(a·right + b·up) also rounds the two tilts' products, and
+    // its miss on the focal plane is a vector across it: up to √2 times a coordinate's.
+    let aim_error = Terms::new(&[(1.0 / corner, aim), (2.0 / corner, tilt)])
+        .units(1.0)
+        .times(core::f64::consts::SQRT_2);
     let lens = (tilt > 0.0).then(|| Feature {
         item: Item::Camera,
         quantity: "aperture / focus_distance, the angle by which the lens's edge turns a ray at \
                    the image's corner",
         value: tilt / (corner * corner),
-        terms: error,
+        terms: aim_error,
         steps: MIN_FEATURE_STEPS,
         remedy: Remedy::WiderAperture,
     });

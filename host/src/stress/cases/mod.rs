@@ -3,6 +3,7 @@
 mod acne;
 mod distant;
 mod floor;
+mod focal;
 mod glass;
 mod grazing;
 mod mesh;
@@ -18,7 +19,7 @@ use anyhow::Context as _;
 use obscura::{BackgroundDesc, CameraDesc, MaterialDesc, Methods, Scalar, SceneDesc, SceneError};
 
 /// Every case, in the order they run.
-pub static CASES: [Case; 10] = [
+pub static CASES: [Case; 11] = [
     grazing::CASE,
     distant::CASE,
     floor::CASE,
@@ -29,6 +30,7 @@ pub static CASES: [Case; 10] = [
     glass::CASE,
     scale::CASE,
     penumbra::CASE,
+    focal::CASE,
 ];
 
 /// A camera at the origin looking along +z, for cases that shoot their own rays.
