@@ -111,6 +111,9 @@ cargo run --release --locked -p obscura-host -- firmware --target m4f --scene wh
 step "firmware under QEMU (m4f), soft shadows from a disc light, bit for bit against the host"
 cargo run --release --locked -p obscura-host -- firmware --target m4f --scene soft --format i16f16
 
+step "firmware under QEMU (m4f), depth of field through a lens, bit for bit against the host"
+cargo run --release --locked -p obscura-host -- firmware --target m4f --scene focus --format i16f16
+
 step "firmware under QEMU, the 32-bit splits that hold a 240x240 scene, bit for bit against the host"
 cargo run --release --locked -p obscura-host -- firmware --target m4f --scene whitted,shapes \
     --format i12f20,i14f18,i18f14
