@@ -12,8 +12,8 @@ use crate::vec3::Vec3;
 /// The largest image side: it keeps every pixel coordinate exact in every format.
 pub const MAX_IMAGE_SIDE: u32 = 8192;
 
-/// A pinhole camera for one image size. Coordinates are relative to the eye, which is at the
-/// origin.
+/// A camera, pinhole or through a [`Lens`], for one image size. Coordinates are relative to the
+/// eye, which is at the origin.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera<S> {
     width: u32,
@@ -107,16 +107,15 @@ impl<S: Scalar> Camera<S> {
     pub(crate) fn new(frame: &Frame, width: u32, height: u32, methods: &Methods) -> Option<Self> {
         let half_width = frame.half_width(width, height);
         let top_left = frame.forward - frame.right * half_width + frame.up * frame.half_height;
+        // The range proof has checked that the format resolves the lens's radius and tilt.
         let lens = if frame.aperture > 0.0 {
             let tilt = frame.lens_tilt();
-            let lens = Lens {
+            Some(Lens {
                 across: (frame.right * frame.aperture).convert()?,
                 up: (frame.up * frame.aperture).convert()?,
                 tilt_across: (frame.right * tilt).convert()?,
                 tilt_up: (frame.up * tilt).convert()?,
-            };
-            // A lens below the format's resolution is a pinhole.
-            (lens.across != Vec3::ZERO || lens.up != Vec3::ZERO).then_some(lens)
+            })
         } else {
             None
         };

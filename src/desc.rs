@@ -5,7 +5,7 @@
 /// A scene as its author writes it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SceneDesc<'a> {
-    /// Where the pinhole camera stands and looks.
+    /// Where the camera stands and looks, and its lens.
     pub camera: CameraDesc,
     /// Spheres, planes and triangles, each with its material.
     pub objects: &'a [ObjectDesc],
@@ -23,8 +23,8 @@ pub struct SceneDesc<'a> {
     /// refraction.
     pub max_depth: u8,
     /// Rays per pixel, 1 to [`MAX_SAMPLES`](crate::pattern::MAX_SAMPLES): 1 traces the
-    /// pixel's centre (the lecture's camera); more spread over the pixel by
-    /// [`crate::pattern`] and average (anti-aliasing).
+    /// pixel's centre (the lecture's camera; through a lens, from one point of it); more spread
+    /// over the pixel (and the lens) by [`crate::pattern`] and average (anti-aliasing).
     pub samples: u16,
     /// Shadow rays from a point to each light with a [`LightDesc::radius`], 1 to
     /// [`MAX_SAMPLES`](crate::pattern::MAX_SAMPLES): 1 aims at the light's centre (a hard

@@ -157,21 +157,39 @@ fn a_vanishing_aperture_converges_to_the_pinhole_image() {
     check::<I12f20>(&[0.2, 0.05, 0.0125, 0.003], 45.0);
 }
 
-/// A lens too small for the format to focus is refused, with the remedy, rather than drawn
-/// focused somewhere else.
+/// A lens the format cannot focus is refused, with the remedy, rather than drawn focused
+/// somewhere else: one whose points round coarsely (their rounding moves every ray's meeting
+/// point), and one whose tilt A/f is lost in the rounding of a direction (a far focus), even
+/// where the tilt alone would be large.
 #[test]
-fn a_lens_too_small_to_focus_is_refused() {
-    let error = Scene::<I16F16, 8, 2, 4>::build(&focus_at(1e-4))
-        .and_then(|scene| scene.camera(SIDE, SIDE))
-        .expect_err("i16f16 cannot focus a lens of radius 1e-4");
-    let message = error.to_string();
-    assert!(
-        message.contains("aperture / focus_distance") && message.contains("open the aperture"),
-        "{message}"
-    );
-    assert!(
-        Scene::<f32, 8, 2, 4>::build(&focus_at(1e-4))
+fn a_lens_the_format_cannot_focus_is_refused() {
+    let lens = |aperture, focus_distance| SceneDesc {
+        camera: CameraDesc {
+            aperture,
+            focus_distance,
+            ..scenes::FOCUS.camera
+        },
+        ..scenes::FOCUS
+    };
+    let cases = [
+        (lens(1e-4, None), "aperture, the lens's radius"),
+        (lens(5e-6, Some(1e-5)), "aperture, the lens's radius"),
+        (lens(0.01, Some(400.0)), "aperture / focus_distance"),
+    ];
+    for (desc, quantity) in cases {
+        let error = Scene::<I16F16, 8, 2, 4>::build(&desc)
             .and_then(|scene| scene.camera(SIDE, SIDE))
-            .is_ok()
-    );
+            .expect_err("i16f16 cannot focus it");
+        let message = error.to_string();
+        assert!(
+            message.contains(quantity) && message.contains("open the aperture"),
+            "{message}"
+        );
+        assert!(
+            Scene::<f64, 8, 2, 4>::build(&desc)
+                .and_then(|scene| scene.camera(SIDE, SIDE))
+                .is_ok(),
+            "{quantity}"
+        );
+    }
 }

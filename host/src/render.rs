@@ -10,11 +10,10 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use image::RgbImage;
 use indicatif::{ProgressBar, ProgressStyle};
-use obscura::camera::Row;
-use obscura::pattern::SampleId;
+use obscura::pattern::{Pattern, SampleId};
 use obscura::{
-    Camera, Methods, Presentation, RootMethod, Scalar, Scene, SceneDesc, SceneError, render_frame,
-    render_rows,
+    Camera, Methods, Presentation, Ray, RootMethod, Scalar, Scene, SceneDesc, SceneError,
+    render_frame, render_rows,
 };
 use rayon::prelude::*;
 use std::convert::Infallible;
@@ -159,7 +158,7 @@ impl<S: Scalar> Prepared<S> {
     /// overflows.
     fn overflow_at(&self, y: u32, overflowed: Overflowed) -> anyhow::Error {
         let (first, pixel) = (0..self.camera.width())
-            .zip(self.camera.row(y).into_iter().flat_map(Row::rays))
+            .zip(self.primary_rays(y))
             .find_map(|(x, ray)| {
                 checked::catch(|| self.scene.trace(ray, SampleId { x, y, sample: 0 }))
                     .err()
@@ -204,8 +203,7 @@ impl<S: Scalar> Prepared<S> {
             Err(overflowed) => {
                 let y = (0..height)
                     .find(|&y| {
-                        let row = self.camera.row(y).into_iter().flat_map(Row::rays);
-                        (0..).zip(row).any(|(x, ray)| {
+                        (0..).zip(self.primary_rays(y)).any(|(x, ray)| {
                             let id = SampleId { x, y, sample: 0 };
                             checked::catch(|| self.scene.trace(ray, id)).is_err()
                         })
@@ -218,7 +216,7 @@ impl<S: Scalar> Prepared<S> {
     }
 
     /// The index of the object each pixel's primary ray hits first, row by row, the rays made
-    /// as the renderer makes them.
+    /// as the renderer makes them ([`Self::primary_rays`]).
     ///
     /// # Errors
     /// As [`Self::render`].
@@ -226,10 +224,8 @@ impl<S: Scalar> Prepared<S> {
         let mut objects = Vec::new();
         for y in 0..self.camera.height() {
             let row = checked::catch(|| {
-                self.camera
-                    .row(y)
+                self.primary_rays(y)
                     .into_iter()
-                    .flat_map(Row::rays)
                     .map(|ray| self.scene.first_hit(&ray))
                     .collect::<Vec<_>>()
             });
@@ -240,6 +236,22 @@ impl<S: Scalar> Prepared<S> {
 }
 
 impl<S: Scalar> Prepared<S> {
+    /// Each pixel's primary ray in row `y`, as the renderer's first sample makes it where it
+    /// traces the pixel's centre: by the camera's ray method, or through a lens from the
+    /// pixel's first lens point.
+    fn primary_rays(&self, y: u32) -> Vec<Ray<S>> {
+        let Some(row) = self.camera.row(y) else {
+            return Vec::new();
+        };
+        if row.has_lens() {
+            (0..self.camera.width())
+                .filter_map(|x| row.ray_through_lens(x, [S::ZERO; 2], Pattern::lens(x, y).disc(0)))
+                .collect()
+        } else {
+            row.rays().collect()
+        }
+    }
+
     /// The objects each pixel's ray tree meets ([`obscura::Sample::met`]), row by row.
     ///
     /// # Errors
@@ -248,9 +260,8 @@ impl<S: Scalar> Prepared<S> {
         let mut met = Vec::new();
         for y in 0..self.camera.height() {
             let row = checked::catch(|| {
-                let row = self.camera.row(y).into_iter().flat_map(Row::rays);
                 (0..)
-                    .zip(row)
+                    .zip(self.primary_rays(y))
                     .map(|(x, ray)| self.scene.trace(ray, SampleId { x, y, sample: 0 }).met)
                     .collect::<Vec<_>>()
             });
@@ -262,9 +273,12 @@ impl<S: Scalar> Prepared<S> {
 
 impl Prepared<f64> {
     /// What the ray through the point `offset` (across, down) pixels from the centre of pixel
-    /// (x, y) sees, or `None` outside the image.
+    /// (x, y) sees (through a lens, from the pixel's first lens point), or `None` outside the
+    /// image.
     pub fn sample(&self, x: u32, y: u32, offset: [f64; 2]) -> Option<obscura::Sample<f64>> {
-        let ray = self.camera.ray_offset(x, y, offset)?;
+        let ray = self
+            .camera
+            .ray_through_lens(x, y, offset, Pattern::lens(x, y).disc(0))?;
         Some(self.scene.trace(ray, SampleId { x, y, sample: 0 }))
     }
 }

@@ -211,7 +211,7 @@ fn bad_arguments_fail_with_a_clear_message() {
     let cases: [(&[&str], &str); 11] = [
         (
             &["render", "teapot"],
-            "give a built-in scene (whitted, shapes, soft) or a scene file",
+            "give a built-in scene (whitted, shapes, soft, focus) or a scene file",
         ),
         (
             &["analyze", "whitted", "--target-psnr", "lots"],

@@ -144,8 +144,8 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
     ///
     /// # Errors
     /// [`SceneError::ImageSize`] when a side is 0 or larger than [`MAX_IMAGE_SIDE`]; when the
-    /// image plane leaves the format, or its pixels are closer than the format can aim rays
-    /// ([`range::camera`]), why.
+    /// image plane leaves the format, its pixels are closer than the format can aim rays, or
+    /// its lens tilts rays too little to focus in the format ([`range::camera`]), why.
     pub fn camera(&self, width: u32, height: u32) -> Result<Camera<S>, SceneError> {
         let valid = 1..=MAX_IMAGE_SIDE;
         if !valid.contains(&width) || !valid.contains(&height) {

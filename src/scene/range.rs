@@ -455,17 +455,19 @@ pub(crate) fn triangle_numerators(origin: f64, eye: Vec3<f64>, [a, b, c]: [Vec3<
 /// The smallest |det| = |d·(e1 × e2)| of a unit ray from the eye, or from a point of its lens
 /// within `aperture` of it, that meets the triangle: |e1 × e2| times the cosine at its
 /// farthest corner, h/|v − o| with h the origin's distance from the triangle's plane (at least
-/// the eye's less the aperture); `None` where the origin can be in that plane (no primary ray
-/// meets it).
+/// the eye's less the aperture); `None` where the eye is in that plane (no primary ray meets
+/// it), 0 where only its lens reaches the plane (its points near the plane see the triangle
+/// edge-on).
 fn smallest_determinant(eye: Vec3<f64>, aperture: f64, [a, b, c]: [Vec3<f64>; 3]) -> Option<f64> {
     let cross = (b - a).cross(c - a);
     let area = cross.length();
-    let h = (cross.dot(a - eye) / area).abs() - aperture;
+    let from_eye = (cross.dot(a - eye) / area).abs();
+    let h = (from_eye - aperture).max(0.0);
     let farthest = [a, b, c]
         .iter()
         .map(|&v| (v - eye).length() + aperture)
         .fold(0.0, f64::max);
-    (h > 0.0 && area > 0.0).then(|| area * h / farthest)
+    (from_eye > 0.0 && area > 0.0).then(|| area * h / farthest)
 }
 
 fn triangle_magnitude(
@@ -613,7 +615,20 @@ pub fn features<'a>(
         });
         core::iter::once(level).chain(clear)
     });
-    objects.chain(lights)
+    // A lens ray starts from its lens point rounded at the aperture's size, and so meets the
+    // focal plane that far off where it should: its three products and their sum, a vector
+    // across the plane, must stay within a sixteenth of the aperture, as its tilt's error does
+    // ([`camera`]).
+    let aperture = f64::from(desc.camera.aperture);
+    let lens = (aperture > 0.0).then(|| Feature {
+        item: Item::Camera,
+        quantity: "aperture, the lens's radius, against the rounding of a point of the lens",
+        value: aperture,
+        terms: Terms::new(&[(4.0, aperture)]).times(core::f64::consts::SQRT_2),
+        steps: MIN_FEATURE_STEPS,
+        remedy: Remedy::WiderAperture,
+    });
+    objects.chain(lights).chain(lens)
 }
 
 /// How many features [`object_features`] gives an object at most.
@@ -791,8 +806,8 @@ fn discriminant_error(method: SphereMethod, r: f64, f: f64) -> Terms {
 /// (the tilt over |s|²), each against the rounding of a direction (its unit vector, and the
 /// image-plane point rounded at its size; for a lens ray also the tilt's products, and the miss
 /// as a vector). At fewer than [`MIN_FEATURE_STEPS`] errors of the tilt, the rays through one
-/// point of the focal plane meet more than a sixteenth of the focus distance off it (the stress
-/// case `focal-plane` measures it).
+/// point of the focal plane meet more than a sixteenth of the aperture off it (the rounding of
+/// the lens points themselves is [`features`]'s; the stress case `focal-plane` measures both).
 #[must_use]
 pub fn camera(
     half_width: f64,

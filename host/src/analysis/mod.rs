@@ -47,7 +47,7 @@ pub struct Extents {
     pub world: f64,
     /// The box around the spheres and triangles (planes are unbounded), if any.
     pub bounds: Option<([f64; 3], [f64; 3])>,
-    /// The nearest any surface comes to the eye.
+    /// The nearest any surface comes to the eye (less a lens's aperture).
     pub nearest: f64,
     /// The farthest point of a bounded object from the eye (the world radius with a plane).
     pub farthest: f64,
@@ -391,10 +391,11 @@ pub fn extents(desc: &SceneDesc<'_>) -> Extents {
             }
         }
     }
+    // A lens's rays start up to its aperture nearer.
     let nearest = desc
         .objects
         .iter()
-        .map(|object| range::clearance(object, eye))
+        .map(|object| range::clearance(object, eye) - f64::from(desc.camera.aperture))
         .fold(f64::INFINITY, f64::min);
     Extents {
         objects: desc.objects.len(),
