@@ -472,9 +472,10 @@ fn bits(desc: &SceneDesc<'_>, methods: Methods) -> Vec<Bits> {
     rows
 }
 
-/// Integer bits, sign included, that hold `value` with [`range::RANGE_HEADROOM`].
+/// Integer bits, sign included, that hold `value` with [`range::RANGE_HEADROOM`] (saturating
+/// for a value no format holds: Möller–Trumbore's quotient by a determinant of 0).
 fn integer_bits(value: f64) -> u32 {
-    (value * range::RANGE_HEADROOM).log2().floor().max(0.0) as u32 + 2
+    ((value * range::RANGE_HEADROOM).log2().floor().max(0.0) as u32).saturating_add(2)
 }
 
 /// Fraction bits a fixed format needs to resolve `feature` (whose error in a fixed format is
@@ -499,6 +500,7 @@ mod tests {
 
     #[test]
     fn integer_bits_count_the_sign() {
+        assert_eq!(integer_bits(f64::INFINITY), u32::MAX);
         // i16f16 holds up to 32768 (exclusive) in 16 integer bits.
         assert_eq!(integer_bits(30_000.0), 16);
         assert_eq!(integer_bits(33_000.0), 17);
