@@ -7,7 +7,7 @@ mod common;
 use common::{psnr, render};
 use obscura::formats::I12f20;
 use obscura::pattern::Pattern;
-use obscura::{CameraDesc, I16F16, Methods, Scalar, Scene, SceneDesc, scenes};
+use obscura::{CameraDesc, I16F16, Methods, Scalar, Scene, SceneDesc, Vec3, scenes};
 
 /// The image's side in pixels.
 const SIDE: u32 = 64;
@@ -18,51 +18,37 @@ const LENS_SAMPLES: u16 = 64;
 /// The focus scene's camera, in f64: forward, right and up, and the image plane's half height
 /// one unit ahead.
 struct Frame {
-    forward: [f64; 3],
-    right: [f64; 3],
-    up: [f64; 3],
+    forward: Vec3<f64>,
+    right: Vec3<f64>,
+    up: Vec3<f64>,
     half: f64,
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn unit(a: [f64; 3]) -> [f64; 3] {
-    let n = dot(a, a).sqrt();
-    a.map(|c| c / n)
-}
-
 fn frame(camera: &CameraDesc) -> Frame {
-    let [eye, look_at, up] = [camera.eye, camera.look_at, camera.up].map(|v| v.map(f64::from));
-    let forward = unit(std::array::from_fn(|i| look_at[i] - eye[i]));
-    let right = unit(cross(forward, up));
+    let forward = (Vec3::from_f32(camera.look_at) - Vec3::from_f32(camera.eye))
+        .direction()
+        .expect("the camera looks somewhere");
+    let right = forward
+        .cross(Vec3::from_f32(camera.up))
+        .direction()
+        .expect("up is not the view direction");
     Frame {
         forward,
         right,
-        up: cross(right, forward),
+        up: right.cross(forward),
         half: (f64::from(camera.vfov_degrees).to_radians() / 2.0).tan(),
     }
 }
 
 /// Where a ray meets the plane `depth` ahead of the eye, seen through the pinhole: in pixels
 /// (across, down) of a square image of `SIDE`.
-fn seen_at(frame: &Frame, origin: [f64; 3], dir: [f64; 3], depth: f64) -> [f64; 2] {
-    let t = (depth - dot(frame.forward, origin)) / dot(frame.forward, dir);
-    let p: [f64; 3] = std::array::from_fn(|i| origin[i] + t * dir[i]);
-    let s = p.map(|c| c / depth);
+fn seen_at(frame: &Frame, origin: Vec3<f64>, dir: Vec3<f64>, depth: f64) -> [f64; 2] {
+    let t = (depth - frame.forward.dot(origin)) / frame.forward.dot(dir);
+    let s = origin.add_scaled(dir, t) * (1.0 / depth);
     let pitch = 2.0 * frame.half / f64::from(SIDE);
     [
-        (dot(s, frame.right) + frame.half) / pitch,
-        (frame.half - dot(s, frame.up)) / pitch,
+        (s.dot(frame.right) + frame.half) / pitch,
+        (frame.half - s.dot(frame.up)) / pitch,
     ]
 }
 
@@ -78,11 +64,8 @@ fn the_focal_plane_is_sharp_and_other_depths_blur_as_the_thin_lens_says() {
         let camera = scene.camera(SIDE, SIDE).expect("the size is valid");
         let frame = frame(&desc.camera);
         let aperture = f64::from(desc.camera.aperture);
-        let eye = desc.camera.eye.map(f64::from);
-        let focus = dot(
-            std::array::from_fn(|i| f64::from(desc.camera.look_at[i]) - eye[i]),
-            frame.forward,
-        );
+        let focus = (Vec3::from_f32(desc.camera.look_at) - Vec3::from_f32(desc.camera.eye))
+            .dot(frame.forward);
         assert!(camera.lens().is_some(), "{}", S::NAME);
         for (x, y) in [(0, 0), (31, 17), (63, 63), (40, 5), (7, 50)] {
             let lens = Pattern::lens(x, y);
@@ -91,7 +74,8 @@ fn the_focal_plane_is_sharp_and_other_depths_blur_as_the_thin_lens_says() {
                 let ray = camera
                     .ray_through_lens(x, y, [S::ZERO; 2], [a, b])
                     .expect("the pixel is in the image");
-                let (origin, dir) = (ray.origin.to_f64(), ray.dir.to_f64());
+                let [origin, dir] = [ray.origin, ray.dir]
+                    .map(|v| Vec3::from_f64(v.to_f64()).expect("a ray is finite"));
                 let centre = [f64::from(x) + 0.5, f64::from(y) + 0.5];
                 for depth in [focus, focus / 2.0, 2.0 * focus] {
                     let blur = aperture * (1.0 / depth - 1.0 / focus) / (2.0 * frame.half)

@@ -272,6 +272,15 @@ pub fn triangle_tolerance_terms(vertices: [[f32; 3]; 3], eye: Vec3<f64>) -> Term
 /// The error in |d|² of a unit direction, in resolutions at 1: each coordinate is rounded.
 const DIRECTION_LENGTH: f64 = 2.0;
 
+/// How much larger a miss across the focal plane is than one coordinate's error: its two
+/// coordinates err independently.
+const MISS_ACROSS_PLANE: f64 = core::f64::consts::SQRT_2;
+
+/// The roundings in each coordinate of a lens point a·(A·right) + b·(A·up): the two axes
+/// stored at the aperture's size, their two products, their sum (counted as four: the axes'
+/// roundings are scaled by |a|, |b| ≤ 1 together).
+const LENS_POINT_ROUNDINGS: f64 = 4.0;
+
 /// One 8-bit level of a display channel: the least change of colour that can show.
 const LEVEL: f64 = 1.0 / 255.0;
 
@@ -624,7 +633,7 @@ pub fn features<'a>(
         item: Item::Camera,
         quantity: "aperture, the lens's radius, against the rounding of a point of the lens",
         value: aperture,
-        terms: Terms::new(&[(4.0, aperture)]).times(core::f64::consts::SQRT_2),
+        terms: Terms::new(&[(LENS_POINT_ROUNDINGS, aperture)]).times(MISS_ACROSS_PLANE),
         steps: MIN_FEATURE_STEPS,
         remedy: Remedy::WiderAperture,
     });
@@ -845,7 +854,7 @@ pub fn camera(
     // its miss on the focal plane is a vector across it: up to √2 times a coordinate's.
     let aim_error = Terms::new(&[(1.0 / corner, aim), (2.0 / corner, tilt)])
         .units(1.0)
-        .times(core::f64::consts::SQRT_2);
+        .times(MISS_ACROSS_PLANE);
     let lens = (tilt > 0.0).then(|| Feature {
         item: Item::Camera,
         quantity: "aperture / focus_distance, the angle by which the lens's edge turns a ray at \

@@ -6,14 +6,14 @@
 //! and a format that accepts the lens must keep it within a sixteenth (the range proof's
 //! [`MIN_FEATURE_STEPS`](obscura::scene::range::MIN_FEATURE_STEPS)); below that it must refuse.
 
-use super::{MATTE, SIZE, log_sweep, refused};
+use super::{CAMERA, MATTE, SIZE, bare, log_sweep, refused};
 use crate::format::FormatJob;
 use crate::render::HostScene;
 use crate::stress::{Case, Outcome, Row};
 use anyhow::{Context as _, Result};
 use obscura::pattern::Pattern;
 use obscura::scene::range::MIN_FEATURE_STEPS;
-use obscura::{BackgroundDesc, CameraDesc, ObjectDesc, Scalar, SceneDesc, ShapeDesc, Vec3};
+use obscura::{CameraDesc, ObjectDesc, Scalar, SceneDesc, ShapeDesc, Vec3};
 
 pub const CASE: Case = Case {
     name: "focal-plane",
@@ -48,17 +48,9 @@ fn scene(aperture: f32, focus: f32) -> SceneDesc<'static> {
         camera: CameraDesc {
             aperture,
             focus_distance: Some(focus),
-            ..CameraDesc::pinhole([0.0; 3], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 45.0)
+            ..CAMERA
         },
-        objects: &FLOOR,
-        lights: &[],
-        ambient: [0.2; 3],
-        background: BackgroundDesc::Solid([0.0; 3]),
-        far: 20.0,
-        max_depth: 0,
-        samples: 1,
-        shadow_samples: 1,
-        adaptive_shadows: false,
+        ..bare(&FLOOR, 20.0)
     }
 }
 
