@@ -80,6 +80,8 @@ fi
 step "firmware for the ST7789 on an STM32F411 Black Pill and on a Raspberry Pi Pico, from a scene file"
 OBSCURA_SCENES=host/scenes/pyramid.toml cargo build --release -p obscura-black-pill --target "$M4F" --locked
 OBSCURA_SCENES=host/scenes/pyramid.toml cargo build --release -p obscura-pico --target "$M0" --locked
+OBSCURA_SCENES=host/scenes/pyramid.toml OBSCURA_SAMPLES=16 OBSCURA_ADAPTIVE_SAMPLES=true \
+    cargo build --release -p obscura-pico --target "$M0" --locked
 
 step "a scene the format cannot hold fails the firmware's build, at its line and column"
 if OBSCURA_SCENES=host/scenes/hostile/low-light.toml OBSCURA_FORMATS=i16f16 \
@@ -107,6 +109,12 @@ cargo run --release --locked -p obscura-host -- firmware --target m4f --scene wh
 step "firmware under QEMU (m4f), four rays per pixel, bit for bit against the host"
 cargo run --release --locked -p obscura-host -- firmware --target m4f --scene whitted,shapes \
     --format i16f16,f32 --samples 4
+
+step "firmware under QEMU, adaptive anti-aliasing (corner rows on the stack), bit for bit against the host"
+cargo run --release --locked -p obscura-host -- firmware --target m4f --scene whitted \
+    --format i16f16,f32 --samples 16 --adaptive-samples true
+cargo run --release --locked -p obscura-host -- firmware --target m0 --scene whitted \
+    --format i16f16 --samples 4 --adaptive-samples true
 
 step "firmware under QEMU (m4f), soft shadows from a disc light, bit for bit against the host"
 cargo run --release --locked -p obscura-host -- firmware --target m4f --scene soft --format i16f16

@@ -26,6 +26,11 @@ pub struct SceneDesc<'a> {
     /// pixel's centre (the lecture's camera; through a lens, from one point of it); more spread
     /// over the pixel (and the lens) by [`crate::pattern`] and average (anti-aliasing).
     pub samples: u16,
+    /// Adaptive anti-aliasing after Whitted (1980, [`crate::adaptive`]): rays at the pixels'
+    /// corners, shared with their neighbours, and cells split into quarters where their
+    /// corners differ, down to 1/`samples` of the pixel (`samples` then 4, 16, 64 or 256).
+    /// Flat regions cost about a ray a pixel. Not with a lens.
+    pub adaptive_samples: bool,
     /// Shadow rays from a point to each light with a [`LightDesc::radius`], 1 to
     /// [`MAX_SAMPLES`](crate::pattern::MAX_SAMPLES): 1 aims at the light's centre (a hard
     /// shadow); more spread over the light by [`crate::pattern`], and the share that gets
@@ -49,7 +54,7 @@ impl SceneDesc<'_> {
             point_lights &= first.radius == 0.0;
             rest = others;
         }
-        self.samples == 1 && (point_lights || self.shadow_samples == 1)
+        self.samples == 1 && !self.adaptive_samples && (point_lights || self.shadow_samples == 1)
     }
 
     /// Whether any object is a triangle (the triangle methods matter only then).

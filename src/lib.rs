@@ -17,7 +17,7 @@
 //! let camera = scene.camera(32, 32)?;
 //! let mut display = MockDisplay::<Rgb565>::new();
 //! let mut line = [Rgb565::default(); 32];
-//! render_rows(&scene, &camera, 0..32, &mut line, &mut display).unwrap();
+//! render_rows(&scene, &camera, 0..32, &mut line, &mut [], &mut display).unwrap();
 //! # Ok::<(), obscura::SceneError>(())
 //! ```
 //!
@@ -31,6 +31,7 @@
 )]
 #![cfg_attr(not(test), deny(clippy::indexing_slicing, clippy::unreachable))]
 
+pub mod adaptive;
 pub mod camera;
 pub mod color;
 pub mod desc;
@@ -50,6 +51,7 @@ pub mod vec3;
 #[cfg(test)]
 mod test_util;
 
+pub use adaptive::{Corner, CornerRows, corner_rows};
 pub use camera::{Camera, MAX_IMAGE_SIDE};
 pub use color::{DisplayColor, Dither, Rgb};
 pub use desc::{

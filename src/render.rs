@@ -3,6 +3,7 @@
 //! frame ([`render_frame`]) can go to the display in a progressive order and dithered
 //! ([`Presentation`]).
 
+use crate::adaptive::{self, Corner, CornerRows, Pixel};
 use crate::camera::{Camera, Row};
 use crate::color::{DisplayColor, Dither, Rgb};
 use crate::pattern::{Pattern, SampleId};
@@ -27,6 +28,14 @@ pub enum RenderError<E> {
         /// The buffer's length.
         got: usize,
     },
+    /// The scene takes adaptive samples and the corner rows hold fewer corners than it keeps.
+    /// Pass [`corner_rows`](crate::adaptive::corner_rows)`(width)` of them.
+    CornerRowsTooSmall {
+        /// Corners the image needs.
+        needed: usize,
+        /// The buffer's length.
+        got: usize,
+    },
     /// The rows asked for end below the image. Ask for rows within `0..height`.
     RowsOutOfRange {
         /// The end of the requested rows.
@@ -45,6 +54,13 @@ impl<E: fmt::Debug> fmt::Display for RenderError<E> {
                 write!(
                     f,
                     "the line buffer holds {got} pixels but a row has {needed}; pass a longer one"
+                )
+            }
+            Self::CornerRowsTooSmall { needed, got } => {
+                write!(
+                    f,
+                    "the corner rows hold {got} corners but adaptive samples keep {needed}; \
+                     pass corner_rows(width) of them"
                 )
             }
             Self::RowsOutOfRange { end, height } => {
@@ -69,6 +85,9 @@ impl RenderError<core::convert::Infallible> {
             Self::LineBufferTooSmall { needed, got } => {
                 RenderError::LineBufferTooSmall { needed, got }
             }
+            Self::CornerRowsTooSmall { needed, got } => {
+                RenderError::CornerRowsTooSmall { needed, got }
+            }
             Self::RowsOutOfRange { end, height } => RenderError::RowsOutOfRange { end, height },
             Self::Target(never) => match never {},
         }
@@ -77,31 +96,28 @@ impl RenderError<core::convert::Infallible> {
 
 /// Renders `rows` of the image that `camera` sees of `scene`, top to bottom. Row y of the image
 /// goes to row y of `target` (pixels (0, y) to (width − 1, y)), through `line`, which must hold
-/// a row.
+/// a row, and for a scene with adaptive samples through `corners`, which must hold
+/// [`corner_rows`](crate::adaptive::corner_rows)`(width)` (else it may be empty).
 ///
 /// # Errors
-/// [`RenderError`] for a short line buffer, rows beyond the image, or a failing target.
-pub fn render_rows<S, C, D, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
+/// [`RenderError`] for a short line buffer or corner rows, rows beyond the image, or a failing
+/// target.
+pub fn render_rows<S, C, D, K, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
     scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
     camera: &Camera<S>,
     rows: Range<u32>,
     line: &mut [C],
+    corners: &mut K,
     target: &mut D,
 ) -> Result<(), RenderError<D::Error>>
 where
     S: Scalar,
     C: DisplayColor,
     D: DrawTarget<Color = C>,
+    K: CornerRows + ?Sized,
 {
-    let width = camera.width();
-    let too_small = RenderError::LineBufferTooSmall {
-        needed: width,
-        got: line.len(),
-    };
-    let line = usize::try_from(width)
-        .ok()
-        .and_then(|w| line.get_mut(..w))
-        .ok_or(too_small)?;
+    let (line, mut window) =
+        buffers(scene, camera, line, corners.rows()).map_err(RenderError::for_target)?;
     if rows.end > camera.height() {
         return Err(RenderError::RowsOutOfRange {
             end: rows.end,
@@ -113,7 +129,14 @@ where
         let row = camera
             .row(y)
             .ok_or(RenderError::RowsOutOfRange { end, height })?;
-        trace_into(scene, &row, y, Dither::None, line);
+        trace_pixels::<K, _, _, OBJECTS, LIGHTS, RAYS>(
+            scene,
+            &row,
+            y,
+            Dither::None,
+            line,
+            &mut window,
+        );
         send_row(target, line, y, 1)?;
     }
     Ok(())
@@ -165,6 +188,128 @@ fn trace_into<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize
         if pattern.is_some() {
             colour = Rgb::from_q16(sum.map(|s| (s + n / 2) / n));
         }
+        *pixel = colour.quantize_at(dither, x, y);
+    }
+}
+
+/// Traces `row` into `line`: by [`trace_into`], or with adaptive samples by [`adaptive_row`]
+/// through `window`. Corner rows of a type that holds none ([`CornerRows::NONE`]) leave the
+/// adaptive code out of the build.
+#[inline(always)]
+fn trace_pixels<K, S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
+    row: &Row<S>,
+    y: u32,
+    dither: Dither,
+    line: &mut [C],
+    window: &mut Option<Window<'_, S>>,
+) where
+    K: CornerRows + ?Sized,
+    S: Scalar,
+    C: DisplayColor,
+{
+    match window {
+        Some(window) if !K::NONE => adaptive_row(scene, row, y, dither, line, window),
+        _ => trace_into(scene, row, y, dither, line),
+    }
+}
+
+/// The buffers a render traces through, checked against the image: `line` cut to a row, and
+/// for a scene with adaptive samples the corner rows ([`Window`]). Inline, so that a caller
+/// whose corner rows are an empty array leaves the adaptive code out.
+#[inline(always)]
+fn buffers<'a, S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
+    camera: &'a Camera<S>,
+    line: &'a mut [C],
+    corners: &'a mut [Corner],
+) -> Result<Buffers<'a, C, S>, RenderError<core::convert::Infallible>>
+where
+    S: Scalar,
+{
+    let width = camera.width();
+    let got = line.len();
+    let line = usize::try_from(width)
+        .ok()
+        .and_then(|w| line.get_mut(..w))
+        .ok_or(RenderError::LineBufferTooSmall { needed: width, got })?;
+    let needed = if scene.settings.adaptive_samples {
+        adaptive::corner_rows(width)
+    } else {
+        0
+    };
+    let got = corners.len();
+    let too_small = RenderError::CornerRowsTooSmall { needed, got };
+    if corners.is_empty() {
+        return if needed == 0 {
+            Ok((line, None))
+        } else {
+            Err(too_small)
+        };
+    }
+    if needed == 0 {
+        return Ok((line, None));
+    }
+    let corners = corners.get_mut(..needed).ok_or(too_small)?;
+    let window = Window {
+        camera,
+        corners,
+        held: None,
+    };
+    Ok((line, Some(window)))
+}
+
+/// A line cut to a row, and the corner rows with adaptive samples.
+type Buffers<'a, C, S> = (&'a mut [C], Option<Window<'a, S>>);
+
+/// What adaptive anti-aliasing keeps between rows ([`crate::adaptive`]): corner row cy in the
+/// half cy % 2 of `corners`, and which corner row the last row traced left below it.
+struct Window<'a, S> {
+    camera: &'a Camera<S>,
+    corners: &'a mut [Corner],
+    held: Option<u32>,
+}
+
+/// [`trace_into`] for a scene with adaptive samples: traces the corner rows above (unless the
+/// row before left it) and below row `y`, then each pixel from its four corners.
+#[inline(never)]
+fn adaptive_row<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
+    row: &Row<S>,
+    y: u32,
+    dither: Dither,
+    line: &mut [C],
+    window: &mut Window<'_, S>,
+) where
+    S: Scalar,
+    C: DisplayColor,
+{
+    let half = window.corners.len() / 2;
+    let (even, odd) = window.corners.split_at_mut(half);
+    let (above, below) = if y % 2 == 0 { (even, odd) } else { (odd, even) };
+    if window.held != Some(y) {
+        adaptive::trace_corner_row(scene, window.camera, y, above);
+    }
+    adaptive::trace_corner_row(scene, window.camera, y + 1, below);
+    window.held = Some(y + 1);
+    let depth = adaptive::depth(scene.settings.samples);
+    let edges = above.windows(2).zip(below.windows(2));
+    for ((x, pixel), (top, bottom)) in (0..).zip(line.iter_mut()).zip(edges) {
+        let (&[top_left, top_right], &[bottom_left, bottom_right]) = (top, bottom) else {
+            continue;
+        };
+        let Some(centre) = row.centre(x) else {
+            continue;
+        };
+        let pixel_cells = Pixel {
+            scene,
+            row,
+            centre,
+            x,
+            y,
+            depth,
+        };
+        let colour = pixel_cells.colour([top_left, top_right, bottom_left, bottom_right]);
         *pixel = colour.quantize_at(dither, x, y);
     }
 }
@@ -230,35 +375,30 @@ pub fn send_row<C: DisplayColor, D: DrawTarget<Color = C>>(
 
 /// Traces row `y` of the image that `camera` sees of `scene` into `line` (its first `width`
 /// pixels), each pixel rounded by `dither`, without drawing it: for a renderer that shares a
-/// frame's rows among cores and sends them itself ([`send_row`]).
+/// frame's rows among cores and sends them itself ([`send_row`]). With adaptive samples it
+/// traces the corners above and below the row into `corners` (see [`render_rows`]).
 ///
 /// # Errors
-/// [`RenderError`] for a short line buffer or a row beyond the image.
-pub fn trace_row<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
+/// [`RenderError`] for a short line buffer or corner rows, or a row beyond the image.
+pub fn trace_row<S, C, K, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
     scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
     camera: &Camera<S>,
     y: u32,
     dither: Dither,
     line: &mut [C],
+    corners: &mut K,
 ) -> Result<(), RenderError<core::convert::Infallible>>
 where
     S: Scalar,
     C: DisplayColor,
+    K: CornerRows + ?Sized,
 {
-    let width = camera.width();
-    let too_small = RenderError::LineBufferTooSmall {
-        needed: width,
-        got: line.len(),
-    };
-    let line = usize::try_from(width)
-        .ok()
-        .and_then(|w| line.get_mut(..w))
-        .ok_or(too_small)?;
+    let (line, mut window) = buffers(scene, camera, line, corners.rows())?;
     let row = camera.row(y).ok_or(RenderError::RowsOutOfRange {
         end: y.saturating_add(1),
         height: camera.height(),
     })?;
-    trace_into(scene, &row, y, dither, line);
+    trace_pixels::<K, _, _, OBJECTS, LIGHTS, RAYS>(scene, &row, y, dither, line, &mut window);
     Ok(())
 }
 
@@ -312,36 +452,39 @@ impl RowOrder {
 
 /// Renders the whole image that `camera` sees of `scene` onto `target`, its rows in
 /// `presentation`'s order and its colours rounded by its dither, through `line`, which must
-/// hold a row.
+/// hold a row, and `corners` (see [`render_rows`]).
 ///
 /// # Errors
-/// [`RenderError`] for a short line buffer or a failing target.
-pub fn render_frame<S, C, D, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
+/// [`RenderError`] for a short line buffer or corner rows, or a failing target.
+pub fn render_frame<S, C, D, K, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
     scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
     camera: &Camera<S>,
     presentation: Presentation,
     line: &mut [C],
+    corners: &mut K,
     target: &mut D,
 ) -> Result<(), RenderError<D::Error>>
 where
     S: Scalar,
     C: DisplayColor,
     D: DrawTarget<Color = C>,
+    K: CornerRows + ?Sized,
 {
-    let (width, height) = (camera.width(), camera.height());
-    let too_small = RenderError::LineBufferTooSmall {
-        needed: width,
-        got: line.len(),
-    };
-    let line = usize::try_from(width)
-        .ok()
-        .and_then(|w| line.get_mut(..w))
-        .ok_or(too_small)?;
+    let height = camera.height();
+    let (line, mut window) =
+        buffers(scene, camera, line, corners.rows()).map_err(RenderError::for_target)?;
     for (y, rows) in presentation.order.rows(height) {
         let row = camera
             .row(y)
             .ok_or(RenderError::RowsOutOfRange { end: y + 1, height })?;
-        trace_into(scene, &row, y, presentation.dither, line);
+        trace_pixels::<K, _, _, OBJECTS, LIGHTS, RAYS>(
+            scene,
+            &row,
+            y,
+            presentation.dither,
+            line,
+            &mut window,
+        );
         send_row(target, line, y, rows)?;
     }
     Ok(())

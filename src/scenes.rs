@@ -122,6 +122,7 @@ pub const WHITTED: SceneDesc<'static> = SceneDesc {
     far: 30.0,
     max_depth: 5,
     samples: 1,
+    adaptive_samples: false,
     shadow_samples: 1,
     adaptive_shadows: false,
 };
@@ -215,6 +216,7 @@ pub const SHAPES: SceneDesc<'static> = SceneDesc {
     far: 25.0,
     max_depth: 3,
     samples: 1,
+    adaptive_samples: false,
     shadow_samples: 1,
     adaptive_shadows: false,
 };
@@ -301,6 +303,7 @@ pub const SOFT: SceneDesc<'static> = SceneDesc {
     far: 12.0,
     max_depth: 2,
     samples: 1,
+    adaptive_samples: false,
     shadow_samples: 16,
     adaptive_shadows: true,
 };
@@ -366,6 +369,7 @@ pub const FOCUS: SceneDesc<'static> = SceneDesc {
     far: 16.0,
     max_depth: 2,
     samples: 16,
+    adaptive_samples: false,
     shadow_samples: 1,
     adaptive_shadows: false,
 };

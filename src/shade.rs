@@ -471,6 +471,7 @@ mod tests {
             far: 10.0,
             max_depth,
             samples: 1,
+            adaptive_samples: false,
             shadow_samples: 1,
             adaptive_shadows: false,
         }

@@ -78,6 +78,11 @@ fn edge(vertical: bool) -> ObjectDesc {
 /// `objects` in ambient light alone, seen by a 90° camera at the origin looking along +z, by
 /// `samples` rays per pixel.
 fn scene(objects: &[ObjectDesc], samples: u16) -> SceneDesc<'_> {
+    sampled(objects, samples, false)
+}
+
+/// [`scene`], its samples adaptive or not.
+fn sampled(objects: &[ObjectDesc], samples: u16, adaptive_samples: bool) -> SceneDesc<'_> {
     SceneDesc {
         camera: CameraDesc::pinhole([0.0; 3], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 90.0),
         objects,
@@ -87,6 +92,7 @@ fn scene(objects: &[ObjectDesc], samples: u16) -> SceneDesc<'_> {
         far: 4.0,
         max_depth: 0,
         samples,
+        adaptive_samples,
         shadow_samples: 1,
         adaptive_shadows: false,
     }
@@ -140,6 +146,69 @@ fn supersampling_covers_an_edge_as_geometry_says() {
     check::<f32>();
     check::<I8f24>();
     check::<I16F16>();
+}
+
+/// Adaptive samples (Whitted's corners, split where they differ) draw a pixel off the edge
+/// exactly, and the edge's own to within half a cell of the deepest split: the cells the edge
+/// crosses show the mean of their corners, one side black, the other white.
+#[test]
+fn adaptive_samples_cover_an_edge_as_geometry_says() {
+    fn check<S: Scalar>() {
+        for vertical in [true, false] {
+            for samples in [4_u16, 16, 64] {
+                let objects = [edge(vertical)];
+                let desc = sampled(&objects, samples, true);
+                let (frame, _) = render::<S>(&desc, SIDE, SIDE, Methods::LECTURE);
+                let cell = 1.0 / f64::from(samples).sqrt();
+                for (i, pixel) in frame.pixels.iter().enumerate() {
+                    let (x, y) = (i as u32 % SIDE, i as u32 / SIDE);
+                    let want = coverage(vertical, x, y);
+                    let got = f64::from(pixel.r()) / 255.0;
+                    let bound = if want == 0.0 || want == 1.0 {
+                        0.0
+                    } else {
+                        cell / 2.0 + 0.5 / 255.0
+                    };
+                    assert!(
+                        (got - want).abs() <= bound,
+                        "{} adaptive {samples}, {}: ({x}, {y}) is {got}, geometry says {want}",
+                        S::NAME,
+                        if vertical { "vertical" } else { "across" },
+                    );
+                }
+            }
+        }
+    }
+    check::<f64>();
+    check::<f32>();
+    check::<I8f24>();
+    check::<I16F16>();
+}
+
+/// Adaptive samples split a pixel into quarters, so they are refused unless a power of 4, and
+/// with a lens (they spread over the pixel alone); each error names the field and the fix.
+#[test]
+fn adaptive_samples_other_than_powers_of_four_or_with_a_lens_are_refused() {
+    let objects = [edge(true)];
+    for samples in [1, 2, 8, 32] {
+        let desc = sampled(&objects, samples, true);
+        let message = obscura::Scene::<f32, 1, 1, 1>::build(&desc)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            message.contains("samples") && message.contains("4, 16, 64 or 256"),
+            "{message}"
+        );
+    }
+    let mut desc = sampled(&objects, 16, true);
+    desc.camera.aperture = 0.01;
+    let message = obscura::Scene::<f32, 1, 1, 1>::build(&desc)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.contains("aperture") && message.contains("adaptive_samples"),
+        "{message}"
+    );
 }
 
 /// More samples than a pixel may take, or none, are refused, naming the limit.

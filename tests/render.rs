@@ -7,7 +7,8 @@ use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use obscura::{
-    Dither, I16F16, Presentation, RenderError, RowOrder, Scene, render_frame, render_rows, scenes,
+    Corner, Dither, I16F16, Presentation, RenderError, RowOrder, Scene, SceneDesc, corner_rows,
+    render_frame, render_rows, scenes, send_row, trace_row,
 };
 
 /// A display that records what it is sent.
@@ -74,7 +75,7 @@ fn every_pixel_exactly_once_row_by_row() {
     let camera = scene.camera(width, height).unwrap();
     let mut display = Recorder::new(width, height);
     let mut line = [Rgb565::BLACK; 40];
-    render_rows(&scene, &camera, 0..height, &mut line, &mut display).unwrap();
+    render_rows(&scene, &camera, 0..height, &mut line, &mut [], &mut display).unwrap();
     assert!(
         display.writes.iter().all(|&n| n == 1),
         "a pixel written other than once"
@@ -91,7 +92,7 @@ fn a_band_of_rows_and_a_longer_line_buffer() {
     let camera = scene.camera(16, 16).unwrap();
     let mut display = Recorder::new(16, 16);
     let mut line = [Rgb565::BLACK; 64];
-    render_rows(&scene, &camera, 5..9, &mut line, &mut display).unwrap();
+    render_rows(&scene, &camera, 5..9, &mut line, &mut [], &mut display).unwrap();
     let written: Vec<_> = display.rectangles.iter().map(|r| r.top_left.y).collect();
     assert_eq!(written, [5, 6, 7, 8]);
     for (i, &n) in display.writes.iter().enumerate() {
@@ -106,11 +107,100 @@ fn the_same_rows_in_two_bands_equal_one_pass() {
     let camera = scene.camera(32, 32).unwrap();
     let mut line = [Rgb565::BLACK; 32];
     let mut whole = MockDisplay::new();
-    render_rows(&scene, &camera, 0..32, &mut line, &mut whole).unwrap();
+    render_rows(&scene, &camera, 0..32, &mut line, &mut [], &mut whole).unwrap();
     let mut banded = MockDisplay::new();
-    render_rows(&scene, &camera, 0..13, &mut line, &mut banded).unwrap();
-    render_rows(&scene, &camera, 13..32, &mut line, &mut banded).unwrap();
+    render_rows(&scene, &camera, 0..13, &mut line, &mut [], &mut banded).unwrap();
+    render_rows(&scene, &camera, 13..32, &mut line, &mut [], &mut banded).unwrap();
     whole.assert_eq(&banded);
+}
+
+/// `whitted` with adaptive samples.
+fn adaptive_whitted() -> SmallScene {
+    let desc = SceneDesc {
+        samples: 16,
+        adaptive_samples: true,
+        ..scenes::WHITTED
+    };
+    SmallScene::build(&desc).unwrap()
+}
+
+/// A corner's ray depends on its place in the image alone: a frame with adaptive samples is the
+/// same in one pass, in two bands, row by row ([`trace_row`], as two cores trace it) and in the
+/// progressive order, each tracing corner rows anew where it does not go down row by row.
+#[test]
+fn adaptive_samples_draw_the_same_frame_however_the_rows_are_split() {
+    let scene = adaptive_whitted();
+    let camera = scene.camera(32, 32).unwrap();
+    let mut line = [Rgb565::BLACK; 32];
+    let mut corners = [Corner::ZERO; 66];
+    assert_eq!(corner_rows(32), corners.len());
+    let mut whole = MockDisplay::new();
+    render_rows(&scene, &camera, 0..32, &mut line, &mut corners, &mut whole).unwrap();
+    let mut banded = MockDisplay::new();
+    render_rows(&scene, &camera, 0..13, &mut line, &mut corners, &mut banded).unwrap();
+    render_rows(
+        &scene,
+        &camera,
+        13..32,
+        &mut line,
+        &mut corners,
+        &mut banded,
+    )
+    .unwrap();
+    whole.assert_eq(&banded);
+    let mut rows = MockDisplay::new();
+    for y in (0..32).rev() {
+        trace_row(&scene, &camera, y, Dither::None, &mut line, &mut corners).unwrap();
+        send_row(&mut rows, &line, y, 1).unwrap();
+    }
+    whole.assert_eq(&rows);
+    let progressive = Presentation {
+        order: RowOrder::Progressive,
+        dither: Dither::None,
+    };
+    let mut frame = Recorder::new(32, 32);
+    render_frame(
+        &scene,
+        &camera,
+        progressive,
+        &mut line,
+        &mut corners,
+        &mut frame,
+    )
+    .unwrap();
+    let mut top_down = Recorder::new(32, 32);
+    render_rows(
+        &scene,
+        &camera,
+        0..32,
+        &mut line,
+        &mut corners,
+        &mut top_down,
+    )
+    .unwrap();
+    assert_eq!(frame.pixels, top_down.pixels);
+    // Not the one-sample frame: the edges are smoothed.
+    let plain = SmallScene::build(&scenes::WHITTED).unwrap();
+    let mut one = MockDisplay::new();
+    render_rows(&plain, &camera, 0..32, &mut line, &mut [], &mut one).unwrap();
+    assert_ne!(one, whole);
+}
+
+#[test]
+fn corner_rows_too_short_for_adaptive_samples_are_refused() {
+    let scene = adaptive_whitted();
+    let camera = scene.camera(16, 8).unwrap();
+    let mut display = Recorder::new(16, 8);
+    let mut line = [Rgb565::BLACK; 16];
+    let mut corners = [Corner::ZERO; 33];
+    assert_eq!(
+        render_rows(&scene, &camera, 0..8, &mut line, &mut corners, &mut display),
+        Err(RenderError::CornerRowsTooSmall {
+            needed: 34,
+            got: 33
+        })
+    );
+    assert!(display.rectangles.is_empty());
 }
 
 #[test]
@@ -120,7 +210,7 @@ fn short_line_buffer_and_rows_beyond_the_image_are_refused() {
     let mut display = Recorder::new(16, 8);
     let mut short = [Rgb565::BLACK; 15];
     assert_eq!(
-        render_rows(&scene, &camera, 0..8, &mut short, &mut display),
+        render_rows(&scene, &camera, 0..8, &mut short, &mut [], &mut display),
         Err(RenderError::LineBufferTooSmall {
             needed: 16,
             got: 15
@@ -128,7 +218,7 @@ fn short_line_buffer_and_rows_beyond_the_image_are_refused() {
     );
     let mut line = [Rgb565::BLACK; 16];
     assert_eq!(
-        render_rows(&scene, &camera, 4..9, &mut line, &mut display),
+        render_rows(&scene, &camera, 4..9, &mut line, &mut [], &mut display),
         Err(RenderError::RowsOutOfRange { end: 9, height: 8 })
     );
     assert!(
@@ -143,7 +233,15 @@ fn frame(width: u32, height: u32, presentation: Presentation) -> Recorder {
     let camera = scene.camera(width, height).unwrap();
     let mut display = Recorder::new(width, height);
     let mut line = vec![Rgb565::BLACK; width as usize];
-    render_frame(&scene, &camera, presentation, &mut line, &mut display).unwrap();
+    render_frame(
+        &scene,
+        &camera,
+        presentation,
+        &mut line,
+        &mut [],
+        &mut display,
+    )
+    .unwrap();
     display
 }
 

@@ -113,7 +113,7 @@ fn render_if_it_builds<S: Scalar>(desc: &SceneDesc<'_>, methods: Methods) -> boo
         pixels: vec![Default::default(); 24 * 16],
     };
     let mut line = [Default::default(); 24];
-    render_rows(&scene, &camera, 0..16, &mut line, &mut frame).is_ok()
+    render_rows(&scene, &camera, 0..16, &mut line, &mut [], &mut frame).is_ok()
 }
 
 const SCENES: u64 = 2000;
@@ -149,6 +149,7 @@ fn random_scenes_build_or_are_refused_and_render_without_panicking() {
             far: r.wild(extent * 4.0),
             max_depth: (r.next() * 5.0) as u8,
             samples: 1,
+            adaptive_samples: false,
             shadow_samples: 1,
             adaptive_shadows: false,
         };

@@ -31,6 +31,7 @@ fn scene<'a>(objects: &'a [ObjectDesc], lights: &'a [LightDesc]) -> SceneDesc<'a
         far: 20.0,
         max_depth: 3,
         samples: 1,
+        adaptive_samples: false,
         shadow_samples: 1,
         adaptive_shadows: false,
     }

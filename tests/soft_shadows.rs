@@ -66,6 +66,7 @@ fn floor_scene<'a>(
         far: 25.0,
         max_depth: 0,
         samples: 1,
+        adaptive_samples: false,
         shadow_samples: 256,
         adaptive_shadows,
     }

@@ -10,7 +10,8 @@ use core::fmt;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use obscura::{
-    Camera, Methods, Presentation, RenderError, Scalar, Scene, SceneDesc, SceneError, render_frame,
+    Camera, Corner, Methods, Presentation, RenderError, Scalar, Scene, SceneDesc, SceneError,
+    render_frame,
 };
 
 /// What goes wrong drawing a frame on `B`'s display.
@@ -28,8 +29,9 @@ pub trait Backend {
     /// Ends the frame begun.
     fn end(&mut self) {}
     /// Traces the frame `camera` sees of `scene` and sends it to the display in the order and
-    /// dither of `presentation`: by default on this core, through one line buffer
-    /// ([`render_frame`]). A board with a second core shares the rows between them.
+    /// dither of `presentation`: by default on this core, through one line buffer and the
+    /// corner rows of adaptive anti-aliasing ([`render_frame`], [`CORNER_ROWS`]). A board with
+    /// a second core shares the rows between them.
     ///
     /// # Errors
     /// When the display fails.
@@ -40,7 +42,15 @@ pub trait Backend {
         presentation: Presentation,
     ) -> Result<(), FrameError<Self>> {
         let mut line = [Rgb565::BLACK; SIDE as usize];
-        render_frame(scene, camera, presentation, &mut line, self.display())
+        let mut corners = [Corner::ZERO; CORNER_ROWS];
+        render_frame(
+            scene,
+            camera,
+            presentation,
+            &mut line,
+            &mut corners,
+            self.display(),
+        )
     }
     /// Reports a finished frame.
     fn report(&mut self, report: &Report<'_>);
@@ -79,7 +89,7 @@ pub struct Report<'a> {
     pub fixed_storage_bytes: usize,
 }
 
-pub use configured::render_all;
+pub use configured::{CORNER_ROWS, render_all};
 
 /// The frames the build configured, as its script wrote them.
 mod configured {

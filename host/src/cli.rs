@@ -153,6 +153,11 @@ pub struct SamplingArgs {
     /// scene's own `samples` when not given.
     #[arg(long, value_parser = clap::value_parser!(u16).range(1..=i64::from(MAX_SAMPLES)))]
     pub samples: Option<u16>,
+    /// Whether a pixel takes rays at its corners and splits where they differ, down to
+    /// 1/samples of it (`true`: Whitted's adaptive anti-aliasing, samples 4, 16, 64 or 256),
+    /// or takes all its samples (`false`); the scene's own `adaptive_samples` when not given.
+    #[arg(long)]
+    pub adaptive_samples: Option<bool>,
     /// Shadow rays per light with a radius, 1 to 256, spread over the light (soft shadows);
     /// the scene's own `shadow_samples` when not given.
     #[arg(long, value_parser = clap::value_parser!(u16).range(1..=i64::from(MAX_SAMPLES)))]
@@ -169,6 +174,9 @@ impl SamplingArgs {
     pub fn apply(&self, scene: &mut OwnedScene) {
         if let Some(samples) = self.samples {
             scene.samples = samples;
+        }
+        if let Some(adaptive) = self.adaptive_samples {
+            scene.adaptive_samples = adaptive;
         }
         if let Some(shadow_samples) = self.shadow_samples {
             scene.shadow_samples = shadow_samples;

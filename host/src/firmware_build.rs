@@ -35,9 +35,10 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 /// The environment variables the configuration is read from, as (name, default).
-pub const VARIABLES: [(&str, &str); 10] = [
+pub const VARIABLES: [(&str, &str); 11] = [
     (SCENES, "whitted"),
     (SAMPLES, SCENES_OWN),
+    (ADAPTIVE_SAMPLES, SCENES_OWN),
     (SHADOW_SAMPLES, SCENES_OWN),
     (ADAPTIVE_SHADOWS, SCENES_OWN),
     (FORMATS, "auto"),
@@ -53,11 +54,14 @@ const SAMPLES: &str = "OBSCURA_SAMPLES";
 /// Shadow rays per area light for every scene, or [`SCENES_OWN`]: each scene's own
 /// `shadow_samples`.
 const SHADOW_SAMPLES: &str = "OBSCURA_SHADOW_SAMPLES";
+/// Adaptive anti-aliasing for every scene (`true` or `false`), or [`SCENES_OWN`]: each scene's
+/// own `adaptive_samples`.
+const ADAPTIVE_SAMPLES: &str = "OBSCURA_ADAPTIVE_SAMPLES";
 /// Adaptive shadow rays for every scene (`true` or `false`), or [`SCENES_OWN`]: each scene's
 /// own `adaptive_shadows`.
 const ADAPTIVE_SHADOWS: &str = "OBSCURA_ADAPTIVE_SHADOWS";
-/// The value of [`SAMPLES`], [`SHADOW_SAMPLES`] or [`ADAPTIVE_SHADOWS`] that keeps each scene's
-/// own.
+/// The value of [`SAMPLES`], [`ADAPTIVE_SAMPLES`], [`SHADOW_SAMPLES`] or [`ADAPTIVE_SHADOWS`]
+/// that keeps each scene's own.
 const SCENES_OWN: &str = "scene";
 const FORMATS: &str = "OBSCURA_FORMATS";
 const TARGET_PSNR: &str = "OBSCURA_TARGET_PSNR";
@@ -103,7 +107,7 @@ impl Image<'_> {
     /// The build script's environment for this image: every variable, so that none is
     /// inherited from the caller's.
     #[must_use]
-    pub fn environment(&self) -> [(&'static str, String); 10] {
+    pub fn environment(&self) -> [(&'static str, String); 11] {
         fn given<T: ToString>(value: Option<T>) -> String {
             value.map_or_else(|| SCENES_OWN.to_owned(), |v| v.to_string())
         }
@@ -111,6 +115,7 @@ impl Image<'_> {
         [
             (SCENES, self.scenes.join(",")),
             (SAMPLES, given(sampling.samples)),
+            (ADAPTIVE_SAMPLES, given(sampling.adaptive_samples)),
             (SHADOW_SAMPLES, given(sampling.shadow_samples)),
             (ADAPTIVE_SHADOWS, given(sampling.adaptive_shadows)),
             (
@@ -219,16 +224,17 @@ pub fn configure(
                 )
             }),
     };
-    let adaptive_shadows = match value(ADAPTIVE_SHADOWS).trim() {
-        SCENES_OWN => None,
-        given => Some(given.parse().ok().with_context(|| {
-            format!("{ADAPTIVE_SHADOWS} is `{SCENES_OWN}`, `true` or `false`, not `{given}`")
-        })?),
+    let switch = |variable| match value(variable).trim() {
+        SCENES_OWN => Ok(None),
+        given => given.parse().map(Some).ok().with_context(|| {
+            format!("{variable} is `{SCENES_OWN}`, `true` or `false`, not `{given}`")
+        }),
     };
     let sampling = SamplingArgs {
         samples: count(SAMPLES)?,
+        adaptive_samples: switch(ADAPTIVE_SAMPLES)?,
         shadow_samples: count(SHADOW_SAMPLES)?,
-        adaptive_shadows,
+        adaptive_shadows: switch(ADAPTIVE_SHADOWS)?,
     };
     for scene in &mut scenes {
         sampling.apply(&mut scene.scene);
@@ -359,6 +365,17 @@ impl Configuration {
             "// Written by obscura_host::firmware_build for the configuration the environment \
              gave the build; do not edit.\n"
         );
+        let adaptive = self.scenes.iter().any(|s| s.scene.adaptive_samples);
+        let _ = writeln!(
+            out,
+            "/// The corner rows of adaptive anti-aliasing a frame keeps (none if no scene takes \
+             adaptive samples).\npub const CORNER_ROWS: usize = {};\n",
+            if adaptive {
+                obscura::corner_rows(SIDE)
+            } else {
+                0
+            }
+        );
         let _ = writeln!(
             out,
             "/// Draws {} in {}, by {}.",
@@ -469,6 +486,7 @@ fn scene_source(desc: &SceneDesc<'_>) -> String {
         far,
         max_depth,
         samples,
+        adaptive_samples,
         shadow_samples,
         adaptive_shadows,
     } = desc;
@@ -517,8 +535,8 @@ fn scene_source(desc: &SceneDesc<'_>) -> String {
         "obscura::SceneDesc {{\n            camera: obscura::CameraDesc {{ eye: {}, look_at: {}, \
          up: {}, vfov_degrees: {}, aperture: {}, focus_distance: {} }},\n            objects: &[\n{}            ],\n            \
          lights: &[{}],\n            ambient: {},\n            background: {background},\n            \
-         far: {},\n            max_depth: {max_depth},\n            samples: {samples},\n            shadow_samples: \
-         {shadow_samples},\n            adaptive_shadows: {adaptive_shadows},\n        }}",
+         far: {},\n            max_depth: {max_depth},\n            samples: {samples},\n            adaptive_samples: \
+         {adaptive_samples},\n            shadow_samples: {shadow_samples},\n            adaptive_shadows: {adaptive_shadows},\n        }}",
         vector(eye),
         vector(look_at),
         vector(up),

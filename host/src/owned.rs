@@ -31,6 +31,9 @@ pub struct OwnedScene {
     /// See [`SceneDesc::samples`].
     #[serde(default = "default_samples")]
     pub samples: u16,
+    /// See [`SceneDesc::adaptive_samples`].
+    #[serde(default)]
+    pub adaptive_samples: bool,
     /// See [`SceneDesc::shadow_samples`].
     #[serde(default = "default_samples")]
     pub shadow_samples: u16,
@@ -67,6 +70,7 @@ impl OwnedScene {
             far: desc.far,
             max_depth: desc.max_depth,
             samples: desc.samples,
+            adaptive_samples: desc.adaptive_samples,
             shadow_samples: desc.shadow_samples,
             adaptive_shadows: desc.adaptive_shadows,
         }
@@ -83,6 +87,7 @@ impl OwnedScene {
             far: self.far,
             max_depth: self.max_depth,
             samples: self.samples,
+            adaptive_samples: self.adaptive_samples,
             shadow_samples: self.shadow_samples,
             adaptive_shadows: self.adaptive_shadows,
         }

@@ -1,5 +1,5 @@
-//! Whole frames on the desktop: the core's scanline renderer run row by row on a thread pool,
-//! into an image, with every fixed-point sum and product checked ([`crate::checked`]).
+//! Whole frames on the desktop: the core's scanline renderer run band by band of rows on a
+//! thread pool, into an image, with every fixed-point sum and product checked ([`crate::checked`]).
 
 use crate::checked::{self, Overflowed};
 use crate::format::{Format, FormatJob};
@@ -12,8 +12,8 @@ use image::RgbImage;
 use indicatif::{ProgressBar, ProgressStyle};
 use obscura::pattern::{Pattern, SampleId};
 use obscura::{
-    Camera, Methods, Presentation, Ray, RootMethod, Scalar, Scene, SceneDesc, SceneError,
-    render_frame, render_rows,
+    Camera, Corner, Methods, Presentation, Ray, RootMethod, Scalar, Scene, SceneDesc, SceneError,
+    corner_rows, render_frame, render_rows,
 };
 use rayon::prelude::*;
 use std::convert::Infallible;
@@ -55,6 +55,10 @@ pub const MAX_OBJECTS: usize = 64;
 pub const MAX_LIGHTS: usize = 16;
 /// The host's ray stack: ray trees up to 15 levels deep.
 pub const RAY_STACK: usize = 16;
+
+/// Rows a thread renders at a time: a band shares its corner rows between its rows (adaptive
+/// anti-aliasing traces one more corner row a band than in one pass over the frame).
+const BAND: usize = 8;
 
 /// A scene in format `S` with the host's capacities.
 pub type HostScene<S> = Scene<S, MAX_OBJECTS, MAX_LIGHTS, RAY_STACK>;
@@ -111,19 +115,24 @@ impl<S: Scalar> Prepared<S> {
         let row_bytes = 3 * width as usize;
         let mut pixels = vec![0_u8; row_bytes * height as usize];
         let bar = progress_bar(progress, height);
-        let render_row = |line: &mut Vec<Rgb888>, (y, row): (usize, &mut [u8])| -> Result<()> {
-            let y = u32::try_from(y).context("an image row beyond u32")?;
-            self.render_row(y, line, &mut RowTarget { y, row })?;
-            bar.inc(1);
-            Ok(())
+        let render_band = |buffers: &mut Buffers, (band, pixels): (usize, &mut [u8])| {
+            let top = u32::try_from(band * BAND).context("an image row beyond u32")?;
+            let rows = top..top + u32::try_from(pixels.len() / row_bytes)?;
+            let count = u64::from(rows.end - rows.start);
+            self.render_band(rows, buffers, &mut BandTarget { top, width, pixels })?;
+            bar.inc(count);
+            Ok::<_, anyhow::Error>(())
         };
-        let new_line = || vec![Rgb888::BLACK; width as usize];
+        let new_buffers = || Buffers {
+            line: vec![Rgb888::BLACK; width as usize],
+            corners: vec![Corner::ZERO; corner_rows(width)],
+        };
         if threads <= 1 {
-            let mut line = new_line();
+            let mut buffers = new_buffers();
             pixels
-                .chunks_mut(row_bytes)
+                .chunks_mut(row_bytes * BAND)
                 .enumerate()
-                .try_for_each(|row| render_row(&mut line, row))?;
+                .try_for_each(|band| render_band(&mut buffers, band))?;
         } else {
             rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
@@ -131,41 +140,56 @@ impl<S: Scalar> Prepared<S> {
                 .context("cannot start the render threads")?
                 .install(|| {
                     pixels
-                        .par_chunks_mut(row_bytes)
+                        .par_chunks_mut(row_bytes * BAND)
                         .enumerate()
-                        .try_for_each_init(new_line, render_row)
+                        .try_for_each_init(new_buffers, render_band)
                 })?;
         }
         bar.finish_and_clear();
         RgbImage::from_raw(width, height, pixels).context("the image buffer has the wrong size")
     }
 
-    /// Renders row `y` through `line` into `target`, with every sum and product checked.
-    fn render_row<D>(&self, y: u32, line: &mut [D::Color], target: &mut D) -> Result<()>
+    /// Renders `rows` through `buffers` into `target`, with every sum and product checked.
+    fn render_band<D>(&self, rows: Range<u32>, buffers: &mut Buffers, target: &mut D) -> Result<()>
     where
-        D: DrawTarget<Error = Infallible>,
-        D::Color: obscura::DisplayColor,
+        D: DrawTarget<Color = Rgb888, Error = Infallible>,
     {
-        let rendered =
-            checked::catch(|| render_rows(&self.scene, &self.camera, y..y + 1, line, target));
+        let Buffers { line, corners } = buffers;
+        let rendered = checked::catch(|| {
+            render_rows(
+                &self.scene,
+                &self.camera,
+                rows.clone(),
+                line,
+                corners.as_mut_slice(),
+                target,
+            )
+        });
         match rendered {
-            Ok(drawn) => drawn.map_err(|error| anyhow!("row {y}: {error}")),
-            Err(overflowed) => Err(self.overflow_at(y, overflowed)),
+            Ok(drawn) => drawn.map_err(|error| anyhow!("rows {rows:?}: {error}")),
+            Err(overflowed) => Err(self.overflow_at(rows, overflowed)),
         }
     }
 
-    /// The error for an overflow in row `y`, naming the first pixel of the row whose trace
+    /// The error for an overflow in `rows`, naming the first pixel of them whose trace
     /// overflows.
-    fn overflow_at(&self, y: u32, overflowed: Overflowed) -> anyhow::Error {
-        let (first, pixel) = (0..self.camera.width())
-            .zip(self.primary_rays(y))
-            .find_map(|(x, ray)| {
-                checked::catch(|| self.scene.trace(ray, SampleId { x, y, sample: 0 }))
-                    .err()
-                    .map(|o| (o, (x, y)))
+    fn overflow_at(&self, rows: Range<u32>, overflowed: Overflowed) -> anyhow::Error {
+        let (first, pixel) = rows
+            .clone()
+            .find_map(|y| {
+                (0..self.camera.width())
+                    .zip(self.primary_rays(y))
+                    .find_map(|(x, ray)| {
+                        checked::catch(|| self.scene.trace(ray, SampleId { x, y, sample: 0 }))
+                            .err()
+                            .map(|o| (o, (x, y)))
+                    })
             })
             .map_or((overflowed, None), |(o, pixel)| (o, Some(pixel)));
-        let place = pixel.map_or_else(|| format!("row {y}"), |(x, y)| format!("pixel ({x}, {y})"));
+        let place = pixel.map_or_else(
+            || format!("rows {rows:?}"),
+            |(x, y)| format!("pixel ({x}, {y})"),
+        );
         anyhow!(
             "{} while tracing {place} in {}: the scene build's range proof missed it (a bug in \
              obscura: please report it with the scene)",
@@ -189,28 +213,20 @@ impl<S: Scalar> Prepared<S> {
             watch,
         };
         let mut line = vec![Rgb565::BLACK; width as usize];
+        let mut corners = vec![Corner::ZERO; corner_rows(width)];
         let drawn = checked::catch(|| {
             render_frame(
                 &self.scene,
                 &self.camera,
                 presentation,
                 &mut line,
+                corners.as_mut_slice(),
                 &mut frame,
             )
         });
         match drawn {
             Ok(drawn) => drawn.map_err(|error| anyhow!("{error}"))?,
-            Err(overflowed) => {
-                let y = (0..height)
-                    .find(|&y| {
-                        (0..).zip(self.primary_rays(y)).any(|(x, ray)| {
-                            let id = SampleId { x, y, sample: 0 };
-                            checked::catch(|| self.scene.trace(ray, id)).is_err()
-                        })
-                    })
-                    .unwrap_or(0);
-                return Err(self.overflow_at(y, overflowed));
-            }
+            Err(overflowed) => return Err(self.overflow_at(0..height, overflowed)),
         }
         Ok(frame.pixels)
     }
@@ -229,7 +245,7 @@ impl<S: Scalar> Prepared<S> {
                     .map(|ray| self.scene.first_hit(&ray))
                     .collect::<Vec<_>>()
             });
-            objects.extend(row.map_err(|overflowed| self.overflow_at(y, overflowed))?);
+            objects.extend(row.map_err(|overflowed| self.overflow_at(y..y + 1, overflowed))?);
         }
         Ok(objects)
     }
@@ -265,7 +281,7 @@ impl<S: Scalar> Prepared<S> {
                     .map(|(x, ray)| self.scene.trace(ray, SampleId { x, y, sample: 0 }).met)
                     .collect::<Vec<_>>()
             });
-            met.extend(row.map_err(|overflowed| self.overflow_at(y, overflowed))?);
+            met.extend(row.map_err(|overflowed| self.overflow_at(y..y + 1, overflowed))?);
         }
         Ok(met)
     }
@@ -333,19 +349,27 @@ fn progress_bar(label: Option<&str>, rows: u32) -> ProgressBar {
     }
 }
 
-/// One row of an RGB888 image, as a draw target for the row `y`.
-struct RowTarget<'a> {
-    y: u32,
-    row: &'a mut [u8],
+/// A thread's buffers: a line of pixels and the corner rows of adaptive anti-aliasing.
+struct Buffers {
+    line: Vec<Rgb888>,
+    corners: Vec<Corner>,
 }
 
-impl OriginDimensions for RowTarget<'_> {
+/// Rows of an RGB888 image `width` pixels wide from row `top` down, as a draw target.
+struct BandTarget<'a> {
+    top: u32,
+    width: u32,
+    pixels: &'a mut [u8],
+}
+
+impl OriginDimensions for BandTarget<'_> {
     fn size(&self) -> Size {
-        Size::new(u32::try_from(self.row.len() / 3).unwrap_or(0), self.y + 1)
+        let rows = u32::try_from(self.pixels.len() / (3 * self.width.max(1) as usize));
+        Size::new(self.width, self.top + rows.unwrap_or(0))
     }
 }
 
-impl DrawTarget for RowTarget<'_> {
+impl DrawTarget for BandTarget<'_> {
     type Color = Rgb888;
     type Error = Infallible;
 
@@ -354,9 +378,16 @@ impl DrawTarget for RowTarget<'_> {
         I: IntoIterator<Item = Pixel<Rgb888>>,
     {
         for Pixel(point, colour) in pixels {
-            let on_row = u32::try_from(point.y).is_ok_and(|y| y == self.y);
-            let x = usize::try_from(point.x).ok().filter(|_| on_row);
-            if let Some(pixel) = x.and_then(|x| self.row.get_mut(3 * x..3 * x + 3)) {
+            let place = u32::try_from(point.x)
+                .ok()
+                .filter(|&x| x < self.width)
+                .zip(
+                    u32::try_from(point.y)
+                        .ok()
+                        .and_then(|y| y.checked_sub(self.top)),
+                )
+                .map(|(x, row)| 3 * (row * self.width + x) as usize);
+            if let Some(pixel) = place.and_then(|i| self.pixels.get_mut(i..i + 3)) {
                 pixel.copy_from_slice(&[colour.r(), colour.g(), colour.b()]);
             }
         }

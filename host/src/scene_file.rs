@@ -405,6 +405,22 @@ mod tests {
     }
 
     #[test]
+    fn adaptive_samples_are_read_and_refused_at_their_count_when_not_a_power_of_four() {
+        let text = MINIMAL.replace(
+            "far = 20.0",
+            "far = 20.0\n        samples = 16\n        adaptive_samples = true",
+        );
+        let scene = parse(&text).expect("parses");
+        assert_eq!((scene.samples, scene.adaptive_samples), (16, true));
+        assert!(obscura::Scene::<f32, 4, 4, 8>::build(&scene.desc()).is_ok());
+        let eight = text.replace("samples = 16", "samples = 8");
+        let error = obscura::Scene::<f32, 4, 4, 8>::build(&parse(&eight).unwrap().desc())
+            .expect_err("not a power of 4");
+        assert!(error.to_string().contains("4, 16, 64 or 256"), "{error}");
+        assert_eq!(placed(&eight, error), "scene.toml:3:19");
+    }
+
+    #[test]
     fn an_area_light_and_its_shadow_rays_are_read_and_refused_where_they_are_wrong() {
         let text = MINIMAL
             .replace(

@@ -76,6 +76,8 @@ pub(crate) struct Settings<S> {
     pub(crate) max_depth: u8,
     /// Rays per pixel ([`SceneDesc::samples`]).
     pub(crate) samples: u16,
+    /// See [`SceneDesc::adaptive_samples`].
+    pub(crate) adaptive_samples: bool,
     /// See [`SceneDesc::adaptive_shadows`].
     pub(crate) adaptive_shadows: bool,
     pub(crate) methods: Methods,
@@ -299,6 +301,7 @@ impl<S: Scalar> Converter<S> {
             min_weight: S::ratio(1, WEIGHT_CUTOFF),
             max_depth: desc.max_depth,
             samples: desc.samples,
+            adaptive_samples: desc.adaptive_samples,
             adaptive_shadows: desc.adaptive_shadows,
             methods,
         };

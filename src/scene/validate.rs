@@ -29,6 +29,9 @@ pub(super) fn validate(desc: &SceneDesc<'_>) -> Result<Frame, SceneError> {
             ));
         }
     }
+    if desc.adaptive_samples {
+        adaptive(desc)?;
+    }
     match desc.background {
         BackgroundDesc::Solid(c) => colour(Item::Scene, "background.solid", c)?,
         BackgroundDesc::Gradient {
@@ -81,6 +84,30 @@ pub(super) fn validate(desc: &SceneDesc<'_>) -> Result<Frame, SceneError> {
         inside_world(item, reach, desc.far)?;
     }
     Ok(frame)
+}
+
+/// Adaptive samples split a pixel into quarters, so they come in powers of 4; and they spread
+/// over the pixel alone, so the camera is a pinhole.
+fn adaptive(desc: &SceneDesc<'_>) -> Result<(), SceneError> {
+    if !matches!(desc.samples, 4 | 16 | 64 | 256) {
+        return Err(out_of_bounds(
+            Item::Scene,
+            "samples",
+            f32::from(desc.samples),
+            "4, 16, 64 or 256 with adaptive_samples (a pixel splits into 4, 16, 64 or 256 \
+             cells at most)",
+        ));
+    }
+    if desc.camera.aperture != 0.0 {
+        return Err(out_of_bounds(
+            Item::Camera,
+            "aperture",
+            desc.camera.aperture,
+            "0 with adaptive_samples (they spread over the pixel, not a lens: use samples \
+             alone for depth of field)",
+        ));
+    }
+    Ok(())
 }
 
 fn camera(camera: &CameraDesc) -> Result<Frame, SceneError> {

@@ -5,7 +5,7 @@
 use core::convert::Infallible;
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
-use obscura::{Methods, Scalar, Scene, SceneDesc, render_rows};
+use obscura::{Corner, Methods, Scalar, Scene, SceneDesc, corner_rows, render_rows};
 
 /// A frame in memory: what a display would show.
 pub struct Frame {
@@ -49,7 +49,16 @@ pub fn render<S: Scalar>(
         pixels: vec![Rgb888::BLACK; (width * height) as usize],
     };
     let mut line = vec![Rgb888::BLACK; width as usize];
-    render_rows(&scene, &camera, 0..height, &mut line, &mut frame).expect("renders");
+    let mut corners = vec![Corner::ZERO; corner_rows(width)];
+    render_rows(
+        &scene,
+        &camera,
+        0..height,
+        &mut line,
+        corners.as_mut_slice(),
+        &mut frame,
+    )
+    .expect("renders");
     let objects = (0..height)
         .filter_map(|y| camera.row(y))
         .flat_map(|row| row.rays())

@@ -34,10 +34,10 @@ use embedded_hal_bus::spi::ExclusiveDevice;
 use mipidsi::interface::SpiInterface;
 use mipidsi::models::ST7789;
 use mipidsi::options::ColorInversion;
-use obscura::{Camera, Presentation, RenderError, Scalar, Scene, send_row, trace_row};
+use obscura::{Camera, Corner, Presentation, RenderError, Scalar, Scene, send_row, trace_row};
 use obscura_firmware::SIDE;
 use obscura_firmware::clock::Clock;
-use obscura_firmware::frames::{self, Backend, FrameError, Job, Report};
+use obscura_firmware::frames::{self, Backend, CORNER_ROWS, FrameError, Job, Report};
 use obscura_firmware::screen::Screen;
 use rp2040_hal::fugit::RateExtU32;
 use rp2040_hal::gpio::{FunctionSpi, Pins};
@@ -61,6 +61,14 @@ static CORE1_STACK: Stack<4096> = Stack::new();
 /// after the answer; never by both at once.
 struct Line(UnsafeCell<[Rgb565; SIDE as usize]>);
 
+/// Core 1's corner rows for adaptive anti-aliasing: core 1's alone.
+struct Corners(UnsafeCell<[Corner; CORNER_ROWS]>);
+
+// SAFETY: only core 1 touches them.
+unsafe impl Sync for Corners {}
+
+static CORE1_CORNERS: Corners = Corners(UnsafeCell::new([Corner::ZERO; CORNER_ROWS]));
+
 // SAFETY: the mailboxes order every access (see `Line`).
 unsafe impl Sync for Line {}
 
@@ -70,8 +78,9 @@ static CORE1_LINE: Line = Line(UnsafeCell::new([Rgb565::BLACK; SIDE as usize]));
 const END_OF_FRAME: u32 = u32::MAX;
 
 /// Traces row `y` of the frame into a line: what core 0 hands core 1 for a frame.
-type Trace<'a> =
-    dyn Fn(u32, &mut [Rgb565]) -> Result<(), RenderError<core::convert::Infallible>> + Sync + 'a;
+type Trace<'a> = dyn Fn(u32, &mut [Rgb565], &mut [Corner]) -> Result<(), RenderError<core::convert::Infallible>>
+    + Sync
+    + 'a;
 
 #[rp2040_hal::entry]
 fn main() -> ! {
@@ -170,7 +179,9 @@ fn core1_traces_rows() {
             }
             // SAFETY: core 0 reads the line only after our answer (see `Line`).
             let line = unsafe { &mut *CORE1_LINE.0.get() };
-            let traced = trace(y, line).is_ok();
+            // SAFETY: only core 1 uses its corner rows.
+            let corners = unsafe { &mut *CORE1_CORNERS.0.get() };
+            let traced = trace(y, line, corners).is_ok();
             fence(Ordering::Release);
             fifo.write_blocking(u32::from(traced));
         }
@@ -204,11 +215,14 @@ impl<D: DrawTarget<Color = Rgb565, Error: fmt::Debug>> Backend for Pico<D> {
         presentation: Presentation,
     ) -> Result<(), FrameError<Self>> {
         let dither = presentation.dither;
-        let trace = |y: u32, line: &mut [Rgb565]| trace_row(scene, camera, y, dither, line);
+        let trace = |y: u32, line: &mut [Rgb565], corners: &mut [Corner]| {
+            trace_row(scene, camera, y, dither, line, corners)
+        };
         let shared: &Trace<'_> = &trace;
         // Core 1 holds this address until it answers the end of the frame, below.
         self.fifo.write_blocking(&raw const shared as usize as u32);
         let mut line = [Rgb565::BLACK; SIDE as usize];
+        let mut corners = [Corner::ZERO; CORNER_ROWS];
         let mut order = presentation.order.rows(SIDE);
         let mut drawn = Ok(());
         while let Some((first, first_rows)) = order.next() {
@@ -216,7 +230,7 @@ impl<D: DrawTarget<Color = Rgb565, Error: fmt::Debug>> Backend for Pico<D> {
             if let Some((y, _)) = second {
                 self.fifo.write_blocking(y);
             }
-            let own = trace(first, &mut line)
+            let own = trace(first, &mut line, &mut corners)
                 .map_err(RenderError::for_target)
                 .and_then(|()| send_row(self.display(), &line, first, first_rows));
             if let Some((y, rows)) = second {

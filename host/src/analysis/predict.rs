@@ -473,6 +473,7 @@ mod tests {
             far: 10.0,
             max_depth: 0,
             samples: 1,
+            adaptive_samples: false,
             shadow_samples: 1,
             adaptive_shadows: false,
         };

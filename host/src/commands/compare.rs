@@ -46,8 +46,10 @@ pub struct Report {
 pub struct Converged {
     /// The converged render's rays per pixel, and shadow rays per disc light.
     pub samples: u16,
-    /// The scene's own rays per pixel.
+    /// The scene's own rays per pixel (with adaptive samples, the most a pixel takes).
     pub scene_samples: u16,
+    /// Whether the scene's samples are adaptive ([`obscura::SceneDesc::adaptive_samples`]).
+    pub adaptive_samples: bool,
     /// The format's image against it (`null` when identical).
     pub psnr_db: f64,
     /// The f64 image with the scene's samples against it (`null` when identical).
@@ -157,6 +159,7 @@ fn compare(args: &CompareArgs, named: &NamedScene) -> Result<()> {
             .map(|samples| {
                 let mut many = scene.clone();
                 many.samples = samples;
+                many.adaptive_samples = false;
                 many.shadow_samples = samples;
                 many.adaptive_shadows = false;
                 let desc = many.desc();
@@ -170,6 +173,7 @@ fn compare(args: &CompareArgs, named: &NamedScene) -> Result<()> {
                 Ok::<_, anyhow::Error>(Converged {
                     samples,
                     scene_samples: scene.samples,
+                    adaptive_samples: scene.adaptive_samples,
                     psnr_db: psnr(&image),
                     reference_psnr_db: psnr(&truth),
                 })
@@ -187,9 +191,10 @@ fn compare(args: &CompareArgs, named: &NamedScene) -> Result<()> {
     )?;
     if let Some(c) = &report.converged {
         say!(
-            "against f64 with {} rays per pixel (how far {} are from converged): {format} {:.2} dB, \
-             {reference} {:.2} dB",
+            "against f64 with {} rays per pixel (how far {}{} are from converged): {format} {:.2} \
+             dB, {reference} {:.2} dB",
             c.samples,
+            if c.adaptive_samples { "adaptive " } else { "" },
             c.scene_samples,
             c.psnr_db,
             c.reference_psnr_db

@@ -38,6 +38,8 @@ struct Report {
     ram_bytes: u64,
     storage_bytes: u64,
     fixed_storage_bytes: u64,
+    /// The corner rows the image keeps for adaptive samples, on the stack (0 without).
+    corner_rows_bytes: u64,
 }
 
 /// The formats `args` ask for, `auto` resolved to the cheapest on the target that holds every
@@ -152,6 +154,11 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
         plugin,
     )?;
 
+    let corner_rows_bytes = if scenes.iter().any(|s| s.scene.adaptive_samples) {
+        (obscura::corner_rows(firmware::SIDE) * size_of::<obscura::Corner>()) as u64
+    } else {
+        0
+    };
     let mut reports = Vec::new();
     let mut mismatched = Vec::new();
     for scene in &scenes {
@@ -217,6 +224,7 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
                 ram_bytes: size.ram,
                 storage_bytes: frame.storage_bytes,
                 fixed_storage_bytes: frame.fixed_storage_bytes,
+                corner_rows_bytes,
             });
         }
     }
@@ -367,6 +375,17 @@ fn print_table(target: Target, reports: &[Report]) -> io::Result<()> {
             first.methods,
             first.order,
             first.dither
+        )?;
+    }
+    if let Some(bytes) = reports
+        .first()
+        .map(|r| r.corner_rows_bytes)
+        .filter(|&b| b > 0)
+    {
+        say!(
+            "adaptive samples keep two rows of {} corners, {bytes} bytes, on the stack (within \
+             the stack column)",
+            obscura::corner_rows(firmware::SIDE) / 2
         )?;
     }
     say!(

@@ -164,6 +164,7 @@ impl Generator {
             far: far as f32,
             max_depth: self.0.random_range(0..=MAX_DEPTH),
             samples: 1,
+            adaptive_samples: false,
             shadow_samples: 1,
             adaptive_shadows: false,
         };
@@ -204,6 +205,12 @@ impl Generator {
             if self.chance(0.5) {
                 scene.camera.focus_distance = Some((unit * self.log_uniform(0.05, 20.0)) as f32);
             }
+        }
+        // An eighth of the scenes without a lens take adaptive samples (Whitted's corners),
+        // split to 4 or 16 cells.
+        if scene.camera.aperture == 0.0 && self.chance(0.125) {
+            scene.samples = if self.chance(0.5) { 4 } else { 16 };
+            scene.adaptive_samples = true;
         }
         Generated { scene, size }
     }

@@ -52,6 +52,7 @@ impl FormatJob for Job {
                 far: 25.0,
                 max_depth: 0,
                 samples: 1,
+                adaptive_samples: false,
                 shadow_samples: 1,
                 adaptive_shadows: false,
             };

@@ -37,6 +37,7 @@ fn scene(floor: ShapeDesc, far: f32, objects: &mut Vec<ObjectDesc>) -> SceneDesc
         far,
         max_depth: 0,
         samples: 1,
+        adaptive_samples: false,
         shadow_samples: 1,
         adaptive_shadows: false,
     }

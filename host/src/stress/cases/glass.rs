@@ -83,6 +83,7 @@ fn scene(offset: f64) -> SceneDesc<'static> {
         far: 12.0,
         max_depth: 4,
         samples: 1,
+        adaptive_samples: false,
         shadow_samples: 1,
         adaptive_shadows: false,
     }

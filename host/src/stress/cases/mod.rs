@@ -51,6 +51,7 @@ fn bare<'a>(objects: &'a [obscura::ObjectDesc], far: f32) -> SceneDesc<'a> {
         far,
         max_depth: 0,
         samples: 1,
+        adaptive_samples: false,
         shadow_samples: 1,
         adaptive_shadows: false,
     }

@@ -57,6 +57,7 @@ fn scene(light: &[LightDesc]) -> SceneDesc<'_> {
         far: 12.0,
         max_depth: 0,
         samples: 1,
+        adaptive_samples: false,
         shadow_samples: 16,
         adaptive_shadows: false,
     }

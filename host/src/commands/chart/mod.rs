@@ -1,7 +1,10 @@
 //! `obscura chart`: speed against accuracy for every format and method variant that makes
 //! sense, on both built-in scenes. Cost three ways (instructions per pixel on the Cortex-M4F and
 //! the Cortex-M0, counted under QEMU; host time per pixel, timed in one run), error two ways
-//! (PSNR and object mismatch against f64), and the Pareto front of each pairing.
+//! (PSNR and object mismatch against f64), and the Pareto front of each pairing. Then the
+//! samples axis ([`samples`]): rays per pixel, fixed and adaptive, against cost.
+
+mod samples;
 
 use crate::cli::{ChartArgs, SamplingArgs};
 use crate::cost;
@@ -223,7 +226,7 @@ pub fn run(args: &ChartArgs) -> Result<()> {
         svg.display(),
         png.display()
     )?;
-    Ok(())
+    samples::run(args)
 }
 
 fn find(scene: &str, format: &str) -> Result<(&'static BuiltIn, Format)> {
