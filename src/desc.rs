@@ -29,7 +29,8 @@ pub struct SceneDesc<'a> {
     /// Adaptive anti-aliasing after Whitted (1980, [`crate::adaptive`]): rays at the pixels'
     /// corners, shared with their neighbours, and cells split into quarters where their
     /// corners differ, down to 1/`samples` of the pixel (`samples` then 4, 16, 64 or 256).
-    /// Flat regions cost about a ray a pixel. Not with a lens.
+    /// Flat regions cost about a ray a pixel, a pixel split all through more than `samples`.
+    /// Not with a lens.
     pub adaptive_samples: bool,
     /// Shadow rays from a point to each light with a [`LightDesc::radius`], 1 to
     /// [`MAX_SAMPLES`](crate::pattern::MAX_SAMPLES): 1 aims at the light's centre (a hard

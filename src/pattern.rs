@@ -44,7 +44,8 @@ pub struct SampleId {
     pub x: u32,
     /// The pixel's row.
     pub y: u32,
-    /// Which of the pixel's samples (0 for a one-sample image).
+    /// Which of the pixel's samples (0 for a one-sample image; with adaptive samples, 0 for
+    /// the pixel's top left corner and 1 + a point's place on the pixel's grid for the others).
     pub sample: u16,
 }
 

@@ -29,9 +29,6 @@ pub(super) fn validate(desc: &SceneDesc<'_>) -> Result<Frame, SceneError> {
             ));
         }
     }
-    if desc.adaptive_samples {
-        adaptive(desc)?;
-    }
     match desc.background {
         BackgroundDesc::Solid(c) => colour(Item::Scene, "background.solid", c)?,
         BackgroundDesc::Gradient {
@@ -51,6 +48,9 @@ pub(super) fn validate(desc: &SceneDesc<'_>) -> Result<Frame, SceneError> {
         }
     }
     let frame = camera(&desc.camera)?;
+    if desc.adaptive_samples {
+        adaptive(desc)?;
+    }
     inside_world(Item::Camera, frame.aperture, desc.far)?;
     let eye = Vec3::from_f32(desc.camera.eye);
     for (i, object) in desc.objects.iter().enumerate() {

@@ -24,6 +24,7 @@
 )]
 
 use core::cell::UnsafeCell;
+use core::convert::Infallible;
 use core::fmt;
 use core::sync::atomic::{Ordering, fence};
 use embedded_graphics_core::draw_target::DrawTarget;
@@ -62,7 +63,7 @@ static CORE1_STACK: Stack<4096> = Stack::new();
 struct Line(UnsafeCell<[Rgb565; SIDE as usize]>);
 
 /// Core 1's corner rows for adaptive anti-aliasing: core 1's alone.
-struct Corners(UnsafeCell<[Corner; CORNER_ROWS]>);
+struct Corners(UnsafeCell<CornerRows>);
 
 // SAFETY: only core 1 touches them.
 unsafe impl Sync for Corners {}
@@ -78,9 +79,12 @@ static CORE1_LINE: Line = Line(UnsafeCell::new([Rgb565::BLACK; SIDE as usize]));
 const END_OF_FRAME: u32 = u32::MAX;
 
 /// Traces row `y` of the frame into a line: what core 0 hands core 1 for a frame.
-type Trace<'a> = dyn Fn(u32, &mut [Rgb565], &mut [Corner]) -> Result<(), RenderError<core::convert::Infallible>>
-    + Sync
-    + 'a;
+type Trace<'a> =
+    dyn Fn(u32, &mut [Rgb565], &mut CornerRows) -> Result<(), RenderError<Infallible>> + Sync + 'a;
+
+/// A core's corner rows for adaptive anti-aliasing: an empty array, and no adaptive code in the
+/// build, unless a scene takes adaptive samples.
+type CornerRows = [Corner; CORNER_ROWS];
 
 #[rp2040_hal::entry]
 fn main() -> ! {
@@ -215,7 +219,7 @@ impl<D: DrawTarget<Color = Rgb565, Error: fmt::Debug>> Backend for Pico<D> {
         presentation: Presentation,
     ) -> Result<(), FrameError<Self>> {
         let dither = presentation.dither;
-        let trace = |y: u32, line: &mut [Rgb565], corners: &mut [Corner]| {
+        let trace = |y: u32, line: &mut [Rgb565], corners: &mut CornerRows| {
             trace_row(scene, camera, y, dither, line, corners)
         };
         let shared: &Trace<'_> = &trace;

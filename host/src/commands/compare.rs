@@ -46,7 +46,8 @@ pub struct Report {
 pub struct Converged {
     /// The converged render's rays per pixel, and shadow rays per disc light.
     pub samples: u16,
-    /// The scene's own rays per pixel (with adaptive samples, the most a pixel takes).
+    /// The scene's own rays per pixel (with adaptive samples, the most cells a pixel splits
+    /// into).
     pub scene_samples: u16,
     /// Whether the scene's samples are adaptive ([`obscura::SceneDesc::adaptive_samples`]).
     pub adaptive_samples: bool,
