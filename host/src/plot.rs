@@ -58,7 +58,6 @@ pub fn speed_accuracy(points: &[SpeedPoint], svg: &Path, png: &Path) -> Result<(
     write_both(&SpeedChart::new(points), svg, png)
 }
 
-/// Draws the stability chart to `svg` and `png`.
 impl StabilitySeries {
     /// The line's label: the format, and the method where the case compares methods.
     pub fn label(&self) -> String {
@@ -70,8 +69,10 @@ impl StabilitySeries {
     }
 }
 
-pub fn stability(series: &[StabilitySeries], svg: &Path, png: &Path) -> Result<()> {
-    write_both(&StabilityChart::new(series), svg, png)
+/// Draws series across a parameter, a panel per case, titled `title`, to `svg` and `png`: the
+/// stability chart, and the chart's samples axis.
+pub fn stability(title: &str, series: &[StabilitySeries], svg: &Path, png: &Path) -> Result<()> {
+    write_both(&StabilityChart::new(title, series), svg, png)
 }
 
 /// A drawing error of any backend, as plotters reports it.
@@ -708,6 +709,8 @@ const STABILITY_HEADER: u32 = 50;
 /// The stability chart, ready to draw.
 #[derive(Debug)]
 struct StabilityChart<'a> {
+    /// The title.
+    title: &'a str,
     /// The series, grouped by case in order of first appearance.
     cases: Vec<(&'a str, Vec<&'a StabilitySeries>)>,
     /// The formats (a label's first word), in order of first appearance: their colours.
@@ -717,8 +720,8 @@ struct StabilityChart<'a> {
 }
 
 impl<'a> StabilityChart<'a> {
-    /// The chart of `series`.
-    fn new(series: &'a [StabilitySeries]) -> Self {
+    /// The chart of `series`, titled `title`.
+    fn new(title: &'a str, series: &'a [StabilitySeries]) -> Self {
         let cases: Vec<(&str, Vec<&StabilitySeries>)> =
             first_appearance(series.iter().map(|s| s.case.as_str()))
                 .into_iter()
@@ -730,6 +733,7 @@ impl<'a> StabilityChart<'a> {
             _ => 3,
         };
         StabilityChart {
+            title,
             cases,
             formats: first_appearance(series.iter().map(|s| s.format.as_str())),
             columns,
@@ -850,11 +854,7 @@ impl Chart for StabilityChart<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<DB> {
         root.fill(&WHITE)?;
         let (header, body) = root.split_vertically(STABILITY_HEADER);
-        header.draw_text(
-            "Stability under stress (× at the bottom: scene refused up front by the tracer)",
-            &text_style(20),
-            (20, 14),
-        )?;
+        header.draw_text(self.title, &text_style(20), (20, 14))?;
         if self.cases.is_empty() {
             return empty_panel(&body, "stability", "no stress cases");
         }
@@ -1169,7 +1169,7 @@ mod tests {
         ];
         let dir = scratch("stability");
         let (svg, png) = (dir.join("stress.svg"), dir.join("stress.png"));
-        stability(&all, &svg, &png).unwrap();
+        stability("stability", &all, &svg, &png).unwrap();
         check(&svg, &png, (1200, 50 + 900), "tiny sphere");
         let svg_text = std::fs::read_to_string(&svg).unwrap();
         assert!(svg_text.contains("refused up front"));
@@ -1184,7 +1184,8 @@ mod tests {
         let error = speed_accuracy(&points, &dir.join("c.svg"), &dir.join("c.png")).unwrap_err();
         assert!(format!("{error:#}").contains("c.svg"), "{error:#}");
         let all = [series("case", true, "f32", &[(1.0, Some(1.0))])];
-        let error = stability(&all, &dir.join("s.svg"), &dir.join("s.png")).unwrap_err();
+        let error =
+            stability("stability", &all, &dir.join("s.svg"), &dir.join("s.png")).unwrap_err();
         assert!(format!("{error:#}").contains("s.svg"), "{error:#}");
         let _ = std::fs::remove_dir_all(&base);
     }

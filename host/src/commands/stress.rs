@@ -69,7 +69,12 @@ pub fn run(args: &StressArgs) -> Result<()> {
         args.out_dir.join("stability.svg"),
         args.out_dir.join("stability.png"),
     );
-    plot::stability(&series, &svg, &png)?;
+    plot::stability(
+        "Stability under stress (× at the bottom: scene refused up front by the tracer)",
+        &series,
+        &svg,
+        &png,
+    )?;
     say!("wrote {} and {}", svg.display(), png.display())?;
     if let Some(path) = &args.json {
         let reports: Vec<CaseReport<'_>> = results

@@ -147,7 +147,12 @@ pub fn run(args: &ChartArgs) -> Result<()> {
         args.out_dir.join("samples-accuracy.svg"),
         args.out_dir.join("samples-accuracy.png"),
     );
-    plot::stability(&series(&points), &svg, &png)?;
+    plot::stability(
+        "whitted: rays per pixel, fixed and adaptive, against cost and distance from converged",
+        &series(&points),
+        &svg,
+        &png,
+    )?;
     print_table(&points)?;
     say!(
         "wrote {}, {} and {}",
