@@ -117,35 +117,7 @@ fn coverage(vertical: bool, x: u32, y: u32) -> f64 {
 /// fraction bits and i16f16.
 #[test]
 fn supersampling_covers_an_edge_as_geometry_says() {
-    fn check<S: Scalar>() {
-        for vertical in [true, false] {
-            for samples in [4, 16, 64] {
-                let objects = [edge(vertical)];
-                let desc = scene(&objects, samples);
-                let (frame, _) = render::<S>(&desc, SIDE, SIDE, Methods::LECTURE);
-                for (i, pixel) in frame.pixels.iter().enumerate() {
-                    let (x, y) = (i as u32 % SIDE, i as u32 / SIDE);
-                    let want = coverage(vertical, x, y);
-                    let got = f64::from(pixel.r()) / 255.0;
-                    let bound = if want == 0.0 || want == 1.0 {
-                        0.0
-                    } else {
-                        1.0 / f64::from(samples) + 0.5 / 255.0
-                    };
-                    assert!(
-                        (got - want).abs() <= bound,
-                        "{} {samples} samples, {}: ({x}, {y}) is {got}, geometry says {want}",
-                        S::NAME,
-                        if vertical { "vertical" } else { "across" },
-                    );
-                }
-            }
-        }
-    }
-    check::<f64>();
-    check::<f32>();
-    check::<I8f24>();
-    check::<I16F16>();
+    covers_the_edge(false, |samples| 1.0 / f64::from(samples));
 }
 
 /// Adaptive samples (Whitted's corners, split where they differ) draw a pixel off the edge
@@ -153,13 +125,19 @@ fn supersampling_covers_an_edge_as_geometry_says() {
 /// crosses show the mean of their corners, one side black, the other white.
 #[test]
 fn adaptive_samples_cover_an_edge_as_geometry_says() {
-    fn check<S: Scalar>() {
+    covers_the_edge(true, |samples| 0.5 / f64::from(samples).sqrt());
+}
+
+/// Checks that 4, 16 and 64 samples (adaptive or not) draw pixels off the edge exactly and the
+/// edge's own to within `error(samples)` of its coverage (and half an 8-bit level), in `f64`,
+/// `f32`, `i8f24` and `i16f16`.
+fn covers_the_edge(adaptive: bool, error: fn(u16) -> f64) {
+    fn check<S: Scalar>(adaptive: bool, error: fn(u16) -> f64) {
         for vertical in [true, false] {
             for samples in [4_u16, 16, 64] {
                 let objects = [edge(vertical)];
-                let desc = sampled(&objects, samples, true);
+                let desc = sampled(&objects, samples, adaptive);
                 let (frame, _) = render::<S>(&desc, SIDE, SIDE, Methods::LECTURE);
-                let cell = 1.0 / f64::from(samples).sqrt();
                 for (i, pixel) in frame.pixels.iter().enumerate() {
                     let (x, y) = (i as u32 % SIDE, i as u32 / SIDE);
                     let want = coverage(vertical, x, y);
@@ -167,22 +145,23 @@ fn adaptive_samples_cover_an_edge_as_geometry_says() {
                     let bound = if want == 0.0 || want == 1.0 {
                         0.0
                     } else {
-                        cell / 2.0 + 0.5 / 255.0
+                        error(samples) + 0.5 / 255.0
                     };
                     assert!(
                         (got - want).abs() <= bound,
-                        "{} adaptive {samples}, {}: ({x}, {y}) is {got}, geometry says {want}",
+                        "{} {samples} samples{}, {}: ({x}, {y}) is {got}, geometry says {want}",
                         S::NAME,
+                        if adaptive { ", adaptive" } else { "" },
                         if vertical { "vertical" } else { "across" },
                     );
                 }
             }
         }
     }
-    check::<f64>();
-    check::<f32>();
-    check::<I8f24>();
-    check::<I16F16>();
+    check::<f64>(adaptive, error);
+    check::<f32>(adaptive, error);
+    check::<I8f24>(adaptive, error);
+    check::<I16F16>(adaptive, error);
 }
 
 /// Adaptive samples split a pixel into quarters, so they are refused unless a power of 4, and

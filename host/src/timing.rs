@@ -18,6 +18,16 @@ pub fn interleaved_median_ms(runs: usize, tasks: &[&dyn Fn()]) -> Vec<f64> {
     times.into_iter().map(median).collect()
 }
 
+/// Single-thread frame times of `renders`, in ms: the medians of `runs` interleaved renders.
+pub fn frame_ms(runs: u16, renders: &[Box<dyn crate::render::AnyFormat>]) -> Vec<f64> {
+    let tasks: Vec<Box<dyn Fn() + '_>> = renders
+        .iter()
+        .map(|p| -> Box<dyn Fn() + '_> { Box::new(move || drop(p.render(1, None))) })
+        .collect();
+    let task_refs: Vec<&dyn Fn()> = tasks.iter().map(|task| &**task).collect();
+    interleaved_median_ms(usize::from(runs), &task_refs)
+}
+
 fn median(mut times: Vec<f64>) -> f64 {
     times.sort_by(f64::total_cmp);
     let mid = times.len() / 2;

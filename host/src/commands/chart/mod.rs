@@ -16,7 +16,7 @@ use crate::output::{self, say};
 use crate::pareto;
 use crate::plot::{self, SpeedPoint};
 use crate::render::{AnyFormat, Request, all_cores, prepare, prepare_reference};
-use crate::timing::interleaved_median_ms;
+use crate::timing::frame_ms;
 use anyhow::{Context, Result, bail};
 use obscura::scenes::{self, BuiltIn};
 use obscura::{Methods, Presentation};
@@ -163,12 +163,7 @@ pub fn run(args: &ChartArgs) -> Result<()> {
         prepared.push(contender);
         measured.push(variant);
     }
-    let tasks: Vec<Box<dyn Fn() + '_>> = prepared
-        .iter()
-        .map(|p| -> Box<dyn Fn() + '_> { Box::new(move || drop(p.render(1, None))) })
-        .collect();
-    let task_refs: Vec<&dyn Fn()> = tasks.iter().map(|task| &**task).collect();
-    let times = interleaved_median_ms(usize::from(args.runs), &task_refs);
+    let times = frame_ms(args.runs, &prepared);
     let pixels = f64::from(width) * f64::from(height);
 
     let points: Vec<SpeedPoint> = measured

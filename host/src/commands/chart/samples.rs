@@ -14,7 +14,7 @@ use crate::output::say;
 use crate::owned::OwnedScene;
 use crate::plot::{self, StabilitySeries};
 use crate::render::{AnyFormat, Request, all_cores, prepare, prepare_reference};
-use crate::timing::interleaved_median_ms;
+use crate::timing::frame_ms;
 use anyhow::{Context, Result, bail};
 use obscura::{Methods, Presentation, scenes};
 use std::path::Path;
@@ -131,12 +131,7 @@ pub fn run(args: &ChartArgs) -> Result<()> {
             prepared.push(contender);
         }
     }
-    let tasks: Vec<Box<dyn Fn() + '_>> = prepared
-        .iter()
-        .map(|p| -> Box<dyn Fn() + '_> { Box::new(move || drop(p.render(1, None))) })
-        .collect();
-    let task_refs: Vec<&dyn Fn()> = tasks.iter().map(|task| &**task).collect();
-    let times = interleaved_median_ms(usize::from(args.runs), &task_refs);
+    let times = frame_ms(args.runs, &prepared);
     let pixels = f64::from(width) * f64::from(height);
     for (point, ms) in points.iter_mut().zip(times) {
         point.host_ns_per_pixel = ms * 1e6 / pixels;
