@@ -99,9 +99,46 @@ impl Target {
         }
     }
 
+    /// The real board this project builds for this microcontroller, whose frame time
+    /// `obscura firmware` estimates beside QEMU's.
+    pub fn board(self) -> Board {
+        match self {
+            Self::M4f => Board {
+                name: "Black Pill (STM32F411, Cortex-M4F)",
+                core_hz: 100_000_000,
+                cores: 1,
+            },
+            Self::M0 => Board {
+                name: "Raspberry Pi Pico (RP2040, Cortex-M0+)",
+                core_hz: 125_000_000,
+                cores: 2,
+            },
+        }
+    }
+
     /// Instructions executed in `ticks` SysTick ticks.
     pub fn instructions(self, ticks: u64) -> u64 {
         ticks * 1_000_000_000 / self.core_hz()
+    }
+}
+
+/// A board the firmware runs on: its core clock and how many cores trace (the Pico's two share
+/// the rows, `boards/pico`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Board {
+    /// What it is called.
+    pub name: &'static str,
+    /// The core clock the board's firmware sets.
+    pub core_hz: u64,
+    /// The cores that trace rows.
+    pub cores: u32,
+}
+
+impl Board {
+    /// The seconds a frame of `instructions` takes, estimated at one instruction per cycle
+    /// with the rows shared evenly between the cores.
+    pub fn seconds(self, instructions: u64) -> f64 {
+        instructions as f64 / f64::from(self.cores) / self.core_hz as f64
     }
 }
 
@@ -484,6 +521,15 @@ mod tests {
         );
         let error = parse_frame("frame scene=whitted").unwrap_err().to_string();
         assert!(error.contains("no format"), "{error}");
+    }
+
+    #[test]
+    fn a_board_shares_a_frame_between_its_cores() {
+        // 10 000 instructions a pixel at 240x240: 4.608 s on one core at 125 MHz, half on two.
+        let pico = Target::M0.board();
+        assert!((pico.seconds(10_000 * 240 * 240) - 2.304).abs() < 1e-9);
+        let black_pill = Target::M4f.board();
+        assert!((black_pill.seconds(100_000_000) - 1.0).abs() < 1e-9);
     }
 
     #[test]

@@ -408,5 +408,21 @@ fn print_table(target: Target, reports: &[Report]) -> io::Result<()> {
             seconds(512 * 512)
         )?;
     }
+    let board = target.board();
+    for r in reports {
+        let seconds = board.seconds(r.instructions_per_frame);
+        say!(
+            "{} in {} on a {}, {} core{} at {} MHz, estimated at one instruction per cycle: {seconds:.2} s per {}x{} frame ({:.2} frames a second)",
+            r.scene,
+            r.format,
+            board.name,
+            board.cores,
+            if board.cores == 1 { "" } else { "s" },
+            board.core_hz / 1_000_000,
+            r.width,
+            r.height,
+            1.0 / seconds
+        )?;
+    }
     Ok(())
 }
