@@ -3,10 +3,12 @@
 //! thin lens about the eye that starts each of a pixel's rays from another point of it, aimed
 //! at the point the pinhole's ray meets on the focal plane (depth of field).
 
+use crate::cull::ImagePlane;
 use crate::desc::CameraDesc;
 use crate::methods::{Methods, RayMethod, RootMethod};
 use crate::ray::Ray;
 use crate::scalar::Scalar;
+use crate::scene::range::FAST_ROOT_ERROR;
 use crate::vec3::Vec3;
 
 /// The largest image side: it keeps every pixel coordinate exact in every format.
@@ -29,6 +31,8 @@ pub struct Camera<S> {
     /// One pixel down: `down` / height.
     pixel_down: Vec3<S>,
     lens: Option<Lens<S>>,
+    /// The image plane, for culling ([`crate::cull`]); `None` through a lens.
+    plane: Option<ImagePlane>,
     rays: RayMethod,
     roots: RootMethod,
 }
@@ -119,9 +123,15 @@ impl<S: Scalar> Camera<S> {
         } else {
             None
         };
+        let plane = lens.is_none().then(|| {
+            ImagePlane::new(half_width, frame.half_height, width, height, |corner| {
+                aim_error::<S>(corner, width, methods)
+            })
+        });
         Some(Self {
             width,
             height,
+            plane,
             top_left: top_left.convert()?,
             across: (frame.right * (2.0 * half_width)).convert()?,
             down: (frame.up * (-2.0 * frame.half_height)).convert()?,
@@ -143,6 +153,13 @@ impl<S: Scalar> Camera<S> {
     #[must_use]
     pub const fn height(&self) -> u32 {
         self.height
+    }
+
+    /// The image plane, for culling ([`crate::cull`]); `None` through a lens, whose rays
+    /// start away from the eye.
+    #[must_use]
+    pub(crate) const fn image_plane(&self) -> Option<&ImagePlane> {
+        self.plane.as_ref()
     }
 
     /// The lens, or `None` for a pinhole.
@@ -255,6 +272,12 @@ impl<S: Scalar> Row<S> {
             .add_scaled(self.camera.pixel_down, down)
     }
 
+    /// The camera the row is of.
+    #[must_use]
+    pub const fn camera(&self) -> &Camera<S> {
+        &self.camera
+    }
+
     /// Whether the camera has a lens (see [`Camera::lens`]).
     #[must_use]
     pub const fn has_lens(&self) -> bool {
@@ -321,6 +344,23 @@ impl<S: Scalar> Iterator for Rays<S> {
         self.x += 1;
         Some(ray)
     }
+}
+
+/// How far, as an angle in radians, a primary ray's direction in format `S` by `methods` may be
+/// from the exact one through its point of an image plane `width` pixels wide whose corner is
+/// `corner` from the eye: its unit vector's rounding, the rounding of the image plane's corner
+/// and axes at their size, the fast roots' (in the unit vector and in the pixel's place) and,
+/// when stepped, the step's rounding summed along a row; an angle errs by at most √3 times a
+/// coordinate.
+fn aim_error<S: Scalar>(corner: f64, width: u32, methods: &Methods) -> f64 {
+    let mut unit = S::UNIT_ERROR + 4.0 * S::resolution(corner);
+    if methods.roots == RootMethod::Approx {
+        unit += 2.0 * FAST_ROOT_ERROR;
+    }
+    if methods.rays == RayMethod::Stepped {
+        unit += f64::from(width) * S::resolution(corner);
+    }
+    libm::sqrt(3.0) * unit
 }
 
 /// (i + ½) / n = (2i + 1) / 2n for i < n ≤ [`MAX_IMAGE_SIDE`], one quotient of integers that

@@ -34,6 +34,7 @@
 pub mod adaptive;
 pub mod camera;
 pub mod color;
+pub mod cull;
 pub mod desc;
 pub mod light;
 pub mod material;

@@ -6,16 +6,19 @@
 use crate::adaptive::{self, Corner, CornerRows, Pixel};
 use crate::camera::{Camera, Row};
 use crate::color::{DisplayColor, Dither, Rgb};
+use crate::cull::RowRanges;
 use crate::pattern::{Pattern, SampleId};
 use crate::ray::Ray;
 use crate::scalar::Scalar;
 use crate::scene::Scene;
+use crate::shade::{Task, Tracer};
 use crate::vec3::Vec3;
 use core::fmt;
 use core::ops::Range;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Point, Size};
 use embedded_graphics_core::primitives::Rectangle;
+use heapless::VecView;
 
 /// Why a render stopped.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -153,8 +156,13 @@ const _SAMPLE_SUMS_FIT: () = assert!(
 /// centre's ray, or by the mean of its samples ([`PixelSamples`]), each clamped to what a
 /// display shows and summed as integers, in 16-bit fractions: the sum cannot overflow however
 /// many samples a pixel takes, and rounds alike in every format.
-fn trace_into<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
+///
+/// Over the tracer's slices and a ray stack rather than a scene of given capacities, and out of
+/// line: a firmware holds one copy per format however many scenes it draws.
+#[inline(never)]
+fn trace_into<S, C>(
+    scene: &Tracer<'_, S>,
+    stack: &mut VecView<Task<S>>,
     row: &Row<S>,
     y: u32,
     dither: Dither,
@@ -163,9 +171,11 @@ fn trace_into<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize
     S: Scalar,
     C: DisplayColor,
 {
-    let samples = scene.settings.samples;
+    let samples = scene.samples();
     let n = u32::from(samples);
     let sampled = samples > 1 || row.has_lens();
+    let ranges = RowRanges::new(scene.objects(), row.camera(), y);
+    let mut candidates = ranges.candidates();
     let mut centres = row.rays();
     for (x, pixel) in (0..).zip(line.iter_mut()) {
         // One call of the tracer for either kind of pixel: a second would change how the
@@ -173,13 +183,16 @@ fn trace_into<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize
         let centre = centres.next();
         let pattern = sampled.then(|| PixelSamples::new(row, x, y));
         let (mut colour, mut sum) = (Rgb::BLACK, [0_u32; 3]);
+        let candidates = candidates.at(x);
         for i in 0..samples {
             let ray = match &pattern {
                 None => centre,
                 Some(pattern) => pattern.ray(row, i, samples),
             };
             let Some(ray) = ray else { continue };
-            colour = scene.trace(ray, SampleId { x, y, sample: i }).colour;
+            colour = scene
+                .trace_ray(ray, SampleId { x, y, sample: i }, candidates, stack)
+                .colour;
             if pattern.is_some() {
                 let c = colour.to_q16();
                 sum = [sum[0] + c[0], sum[1] + c[1], sum[2] + c[2]];
@@ -210,7 +223,11 @@ fn trace_pixels<K, S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: 
 {
     match window {
         Some(window) if !K::NONE => adaptive_row(scene, row, y, dither, line, window),
-        _ => trace_into(scene, row, y, dither, line),
+        _ => {
+            let mut stack: heapless::Vec<Task<S>, RAYS> = heapless::Vec::new();
+            let tracer = scene.tracer(SampleId::default());
+            trace_into(&tracer, stack.as_mut_view(), row, y, dither, line);
+        }
     }
 }
 

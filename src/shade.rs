@@ -31,7 +31,7 @@ pub struct Sample<S> {
 
 /// A ray waiting on the stack, with the share of the pixel it contributes.
 #[derive(Clone, Copy, Debug)]
-struct Task<S> {
+pub(crate) struct Task<S> {
     ray: Ray<S>,
     weight: Rgb<S>,
     depth: u8,
@@ -70,7 +70,8 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
     #[must_use]
     pub fn trace(&self, primary: Ray<S>, id: SampleId) -> Sample<S> {
         let mut stack: Vec<Task<S>, RAYS> = Vec::new();
-        self.tracer(id).trace(primary, stack.as_mut_view())
+        self.tracer(id)
+            .trace(primary, u32::MAX, stack.as_mut_view())
     }
 
     /// The index of the first object `ray` hits, if any: what a primary ray sees, without
@@ -78,11 +79,13 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
     #[must_use]
     pub fn first_hit(&self, ray: &Ray<S>) -> Option<usize> {
         self.tracer(SampleId::default())
-            .nearest(ray, None)
+            .nearest(ray, None, |_| true)
             .map(|hit| hit.index)
     }
 
-    fn tracer(&self, id: SampleId) -> Tracer<'_, S> {
+    /// The scene as the tracer sees it, over slices: what the renderer's pixel loop takes, so
+    /// that a firmware holds one copy of it per format however many scenes it draws.
+    pub(crate) fn tracer(&self, id: SampleId) -> Tracer<'_, S> {
         Tracer {
             objects: &self.objects,
             lights: &self.lights,
@@ -94,7 +97,7 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
 
 /// The tracer proper, over slices: one copy per number format, whatever the capacities.
 #[derive(Clone, Copy, Debug)]
-struct Tracer<'a, S> {
+pub(crate) struct Tracer<'a, S> {
     objects: &'a [Object<S>],
     lights: &'a [Light<S>],
     settings: &'a Settings<S>,
@@ -103,37 +106,77 @@ struct Tracer<'a, S> {
 }
 
 impl<S: Scalar> Tracer<'_, S> {
-    /// Traces a primary ray through the whole ray tree, on `stack` (empty, and at least
-    /// `max_depth + 1` deep).
-    fn trace(&self, primary: Ray<S>, stack: &mut VecView<Task<S>>) -> Sample<S> {
-        let mut colour = Rgb::BLACK;
-        let mut object = None;
-        let mut met = 0;
-        push(
-            stack,
-            Task {
-                ray: primary,
-                weight: Rgb::WHITE,
-                depth: 0,
-                from: None,
-            },
-        );
+    /// The objects.
+    pub(crate) const fn objects(&self) -> &[Object<S>] {
+        self.objects
+    }
+
+    /// Rays per pixel.
+    pub(crate) const fn samples(&self) -> u16 {
+        self.settings.samples
+    }
+
+    /// [`Scene::trace`] of ray `id` of the image, its primary ray testing only the objects in
+    /// `candidates` (those it can meet, [`crate::cull::Candidates`]: bit i for object i, objects
+    /// 31 and beyond sharing bit 31), on `stack` (empty, and at least `max_depth + 1` deep).
+    pub(crate) fn trace_ray(
+        &self,
+        primary: Ray<S>,
+        id: SampleId,
+        candidates: u32,
+        stack: &mut VecView<Task<S>>,
+    ) -> Sample<S> {
+        Tracer { id, ..*self }.trace(primary, candidates, stack)
+    }
+
+    /// Traces a primary ray, which tests the objects in `candidates`, through the whole ray
+    /// tree, on `stack` (empty, and at least `max_depth + 1` deep).
+    ///
+    /// Out of line, so that a firmware holds one copy per format however many scenes (of
+    /// different capacities) it draws.
+    #[inline(never)]
+    fn trace(&self, primary: Ray<S>, candidates: u32, stack: &mut VecView<Task<S>>) -> Sample<S> {
+        let task = Task {
+            ray: primary,
+            weight: Rgb::WHITE,
+            depth: 0,
+            from: None,
+        };
+        let hit = self.nearest(&task.ray, None, |index| {
+            candidates & (1 << index.min(31)) != 0
+        });
+        let mut sample = Sample {
+            colour: Rgb::BLACK,
+            object: hit.as_ref().map(|hit| hit.index),
+            met: 0,
+        };
+        self.add(&task, hit, stack, &mut sample);
+        // Secondary rays test every object.
         while let Some(task) = stack.pop() {
-            let Some(hit) = self.nearest(&task.ray, task.from) else {
-                colour = colour + task.weight * self.settings.background.colour(task.ray.dir);
-                continue;
-            };
-            if task.depth == 0 {
-                object = Some(hit.index);
+            let hit = self.nearest(&task.ray, task.from, |_| true);
+            self.add(&task, hit, stack, &mut sample);
+        }
+        sample
+    }
+
+    /// Adds what `task`'s ray brings back, having met `hit`, to `sample`, pushing the rays its
+    /// hit spawns.
+    #[inline(always)]
+    fn add(
+        &self,
+        task: &Task<S>,
+        hit: Option<Hit<'_, S>>,
+        stack: &mut VecView<Task<S>>,
+        sample: &mut Sample<S>,
+    ) {
+        let colour = match hit {
+            None => self.settings.background.colour(task.ray.dir),
+            Some(hit) => {
+                sample.met |= bit(hit.index);
+                self.shade(task, &hit, stack, &mut sample.met)
             }
-            met |= bit(hit.index);
-            colour = colour + task.weight * self.shade(&task, &hit, stack, &mut met);
-        }
-        Sample {
-            colour,
-            object,
-            met,
-        }
+        };
+        sample.colour = sample.colour + task.weight * colour;
     }
 
     /// The span a ray leaving `from` searches: beyond the surface's tolerance for the epsilon
@@ -181,13 +224,21 @@ impl<S: Scalar> Tracer<'_, S> {
         }
     }
 
-    /// The nearest object along `ray` within the world.
+    /// The nearest object along `ray` within the world, of those `wanted` by their index.
     #[inline(always)]
-    fn nearest(&self, ray: &Ray<S>, from: Option<Leaving<S>>) -> Option<Hit<'_, S>> {
+    fn nearest(
+        &self,
+        ray: &Ray<S>,
+        from: Option<Leaving<S>>,
+        wanted: impl Fn(usize) -> bool,
+    ) -> Option<Hit<'_, S>> {
         let mut span = self.span(from, self.settings.ray_length);
         let mut nearest = None;
         let mut per_ray = PerRay::new();
         for (index, object) in self.objects.iter().enumerate() {
+            if !wanted(index) {
+                continue;
+            }
             if let Some(at) = self.meet(ray, span, index, object, from, &mut per_ray) {
                 span.max = at.t;
                 nearest = Some(Hit { object, index, at });

@@ -10,6 +10,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use image::RgbImage;
 use indicatif::{ProgressBar, ProgressStyle};
+use obscura::cull::first_skipped_hit;
 use obscura::pattern::{Pattern, SampleId};
 use obscura::{
     Camera, Corner, Methods, Presentation, Ray, RootMethod, Scalar, Scene, SceneDesc, SceneError,
@@ -268,6 +269,22 @@ impl<S: Scalar> Prepared<S> {
         }
     }
 
+    /// The first pixel whose rays meet an object that culling leaves out of its row
+    /// ([`obscura::cull::first_skipped_hit`]), as (x, y, object), or `None`.
+    ///
+    /// # Errors
+    /// As [`Self::render`].
+    pub fn skipped_hit(&self) -> Result<Option<(u32, u32, usize)>> {
+        for y in 0..self.camera.height() {
+            let skipped = checked::catch(|| first_skipped_hit(&self.scene, &self.camera, y))
+                .map_err(|overflowed| self.overflow_at(y..y + 1, overflowed))?;
+            if let Some((x, object)) = skipped {
+                return Ok(Some((x, y, object)));
+            }
+        }
+        Ok(None)
+    }
+
     /// The objects each pixel's ray tree meets ([`obscura::Sample::met`]), row by row.
     ///
     /// # Errors
@@ -307,6 +324,8 @@ pub trait AnyFormat: Sync {
     fn object_map(&self) -> Result<Vec<Option<usize>>>;
     /// See [`Prepared::rgb565_frame`].
     fn rgb565_frame(&self, presentation: Presentation, watch: Watch<'_>) -> Result<Vec<u16>>;
+    /// See [`Prepared::skipped_hit`].
+    fn skipped_hit(&self) -> Result<Option<(u32, u32, usize)>>;
 }
 
 impl<S: Scalar> AnyFormat for Prepared<S> {
@@ -318,6 +337,9 @@ impl<S: Scalar> AnyFormat for Prepared<S> {
     }
     fn rgb565_frame(&self, presentation: Presentation, watch: Watch<'_>) -> Result<Vec<u16>> {
         Prepared::rgb565_frame(self, presentation, watch)
+    }
+    fn skipped_hit(&self) -> Result<Option<(u32, u32, usize)>> {
+        Prepared::skipped_hit(self)
     }
 }
 

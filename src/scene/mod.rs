@@ -9,7 +9,8 @@ pub use error::{Item, Remedy, SceneError};
 
 use crate::camera::{Camera, Frame, MAX_IMAGE_SIDE};
 use crate::color::Rgb;
-use crate::desc::{BackgroundDesc, CheckerDesc, MaterialDesc, SceneDesc, ShapeDesc};
+use crate::cull::Bound;
+use crate::desc::{BackgroundDesc, CheckerDesc, LightDesc, MaterialDesc, SceneDesc, ShapeDesc};
 use crate::light::{Background, Light};
 use crate::material::Material;
 use crate::methods::{Methods, RootMethod};
@@ -44,6 +45,8 @@ pub struct Object<S> {
     /// ([`range::triangle_tolerance_terms`]), the distance it finds rounds with its corners'
     /// coordinates and its edges against its area. A plane adds nothing.
     pub tolerance: S,
+    /// Where primary rays can meet it ([`crate::cull`]).
+    pub bound: Bound,
 }
 
 /// A scene ready to trace in format `S`, holding up to `OBJECTS` objects and `LIGHTS` lights
@@ -130,16 +133,7 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
                 capacity: RAYS,
             });
         }
-        range::check(&FormatInfo::of::<S>(), desc, &methods)?;
-        let eye = Vec3::from_f32(desc.camera.eye);
-        Converter::<S> {
-            eye,
-            world: f64::from(desc.far),
-            slack: range::origin_slack(desc, &methods, &FormatInfo::of::<S>()),
-            tolerances: *tolerances,
-            _format: PhantomData,
-        }
-        .scene(desc, frame, methods)
+        Converter::<S>::proven(desc, methods, tolerances, frame)?.scene(desc)
     }
 
     /// The camera for an image of `width × height` pixels.
@@ -149,31 +143,7 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
     /// image plane leaves the format, its pixels are closer than the format can aim rays, or
     /// its lens tilts rays too little to focus in the format ([`range::camera`]), why.
     pub fn camera(&self, width: u32, height: u32) -> Result<Camera<S>, SceneError> {
-        let valid = 1..=MAX_IMAGE_SIDE;
-        if !valid.contains(&width) || !valid.contains(&height) {
-            return Err(SceneError::ImageSize { width, height });
-        }
-        let half_width = self.frame.half_width(width, height);
-        let tilt = self.frame.lens_tilt();
-        range::check_camera(
-            &FormatInfo::of::<S>(),
-            half_width,
-            self.frame.half_height,
-            (width, height),
-            tilt,
-        )?;
-        let (corner, _, _) = range::camera(half_width, self.frame.half_height, width, height, tilt);
-        Camera::new(&self.frame, width, height, &self.settings.methods).ok_or(
-            SceneError::OutOfRange {
-                item: Item::Camera,
-                quantity: corner.quantity,
-                value: corner.value,
-                format: S::NAME,
-                range: S::RANGE,
-                remedy: corner.remedy,
-                holds: FormatSet::of(|f| range::fits(corner.value, f.range)),
-            },
-        )
+        camera(&self.frame, &self.settings.methods, width, height)
     }
 
     /// The objects, in the order of the description.
@@ -187,6 +157,40 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
     pub fn lights(&self) -> &[Light<S>] {
         &self.lights
     }
+}
+
+/// [`Scene::camera`] of a scene whose camera has `frame`, by `methods`: out of line, one copy per
+/// format however many scenes (of different capacities) a firmware draws.
+#[inline(never)]
+fn camera<S: Scalar>(
+    frame: &Frame,
+    methods: &Methods,
+    width: u32,
+    height: u32,
+) -> Result<Camera<S>, SceneError> {
+    let valid = 1..=MAX_IMAGE_SIDE;
+    if !valid.contains(&width) || !valid.contains(&height) {
+        return Err(SceneError::ImageSize { width, height });
+    }
+    let half_width = frame.half_width(width, height);
+    let tilt = frame.lens_tilt();
+    range::check_camera(
+        &FormatInfo::of::<S>(),
+        half_width,
+        frame.half_height,
+        (width, height),
+        tilt,
+    )?;
+    let (corner, _, _) = range::camera(half_width, frame.half_height, width, height, tilt);
+    Camera::new(frame, width, height, methods).ok_or(SceneError::OutOfRange {
+        item: Item::Camera,
+        quantity: corner.quantity,
+        value: corner.value,
+        format: S::NAME,
+        range: S::RANGE,
+        remedy: corner.remedy,
+        holds: FormatSet::of(|f| range::fits(corner.value, f.range)),
+    })
 }
 
 fn capacity(what: &'static str, count: usize, capacity: usize) -> Result<(), SceneError> {
@@ -210,15 +214,38 @@ struct Converter<S> {
     /// The format whose rounding the surface tolerances are sized for: `S`, but for a
     /// reference scene ([`Scene::build_with_tolerances_of`]).
     tolerances: FormatInfo,
+    /// The camera's frame and the methods, for the objects' bounds ([`crate::cull`]).
+    frame: Frame,
+    methods: Methods,
     _format: PhantomData<S>,
 }
 
 impl<S: Scalar> Converter<S> {
+    /// Proves that format `S` holds `desc` by `methods` (whose camera has `frame`) and readies
+    /// its conversion, with the surface tolerances of `tolerances`. Out of line, as
+    /// [`Self::object`] is.
+    #[inline(never)]
+    fn proven(
+        desc: &SceneDesc<'_>,
+        methods: Methods,
+        tolerances: &FormatInfo,
+        frame: Frame,
+    ) -> Result<Self, SceneError> {
+        range::check(&FormatInfo::of::<S>(), desc, &methods)?;
+        Ok(Self {
+            eye: Vec3::from_f32(desc.camera.eye),
+            world: f64::from(desc.far),
+            slack: range::origin_slack(desc, &methods, &FormatInfo::of::<S>()),
+            tolerances: *tolerances,
+            frame,
+            methods,
+            _format: PhantomData,
+        })
+    }
+
     fn scene<const O: usize, const L: usize, const R: usize>(
         &self,
         desc: &SceneDesc<'_>,
-        frame: Frame,
-        methods: Methods,
     ) -> Result<Scene<S, O, L, R>, SceneError> {
         // `build` checked both lengths against the capacities.
         let too_many = |what, count, capacity| SceneError::TooMany {
@@ -228,32 +255,51 @@ impl<S: Scalar> Converter<S> {
         };
         let mut objects = Vec::new();
         for (i, object) in desc.objects.iter().enumerate() {
-            let object = self.object(Item::Object(i), &object.shape, &object.material)?;
+            let object = self.object(Item::Object(i), &object.shape, &object.material, desc)?;
             objects
                 .push(object)
                 .map_err(|_| too_many("objects", desc.objects.len(), O))?;
         }
         let mut lights = Vec::new();
         for (i, light) in desc.lights.iter().enumerate() {
-            let item = Item::Light(i);
-            let radius = self.scalar(item, "radius", f64::from(light.radius))?;
-            let light = Light {
-                position: self.point(item, "position", light.position)?,
-                colour: self.colour(item, "colour", light.colour)?,
-                radius,
-                // A radius below the format's resolution is a point light's.
-                shadow_rays: if radius > S::ZERO {
-                    desc.shadow_samples
-                } else {
-                    1
-                },
-                // Fewer lights than the capacity, far fewer than 2¹⁶.
-                index: i as u16,
-            };
             lights
-                .push(light)
+                .push(self.light(i, light, desc.shadow_samples)?)
                 .map_err(|_| too_many("lights", desc.lights.len(), L))?;
         }
+        Ok(Scene {
+            objects,
+            lights,
+            settings: self.settings(desc)?,
+            frame: self.frame,
+        })
+    }
+
+    /// Light `i` of a description whose area lights take `shadow_samples` shadow rays. Out of
+    /// line, as [`Self::object`] is.
+    #[inline(never)]
+    fn light(
+        &self,
+        i: usize,
+        light: &LightDesc,
+        shadow_samples: u16,
+    ) -> Result<Light<S>, SceneError> {
+        let item = Item::Light(i);
+        let radius = self.scalar(item, "radius", f64::from(light.radius))?;
+        Ok(Light {
+            position: self.point(item, "position", light.position)?,
+            colour: self.colour(item, "colour", light.colour)?,
+            radius,
+            // A radius below the format's resolution is a point light's.
+            shadow_rays: if radius > S::ZERO { shadow_samples } else { 1 },
+            // Fewer lights than the capacity, far fewer than 2¹⁶.
+            index: i as u16,
+        })
+    }
+
+    /// What the tracer needs of `desc` besides its objects and lights. Out of line, as
+    /// [`Self::object`] is.
+    #[inline(never)]
+    fn settings(&self, desc: &SceneDesc<'_>) -> Result<Settings<S>, SceneError> {
         let background = match desc.background {
             BackgroundDesc::Solid(c) => {
                 Background::Solid(self.colour(Item::Scene, "background.solid", c)?)
@@ -288,7 +334,7 @@ impl<S: Scalar> Converter<S> {
             range::error_with(&range::tolerance_terms(1.0, None), &self.tolerances)
                 - range::error_with(&range::tolerance_terms(0.0, None), &self.tolerances),
         );
-        let settings = Settings {
+        Ok(Settings {
             ambient: self.colour(Item::Scene, "ambient", desc.ambient)?,
             background,
             ray_length: self.scalar(Item::Scene, "a ray's length", 2.0 * self.world)?,
@@ -303,24 +349,22 @@ impl<S: Scalar> Converter<S> {
             samples: desc.samples,
             adaptive_samples: desc.adaptive_samples,
             adaptive_shadows: desc.adaptive_shadows,
-            methods,
-        };
-        Ok(Scene {
-            objects,
-            lights,
-            settings,
-            frame,
+            methods: self.methods,
         })
     }
 
+    /// Object `item` of `desc`. Out of line, so that a firmware holds one copy per format
+    /// however many scenes (of different capacities) it builds.
+    #[inline(never)]
     fn object(
         &self,
         item: Item,
-        shape: &ShapeDesc,
+        shape_desc: &ShapeDesc,
         m: &MaterialDesc,
+        desc: &SceneDesc<'_>,
     ) -> Result<Object<S>, SceneError> {
         let mut tolerance = 0.0;
-        let shape = match *shape {
+        let shape = match *shape_desc {
             ShapeDesc::Sphere { center, radius } => {
                 let r = f64::from(radius);
                 tolerance = range::error_with(&range::own_tolerance_terms(r), &self.tolerances);
@@ -406,6 +450,11 @@ impl<S: Scalar> Converter<S> {
             shape,
             material,
             tolerance: self.scalar(item, "the surface tolerance", tolerance)?,
+            // A primary ray may be judged to meet the object this far beyond it (if bounded).
+            bound: range::primary_error::<S>(shape_desc, &self.methods, desc.camera.eye)
+                .map_or(Bound::Everywhere, |error| {
+                    Bound::of(shape_desc, self.eye, error, &self.frame)
+                }),
         })
     }
 

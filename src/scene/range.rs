@@ -536,8 +536,8 @@ fn colour_sum(desc: &SceneDesc<'_>) -> f64 {
 /// relative to the determinant (from its stored edges' rounding, and for Möller–Trumbore the
 /// rounding of 1/det), times the way the ray has come. A point (the eye, a light) nearer the
 /// surface than this is on either side of it at random.
-fn locating(object: &ObjectDesc, methods: &Methods, from: f64, eye: [f32; 3]) -> Terms {
-    match object.shape {
+pub(crate) fn locating(shape: &ShapeDesc, methods: &Methods, from: f64, eye: [f32; 3]) -> Terms {
+    match *shape {
         ShapeDesc::Sphere { radius, .. } => {
             let r = f64::from(radius);
             tolerance_terms(from, Some(r))
@@ -561,6 +561,35 @@ fn locating(object: &ObjectDesc, methods: &Methods, from: f64, eye: [f32; 3]) ->
                 .plus(reciprocal)
         }
     }
+}
+
+/// The error with which a ray from the eye finds `shape` by `methods` ([`locating`], at the
+/// shape's far side), and the rounding of its description into the format: how far outside
+/// the described shape a primary ray may be judged to meet it; `None` where no such bound
+/// holds. Möller–Trumbore multiplies by 1/det rounded, which in a coarse format
+/// can make a ray meet a small triangle pixels away from it (the fuzzer found rays in `i10f22`
+/// meeting a triangle two hundredths of a unit across two pixels of a five-pixel-wide image
+/// beyond its edge): beyond what the error model bounds.
+pub(crate) fn primary_error<S: Scalar>(
+    shape: &ShapeDesc,
+    methods: &Methods,
+    eye: [f32; 3],
+) -> Option<f64> {
+    let reach = match *shape {
+        ShapeDesc::Sphere { center, radius } => distance(center, eye) + f64::from(radius),
+        ShapeDesc::Plane { point, .. } => distance(point, eye),
+        ShapeDesc::Triangle { .. } if methods.triangle == TriangleMethod::MollerTrumbore => {
+            return None;
+        }
+        ShapeDesc::Triangle { vertices } => vertices
+            .iter()
+            .map(|&corner| distance(corner, eye))
+            .fold(0.0, f64::max),
+    };
+    let rounding = Terms::new(&[(2.0, reach)]);
+    Some(error::<S>(
+        &locating(shape, methods, reach, eye).plus(rounding),
+    ))
 }
 
 /// The error of a triangle's determinant (twice its area seen along a ray) for a ray `s` from
@@ -618,7 +647,7 @@ pub fn features<'a>(
             quantity: "its distance from a surface (less its radius), against the error with \
                        which a shadow ray finds the surface",
             value: clearance(object, position) - f64::from(light.radius),
-            terms: locating(object, methods, reach, eye),
+            terms: locating(&object.shape, methods, reach, eye),
             steps: SIDE_STEPS,
             remedy: Remedy::MoveLight,
         });
@@ -673,7 +702,7 @@ fn object_features(
             "the eye's distance from its surface (less the aperture), against the error with \
              which a ray from the eye finds the surface",
             gap - aperture,
-            locating(object, methods, reach + aperture, eye),
+            locating(&object.shape, methods, reach + aperture, eye),
             Remedy::MoveEye,
         )
     };

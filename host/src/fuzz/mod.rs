@@ -5,6 +5,9 @@
 //!
 //! - no sum or product leaves its format in a scene the build accepts (an **overflow**);
 //! - the core never panics on any description (a **panic**);
+//! - culling never leaves out an object a primary ray meets: no ray of a pixel (its centre's,
+//!   or its corners') meets an object its row's ranges skip ([`obscura::cull`]; a **skipped
+//!   hit**);
 //! - `analyze`'s verdict and the build agree (a **disagreement**: analyze says a format holds
 //!   the scene at this size and the build refuses it, or the reverse; `--format auto` measures
 //!   the format it picks, so it cannot pick one the build refuses);
@@ -73,6 +76,11 @@ pub enum Failure {
         /// The panic's message.
         message: String,
     },
+    /// A primary ray meets an object that culling leaves out of its pixel.
+    SkippedHit {
+        /// The pixel and the object.
+        message: String,
+    },
     /// `analyze` and the build disagree on whether the format holds the scene.
     Disagreement {
         /// What each said.
@@ -96,6 +104,7 @@ impl fmt::Display for Failure {
         match self {
             Self::Overflow { message } => write!(f, "overflow: {message}"),
             Self::Panic { message } => write!(f, "panic: {message}"),
+            Self::SkippedHit { message } => write!(f, "skipped hit: {message}"),
             Self::Disagreement { message } => write!(f, "disagreement: {message}"),
             Self::FalseAccept {
                 predicted_psnr_db,
@@ -147,6 +156,8 @@ pub struct Tally {
     pub overflows: u64,
     /// Builds that panicked.
     pub panics: u64,
+    /// Builds where culling skipped an object a primary ray meets.
+    pub skipped_hits: u64,
     /// Builds where analyze and the build disagreed.
     pub disagreements: u64,
     /// Builds measured worse than predicted, beyond the margins.
@@ -164,6 +175,7 @@ impl Tally {
         self.held_to_prediction += other.held_to_prediction;
         self.overflows += other.overflows;
         self.panics += other.panics;
+        self.skipped_hits += other.skipped_hits;
         self.disagreements += other.disagreements;
         self.false_accepts += other.false_accepts;
         self.findings.extend(other.findings);
@@ -173,6 +185,7 @@ impl Tally {
         match finding.failure {
             Failure::Overflow { .. } => self.overflows += 1,
             Failure::Panic { .. } => self.panics += 1,
+            Failure::SkippedHit { .. } => self.skipped_hits += 1,
             Failure::Disagreement { .. } => self.disagreements += 1,
             Failure::FalseAccept { .. } => self.false_accepts += 1,
         }
@@ -190,14 +203,15 @@ impl fmt::Display for Tally {
         write!(
             f,
             "{} scenes, {} scene × format × method builds ({} accepted and rendered, {} of them \
-             held to their prediction): {} overflows, {} panics, {} disagreements with analyze, \
-             {} false accepts",
+             held to their prediction): {} overflows, {} panics, {} skipped hits, {} \
+             disagreements with analyze, {} false accepts",
             self.scenes,
             self.builds,
             self.accepted,
             self.held_to_prediction,
             self.overflows,
             self.panics,
+            self.skipped_hits,
             self.disagreements,
             self.false_accepts
         )
@@ -386,6 +400,17 @@ fn try_methods(
                 continue;
             }
         };
+        match prepared.skipped_hit() {
+            Ok(None) => {}
+            Ok(Some((x, y, object))) => {
+                let message = format!("object {object} at pixel ({x}, {y})");
+                tally.record(finding(format, Failure::SkippedHit { message }));
+            }
+            Err(error) => {
+                let message = format!("{error:#}");
+                tally.record(finding(format, Failure::Overflow { message }));
+            }
+        }
         let Some(prediction) = verdict.and_then(|v| v.prediction) else {
             continue;
         };

@@ -1,0 +1,504 @@
+//! Which objects a primary ray can meet, so that each pixel tests only those: each object's
+//! [`Bound`] on the camera's image plane (the rectangle about the disc a sphere's or a
+//! triangle's ball projects to, the side of its horizon a plane lies on), found once when the
+//! scene is built, and for each row the [`RowRanges`] of pixels whose rays reach each bound.
+//!
+//! The image plane is the one a unit ahead of the eye, with coordinates (a, b) along the
+//! camera's right and up from its centre: the direction forward + a·right + b·up. A bound is
+//! widened until no ray outside it can meet the object whatever the tracer's rounding: a ball by
+//! [`REACH_ERRORS`] of the errors with which a ray finds its object (the range proof's
+//! `locating`), and every bound, row by row, by the error of a primary ray's direction (its
+//! unit vector's, the image plane's rounding, fast roots', stepping's: the camera works it out
+//! for its [`ImagePlane`]) and to the whole of each pixel, which its samples may reach. The
+//! bounds and the ranges are worked out in `f64`, the same way on every machine, so that the
+//! host and a firmware skip the same tests. A lens starts rays away from the eye: its rows test
+//! every object.
+
+use crate::camera::{Camera, Frame};
+use crate::desc::ShapeDesc;
+use crate::ray::{Ray, Span};
+use crate::scalar::Scalar;
+use crate::scene::{Object, Scene};
+use crate::shape::PerRay;
+use crate::vec3::Vec3;
+
+/// A ball is widened by this many of the errors with which a ray finds its object, and a ray's
+/// direction is taken to be off by this many of its errors: the error model's errors are
+/// estimates, and a test skipped wrongly would change the picture.
+pub const REACH_ERRORS: f64 = 4.0;
+
+/// Where on the camera's image plane (see [`crate::cull`]) primary rays can meet an object.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Bound {
+    /// Anywhere: the object surrounds the eye, or reaches beside or behind it.
+    Everywhere,
+    /// Nowhere: the object is behind the eye.
+    Nowhere,
+    /// Within the rectangle a ∈ `right`, b ∈ `up` (each a closed interval).
+    Rectangle {
+        /// The range of a.
+        right: [f64; 2],
+        /// The range of b.
+        up: [f64; 2],
+    },
+    /// Where `forward` + a·`right` + b·`up` ≥ 0, less a ray's error: the side of its horizon
+    /// a plane lies on (n·d ≥ 0, n its normal turned to face the eye's rays towards it).
+    Side {
+        /// n·forward.
+        forward: f64,
+        /// n·right.
+        right: f64,
+        /// n·up.
+        up: f64,
+    },
+}
+
+impl Bound {
+    /// The bound of `shape` for a camera at `eye` of `frame`, a sphere or a triangle widened by
+    /// [`REACH_ERRORS`] times `error` (the error with which a primary ray finds it).
+    #[must_use]
+    pub(crate) fn of(shape: &ShapeDesc, eye: Vec3<f64>, error: f64, frame: &Frame) -> Self {
+        let from_eye = |p| Vec3::from_f32(p) - eye;
+        match *shape {
+            ShapeDesc::Sphere { center, radius } => {
+                Self::ball(from_eye(center), f64::from(radius), error, frame)
+            }
+            ShapeDesc::Triangle { vertices } => {
+                let corners = vertices.map(from_eye);
+                let [a, b, c] = corners;
+                let centre = (a + b + c) * (1.0 / 3.0);
+                let radius = corners
+                    .iter()
+                    .map(|&corner| (corner - centre).length())
+                    .fold(0.0, f64::max);
+                Self::ball(centre, radius, error, frame)
+            }
+            ShapeDesc::Plane { point, normal, .. } => match Vec3::from_f32(normal).direction() {
+                Some(n) => Self::plane(n, n.dot(from_eye(point)), frame),
+                None => Self::Everywhere,
+            },
+        }
+    }
+
+    /// The bound of the ball about `centre` (relative to the eye) of `radius` plus
+    /// [`REACH_ERRORS`] times `error`, as the camera of `frame` sees it.
+    fn ball(centre: Vec3<f64>, radius: f64, error: f64, frame: &Frame) -> Self {
+        let radius = radius + REACH_ERRORS * error;
+        let (f, r, u) = (
+            centre.dot(frame.forward),
+            centre.dot(frame.right),
+            centre.dot(frame.up),
+        );
+        // The direction s = forward + a·right + b·up meets the ball where s·c > 0 and
+        // (s·c)² ≥ k·|s|², k = |c|² − radius² (|s|² = 1 + a² + b²: the frame is orthonormal).
+        // Over b, the most a row of constant a reaches is (f + a·r)² ≥ (k − u²)(1 + a²): a
+        // quadratic in a, and alike in b.
+        let k = centre.dot(centre) - radius * radius;
+        let (Some(right), Some(up)) = (extent(f, r, k - u * u), extent(f, u, k - r * r)) else {
+            return Self::Everywhere;
+        };
+        match (right, up) {
+            (Some(right), Some(up)) => {
+                // The rectangle's centre is the ellipse's: the cone's front half, or its back.
+                let middle = |[low, high]: [f64; 2]| 0.5 * (low + high);
+                if f + middle(right) * r + middle(up) * u > 0.0 {
+                    Self::Rectangle { right, up }
+                } else {
+                    Self::Nowhere
+                }
+            }
+            _ => Self::Nowhere,
+        }
+    }
+
+    /// The bound of the plane n·p = `offset` (relative to the eye; `normal` a unit vector), as
+    /// the camera of `frame` sees it.
+    fn plane(normal: Vec3<f64>, offset: f64, frame: &Frame) -> Self {
+        // A ray from the eye meets the plane at t = offset / (n·d) > 0: where n·d has the
+        // offset's sign.
+        let n = if offset > 0.0 {
+            normal
+        } else if offset < 0.0 {
+            -normal
+        } else {
+            return Self::Everywhere;
+        };
+        Self::Side {
+            forward: n.dot(frame.forward),
+            right: n.dot(frame.right),
+            up: n.dot(frame.up),
+        }
+    }
+}
+
+/// The range of x where (f + x·g)² ≥ h·(1 + x²): `None` when it is unbounded (test
+/// everywhere), `Some(None)` when it is empty.
+fn extent(f: f64, g: f64, h: f64) -> Option<Option<[f64; 2]>> {
+    // (g² − h)·x² + 2fg·x + (f² − h) ≥ 0.
+    let (a, b, c) = (g * g - h, f * g, f * f - h);
+    if h <= 0.0 || a >= 0.0 {
+        return None;
+    }
+    let discriminant = b * b - a * c;
+    if discriminant < 0.0 {
+        return Some(None);
+    }
+    let root = libm::sqrt(discriminant);
+    // a < 0: non-negative between the roots.
+    Some(Some([(-b + root) / a, (-b - root) / a]))
+}
+
+/// For each object of a scene, the pixels of one row whose primary rays may meet it: one range
+/// per bit of [`Candidates::at`], the objects from 31 on sharing the last.
+#[derive(Clone, Debug)]
+pub struct RowRanges {
+    /// The first and the last pixel of each range (first > last: none).
+    ranges: [(u32, u32); 32],
+    /// How many ranges are in use.
+    len: usize,
+}
+
+impl RowRanges {
+    /// The ranges of row `y` of the image `camera` takes of `objects`.
+    #[must_use]
+    pub fn new<S: Scalar>(objects: &[Object<S>], camera: &Camera<S>, y: u32) -> Self {
+        let mut ranges = [NONE; 32];
+        for (slot, object) in ranges.iter_mut().zip(objects) {
+            *slot = camera
+                .image_plane()
+                .map_or(ALL, |plane| plane.row_range(&object.bound, y));
+        }
+        // The objects from 31 on share the last range: the span of theirs.
+        for object in objects.iter().skip(32) {
+            let range = camera
+                .image_plane()
+                .map_or(ALL, |plane| plane.row_range(&object.bound, y));
+            if let Some(last) = ranges.last_mut() {
+                *last = hull(*last, range);
+            }
+        }
+        Self {
+            ranges,
+            len: objects.len().min(32),
+        }
+    }
+
+    /// The candidates of the row's pixels from left to right: see [`Candidates`].
+    #[must_use]
+    pub fn candidates(&self) -> Candidates<'_> {
+        Candidates {
+            ranges: self.ranges.get(..self.len).unwrap_or(&[]),
+            mask: 0,
+            next: 0,
+        }
+    }
+}
+
+/// The smallest range that holds both.
+fn hull(a: (u32, u32), b: (u32, u32)) -> (u32, u32) {
+    match (a.0 > a.1, b.0 > b.1) {
+        (true, _) => b,
+        (_, true) => a,
+        _ => (a.0.min(b.0), a.1.max(b.1)),
+    }
+}
+
+/// A pixel range that holds every pixel.
+const ALL: (u32, u32) = (0, u32::MAX);
+
+/// A pixel range that holds none.
+const NONE: (u32, u32) = (1, 0);
+
+/// The objects each pixel of a row may meet, for pixels taken left to right: worked out again
+/// only where a range starts or ends.
+#[derive(Clone, Debug)]
+pub struct Candidates<'a> {
+    ranges: &'a [(u32, u32)],
+    mask: u32,
+    /// The next pixel where a range starts or ends.
+    next: u32,
+}
+
+impl Candidates<'_> {
+    /// The objects pixel `x`'s rays may meet: bit i for object i, objects 31 and beyond
+    /// sharing bit 31 (a 32-bit mask, which the Cortex-M0 shifts in one instruction); `x` at
+    /// least the last one asked for.
+    #[inline]
+    pub fn at(&mut self, x: u32) -> u32 {
+        if x >= self.next {
+            self.mask = 0;
+            self.next = u32::MAX;
+            for (i, &(first, last)) in self.ranges.iter().enumerate() {
+                if first <= x && x <= last {
+                    self.mask |= 1 << i.min(31);
+                    self.next = self.next.min(last.saturating_add(1));
+                } else if first > x {
+                    self.next = self.next.min(first);
+                }
+            }
+        }
+        self.mask
+    }
+}
+
+/// A camera's image plane, for turning bounds into the pixel ranges of rows.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ImagePlane {
+    /// b at the image's top edge: its half height.
+    top: f64,
+    /// The image plane's width and height of a pixel.
+    pixel: f64,
+    /// a at the image's left edge: minus its half width.
+    left: f64,
+    /// Pixels per unit of a.
+    per_unit: f64,
+    /// The last pixel of a row.
+    last: u32,
+    /// How far a primary ray may be from where its pixel says, on the image plane.
+    slack: f64,
+}
+
+impl ImagePlane {
+    /// The image plane of half width `half_width` and half height `half_height` (a unit from
+    /// the eye) of an image of `width × height` pixels, whose rays' directions are off by at
+    /// most `aim_error(corner)`, an angle, with `corner` the distance of the plane's corner.
+    #[must_use]
+    pub(crate) fn new(
+        half_width: f64,
+        half_height: f64,
+        width: u32,
+        height: u32,
+        aim_error: impl FnOnce(f64) -> f64,
+    ) -> Self {
+        // A direction off by an angle θ meets the plane up to θ·|s|² away, |s| at most the
+        // image's corner.
+        let corner_squared = 1.0 + half_width * half_width + half_height * half_height;
+        let slack = REACH_ERRORS * aim_error(libm::sqrt(corner_squared)) * corner_squared;
+        Self {
+            top: half_height,
+            pixel: 2.0 * half_height / f64::from(height),
+            left: -half_width,
+            per_unit: f64::from(width) / (2.0 * half_width),
+            last: width.saturating_sub(1),
+            slack,
+        }
+    }
+
+    /// The pixels (from the left edge) at coordinate `a`.
+    fn pixels(&self, a: f64) -> f64 {
+        (a - self.left) * self.per_unit
+    }
+
+    /// The pixels of row `y` whose rays may meet within `bound`.
+    fn row_range(&self, bound: &Bound, y: u32) -> (u32, u32) {
+        // The row covers b from its bottom edge to its top.
+        let top = self.top - f64::from(y) * self.pixel;
+        let bottom = top - self.pixel;
+        // The stretch of a the row's rays may meet the bound in.
+        let (from, to) = match *bound {
+            Bound::Everywhere => return ALL,
+            Bound::Nowhere => return NONE,
+            Bound::Rectangle { right, up } => {
+                if bottom > up[1] + self.slack || top < up[0] - self.slack {
+                    return NONE;
+                }
+                (right[0] - self.slack, right[1] + self.slack)
+            }
+            Bound::Side { forward, right, up } => {
+                // Where forward + a·right + b·up ≥ −slack for the row's most favourable b.
+                let b = if up > 0.0 { top } else { bottom };
+                let constant = forward + b * up + self.slack;
+                if right > 0.0 {
+                    (-constant / right, f64::INFINITY)
+                } else if right < 0.0 {
+                    (f64::NEG_INFINITY, -constant / right)
+                } else if constant >= 0.0 {
+                    return ALL;
+                } else {
+                    return NONE;
+                }
+            }
+        };
+        // Pixel i covers [i, i + 1] of the row: the first that reaches `from` is ⌈from⌉ − 1,
+        // the last ⌊to⌋, each clamped to the row (from −1 to the last pixel plus one, so
+        // that ⌊x⌋ is the truncation of x + 2, less 2).
+        let last = f64::from(self.last);
+        let clamp = |pixels: f64| pixels.max(-1.0).min(last + 1.0);
+        let floor = |pixels: f64| (pixels + 2.0) as i64 - 2;
+        let first = -floor(-clamp(self.pixels(from))) - 1;
+        let end = floor(clamp(self.pixels(to)));
+        match (u32::try_from(first.max(0)), u32::try_from(end)) {
+            (Ok(first), Ok(end)) if first <= end && first <= self.last => {
+                (first, end.min(self.last))
+            }
+            _ => NONE,
+        }
+    }
+}
+
+/// The first pixel of row `y` one of whose rays meets an object its row's ranges leave out,
+/// with that object's index; `None` when the ranges keep every hit. The rays tried are the
+/// pixel's primary ray as the renderer makes it, and the rays through its four corners, the
+/// farthest a pixel's samples reach. What the tests and the fuzzer hold culling to.
+#[must_use]
+pub fn first_skipped_hit<
+    S: Scalar,
+    const OBJECTS: usize,
+    const LIGHTS: usize,
+    const RAYS: usize,
+>(
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
+    camera: &Camera<S>,
+    y: u32,
+) -> Option<(u32, usize)> {
+    let row = camera.row(y)?;
+    let ranges = RowRanges::new(&scene.objects, camera, y);
+    let mut candidates = ranges.candidates();
+    let half = S::ratio(1, 2);
+    let corners = [[-half, -half], [half, -half], [-half, half], [half, half]];
+    let settings = &scene.settings;
+    let span = Span {
+        min: settings.tolerance_base,
+        max: settings.ray_length,
+    };
+    let meets = |object: &Object<S>, ray: &Ray<S>| {
+        let mut per_ray = PerRay::new();
+        object
+            .shape
+            .intersect(ray, span, &settings.methods, &mut per_ray)
+            .is_some()
+    };
+    for (x, centre) in (0..).zip(row.rays()) {
+        let candidates = candidates.at(x);
+        let rays = corners
+            .iter()
+            .filter_map(|&offset| row.ray_offset(x, offset))
+            .chain([centre]);
+        for ray in rays {
+            for (i, object) in scene.objects.iter().enumerate() {
+                let candidate = candidates & (1 << i.min(31)) != 0;
+                if !candidate && meets(object, &ray) {
+                    return Some((x, i));
+                }
+            }
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::desc::CameraDesc;
+    use crate::methods::Methods;
+    use crate::scenes::BUILT_IN;
+
+    /// Every built-in scene that `S` holds, by the lecture's methods and each variant, at a
+    /// small size: no ray of any pixel meets an object its row leaves out.
+    fn culling_keeps_every_hit<S: Scalar>() {
+        const SIDE: u32 = 40;
+        for built_in in &BUILT_IN {
+            for methods in Methods::LECTURE.variants() {
+                let Ok(scene) = Scene::<S, 8, 4, 8>::build_with(&built_in.desc, methods) else {
+                    continue;
+                };
+                let Ok(camera) = scene.camera(SIDE, SIDE) else {
+                    continue;
+                };
+                for y in 0..SIDE {
+                    assert_eq!(
+                        first_skipped_hit(&scene, &camera, y),
+                        None,
+                        "{} in {} by {methods:?}, row {y}",
+                        built_in.name,
+                        S::NAME
+                    );
+                }
+            }
+        }
+    }
+
+    macro_rules! every_format {
+        (fixed { $($f:ident => $raw:ident,)* } float { $($v:ident => $t:ty,)* }) => {
+            $(culling_keeps_every_hit::<crate::scalar::Fx<fixed::types::$raw>>();)*
+            $(culling_keeps_every_hit::<$t>();)*
+        };
+    }
+
+    #[test]
+    fn culling_keeps_every_hit_of_the_built_in_scenes_in_every_format() {
+        crate::for_each_format!(every_format);
+    }
+
+    /// A camera at the origin looking down +z, x to the left (right = forward × up = −x).
+    fn frame() -> Frame {
+        let desc = CameraDesc::pinhole([0.0; 3], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 90.0);
+        Frame::new(&desc).unwrap()
+    }
+
+    #[test]
+    fn a_ball_ahead_bounds_the_disc_it_projects_to() {
+        // A ball of radius 1 ten units ahead subtends asin(0.1): its disc on the image plane
+        // has the radius tan(asin 0.1).
+        let edge = libm::tan(libm::asin(0.1));
+        let Bound::Rectangle { right, up } =
+            Bound::ball(Vec3::new(0.0, 0.0, 10.0), 1.0, 0.0, &frame())
+        else {
+            panic!("no rectangle");
+        };
+        for [low, high] in [right, up] {
+            assert!((low + edge).abs() < 1e-12 && (high - edge).abs() < 1e-12);
+        }
+        // Two units to the left (right = −x), its disc is offset along a by about −0.2.
+        let Bound::Rectangle { right, .. } =
+            Bound::ball(Vec3::new(2.0, 0.0, 10.0), 1.0, 0.0, &frame())
+        else {
+            panic!("no rectangle");
+        };
+        assert!(
+            right[0] < -0.2 && right[1] > -0.2 && right[1] < 0.0,
+            "{right:?}"
+        );
+    }
+
+    #[test]
+    fn a_ball_behind_is_nowhere_and_one_about_the_eye_everywhere() {
+        let frame = frame();
+        assert_eq!(
+            Bound::ball(Vec3::new(0.0, 0.0, -10.0), 1.0, 0.0, &frame),
+            Bound::Nowhere
+        );
+        assert_eq!(
+            Bound::ball(Vec3::new(0.0, 0.0, 1.0), 0.5, 0.2, &frame),
+            Bound::Everywhere
+        );
+        // Beside the eye, its cone reaches beyond any rectangle.
+        assert_eq!(
+            Bound::ball(Vec3::new(3.0, 0.0, 0.0), 1.0, 0.0, &frame),
+            Bound::Everywhere
+        );
+    }
+
+    #[test]
+    fn a_floor_is_reached_below_its_horizon() {
+        // The floor y = −1: rays meet it where they point down (b < 0).
+        let floor = Bound::plane(Vec3::new(0.0, 1.0, 0.0), -1.0, &frame());
+        let plane = ImagePlane::new(1.0, 1.0, 4, 4, |_| 0.0);
+        // Rows 0 and 1 lie above the horizon (b from 1 down to 0), rows 2 and 3 below; row 1's
+        // bottom edge touches it.
+        let rows = [0, 1, 2, 3].map(|y| plane.row_range(&floor, y));
+        assert_eq!(rows, [NONE, ALL, ALL, ALL]);
+    }
+
+    #[test]
+    fn candidates_change_where_a_range_starts_or_ends() {
+        let mut ranges = RowRanges {
+            ranges: [NONE; 32],
+            len: 2,
+        };
+        ranges.ranges[..2].copy_from_slice(&[(2, 4), (3, 3)]);
+        let mut candidates = ranges.candidates();
+        let seen: Vec<u32> = (0..6).map(|x| candidates.at(x)).collect();
+        assert_eq!(seen, [0, 0, 0b01, 0b11, 0b01, 0]);
+    }
+}
