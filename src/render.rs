@@ -18,7 +18,7 @@ use core::ops::Range;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Point, Size};
 use embedded_graphics_core::primitives::Rectangle;
-use heapless::VecView;
+use heapless::{Vec, VecView};
 
 /// Why a render stopped.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -161,7 +161,7 @@ const _SAMPLE_SUMS_FIT: () = assert!(
 /// line: a firmware holds one copy per format however many scenes it draws.
 #[inline(never)]
 fn trace_into<S, C>(
-    scene: &Tracer<'_, S>,
+    tracer: &Tracer<'_, S>,
     stack: &mut VecView<Task<S>>,
     row: &Row<S>,
     y: u32,
@@ -171,10 +171,10 @@ fn trace_into<S, C>(
     S: Scalar,
     C: DisplayColor,
 {
-    let samples = scene.samples();
+    let samples = tracer.samples();
     let n = u32::from(samples);
     let sampled = samples > 1 || row.has_lens();
-    let ranges = RowRanges::new(scene.objects(), row.camera(), y);
+    let ranges = RowRanges::new(tracer.objects(), row.camera(), y);
     let mut candidates = ranges.candidates();
     let mut centres = row.rays();
     for (x, pixel) in (0..).zip(line.iter_mut()) {
@@ -190,7 +190,7 @@ fn trace_into<S, C>(
                 Some(pattern) => pattern.ray(row, i, samples),
             };
             let Some(ray) = ray else { continue };
-            colour = scene
+            colour = tracer
                 .trace_ray(ray, SampleId { x, y, sample: i }, candidates, stack)
                 .colour;
             if pattern.is_some() {
@@ -224,7 +224,7 @@ fn trace_pixels<K, S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: 
     match window {
         Some(window) if !K::NONE => adaptive_row(scene, row, y, dither, line, window),
         _ => {
-            let mut stack: heapless::Vec<Task<S>, RAYS> = heapless::Vec::new();
+            let mut stack: Vec<Task<S>, RAYS> = Vec::new();
             let tracer = scene.tracer(SampleId::default());
             trace_into(&tracer, stack.as_mut_view(), row, y, dither, line);
         }
