@@ -536,7 +536,7 @@ fn colour_sum(desc: &SceneDesc<'_>) -> f64 {
 /// relative to the determinant (from its stored edges' rounding, and for Möller–Trumbore the
 /// rounding of 1/det), times the way the ray has come. A point (the eye, a light) nearer the
 /// surface than this is on either side of it at random.
-pub(crate) fn locating(shape: &ShapeDesc, methods: &Methods, from: f64, eye: [f32; 3]) -> Terms {
+fn locating(shape: &ShapeDesc, methods: &Methods, from: f64, eye: [f32; 3]) -> Terms {
     match *shape {
         ShapeDesc::Sphere { radius, .. } => {
             let r = f64::from(radius);
