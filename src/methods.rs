@@ -142,6 +142,7 @@ impl Methods {
 impl RootMethod {
     /// √x.
     #[inline(always)]
+    #[track_caller]
     pub fn sqrt<S: Scalar>(self, x: S) -> S {
         match self {
             Self::Exact => x.sqrt(),
@@ -151,6 +152,7 @@ impl RootMethod {
 
     /// 1/√x.
     #[inline(always)]
+    #[track_caller]
     pub fn rsqrt<S: Scalar>(self, x: S) -> S {
         match self {
             Self::Exact => x.rsqrt(),
@@ -160,6 +162,7 @@ impl RootMethod {
 
     /// a/b.
     #[inline(always)]
+    #[track_caller]
     pub fn div<S: Scalar>(self, a: S, b: S) -> S {
         match self {
             Self::Exact => a / b,

@@ -9,7 +9,7 @@ use crate::light::Light;
 use crate::methods::{BiasMethod, RootMethod};
 use crate::pattern::{Pattern, SHADOW_PROBES, SampleId};
 use crate::ray::{Ray, Span};
-use crate::scalar::Scalar;
+use crate::scalar::{RayKind, Scalar, Work};
 use crate::scene::{Object, Scene, Settings};
 use crate::shape::{Intersection, PerRay};
 use crate::vec3::Vec3;
@@ -232,6 +232,11 @@ impl<S: Scalar> Tracer<'_, S> {
         from: Option<Leaving<S>>,
         wanted: impl Fn(usize) -> bool,
     ) -> Option<Hit<'_, S>> {
+        S::note(Work::Search(if from.is_some() {
+            RayKind::Secondary
+        } else {
+            RayKind::Primary
+        }));
         let mut span = self.span(from, self.settings.ray_length);
         let mut nearest = None;
         let mut per_ray = PerRay::new();
@@ -239,7 +244,9 @@ impl<S: Scalar> Tracer<'_, S> {
             if !wanted(index) {
                 continue;
             }
+            S::note(Work::Test);
             if let Some(at) = self.meet(ray, span, index, object, from, &mut per_ray) {
+                S::note(Work::Met);
                 span.max = at.t;
                 nearest = Some(Hit { object, index, at });
             }
@@ -394,14 +401,17 @@ impl<S: Scalar> Tracer<'_, S> {
     /// about 60 instructions per pixel.
     #[inline(always)]
     fn transmittance(&self, ray: &Ray<S>, distance: S, from: Leaving<S>, met: &mut u64) -> S {
+        S::note(Work::Search(RayKind::Shadow));
         let span = self.span(Some(from), distance);
         let mut passed = S::ONE;
         let mut per_ray = PerRay::new();
         for (index, object) in self.objects.iter().enumerate() {
+            S::note(Work::Test);
             if self
                 .meet(ray, span, index, object, Some(from), &mut per_ray)
                 .is_some()
             {
+                S::note(Work::Met);
                 *met |= bit(index);
                 passed = passed * object.material.transmission;
                 if passed == S::ZERO {

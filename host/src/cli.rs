@@ -245,6 +245,10 @@ pub struct RenderArgs {
     /// Threads to render on (rows are shared out one at a time).
     #[arg(long, default_value_t = default_threads(), value_parser = clap::value_parser!(u16).range(1..=1024))]
     pub threads: u16,
+    /// Also count the tracer's operations per pixel and phase (products, quotients, roots,
+    /// sums, object tests) and print them beside the floor the scene needs.
+    #[arg(long)]
+    pub count: bool,
 }
 
 /// `obscura compare`.

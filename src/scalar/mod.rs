@@ -214,6 +214,12 @@ pub trait Scalar:
         Self::from_int(num) / Self::from_int(den)
     }
 
+    /// Hears of a step of the tracer's work that no arithmetic operation shows ([`Work`]). The
+    /// formats here ignore it (it costs nothing); the desktop harness's operation counter
+    /// tallies it.
+    #[inline(always)]
+    fn note(_work: Work) {}
+
     /// `self` raised to a non-negative integer power, by repeated squaring.
     #[must_use]
     #[track_caller]
@@ -232,6 +238,29 @@ pub trait Scalar:
         }
         result
     }
+}
+
+/// A step of the tracer's work that [`Scalar::note`] hears of: where a ray's search for what it
+/// meets starts, and each object test of the search and its outcome.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Work {
+    /// A ray of this kind starts searching the scene.
+    Search(RayKind),
+    /// The search tests an object.
+    Test,
+    /// The object just tested is met: the nearest so far, or an occluder of a shadow ray.
+    Met,
+}
+
+/// The kinds of ray, by what their search is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum RayKind {
+    /// From the eye (or a lens), through a pixel: the nearest object.
+    Primary,
+    /// Reflected or refracted: the nearest object.
+    Secondary,
+    /// From a surface towards a light: every occluder.
+    Shadow,
 }
 
 /// What an error message needs to know of a format it cannot name by type.

@@ -1,6 +1,7 @@
 //! `obscura render`: one scene, one format, one PNG.
 
 use crate::cli::RenderArgs;
+use crate::operations;
 use crate::output::{self, say};
 use crate::render::{Request, prepare};
 use crate::scene_file::NamedScene;
@@ -43,5 +44,18 @@ fn render(args: &RenderArgs, named: &NamedScene) -> Result<()> {
         args.threads,
         args.output.display()
     )?;
+    if args.count {
+        let (count, counted) = operations::count(format, &request)
+            .with_context(|| format!("counting the operations of {name} in {format}"))?;
+        anyhow::ensure!(
+            counted == image,
+            "counting changed the picture of {name} in {format} (a bug in obscura's counter)"
+        );
+        say!(
+            "{name} {width}x{height} in {format} by {methods}, the tracer's operations \
+             (counted on the host, one per textbook operation):\n{}",
+            count.table()
+        )?;
+    }
     Ok(())
 }
