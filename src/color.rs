@@ -82,7 +82,8 @@ impl<S: Scalar> Rgb<S> {
     /// the display's levels.
     #[must_use]
     pub fn quantize<C: DisplayColor>(self) -> C {
-        self.quantize_with(S::ratio(1, 2))
+        // ½ in 16-bit fractions: a shift, where a quotient cost every pixel.
+        self.quantize_with(S::from_q16(1 << 15))
     }
 
     /// The colour on a display at pixel (`x`, `y`), by `dither`: rounded to the nearest level,
@@ -94,7 +95,8 @@ impl<S: Scalar> Rgb<S> {
     pub fn quantize_at<C: DisplayColor>(self, dither: Dither, x: u32, y: u32) -> C {
         match dither {
             Dither::None => self.quantize(),
-            Dither::Ordered => self.quantize_with(S::ratio(2 * bayer(x, y) + 1, 32)),
+            // (2b + 1)/32 in 16-bit fractions, likewise.
+            Dither::Ordered => self.quantize_with(S::from_q16((2 * bayer(x, y) + 1) << 11)),
         }
     }
 
