@@ -58,25 +58,15 @@ impl Bound {
     /// [`REACH_ERRORS`] times `error` (the error with which a primary ray finds it).
     #[must_use]
     pub(crate) fn of(shape: &ShapeDesc, eye: Vec3<f64>, error: f64, frame: &Frame) -> Self {
-        let from_eye = |p| Vec3::from_f32(p) - eye;
-        match *shape {
-            ShapeDesc::Sphere { center, radius } => {
-                Self::ball(from_eye(center), f64::from(radius), error, frame)
+        match (*shape, ball(shape, eye)) {
+            (_, Some((centre, radius))) => Self::ball(centre, radius, error, frame),
+            (ShapeDesc::Plane { point, normal, .. }, None) => {
+                match Vec3::from_f32(normal).direction() {
+                    Some(n) => Self::plane(n, n.dot(Vec3::from_f32(point) - eye), frame),
+                    None => Self::Everywhere,
+                }
             }
-            ShapeDesc::Triangle { vertices } => {
-                let corners = vertices.map(from_eye);
-                let [a, b, c] = corners;
-                let centre = (a + b + c) * (1.0 / 3.0);
-                let radius = corners
-                    .iter()
-                    .map(|&corner| (corner - centre).length())
-                    .fold(0.0, f64::max);
-                Self::ball(centre, radius, error, frame)
-            }
-            ShapeDesc::Plane { point, normal, .. } => match Vec3::from_f32(normal).direction() {
-                Some(n) => Self::plane(n, n.dot(from_eye(point)), frame),
-                None => Self::Everywhere,
-            },
+            (_, None) => Self::Everywhere,
         }
     }
 
@@ -128,6 +118,26 @@ impl Bound {
             right: n.dot(frame.right),
             up: n.dot(frame.up),
         }
+    }
+}
+
+/// The ball that holds `shape`, its centre relative to `eye`: a sphere itself, a triangle's
+/// about its centroid through its farthest corner; `None` for a plane.
+pub(crate) fn ball(shape: &ShapeDesc, eye: Vec3<f64>) -> Option<(Vec3<f64>, f64)> {
+    let from_eye = |p| Vec3::from_f32(p) - eye;
+    match *shape {
+        ShapeDesc::Sphere { center, radius } => Some((from_eye(center), f64::from(radius))),
+        ShapeDesc::Triangle { vertices } => {
+            let corners = vertices.map(from_eye);
+            let [a, b, c] = corners;
+            let centre = (a + b + c) * (1.0 / 3.0);
+            let radius = corners
+                .iter()
+                .map(|&corner| (corner - centre).length())
+                .fold(0.0, f64::max);
+            Some((centre, radius))
+        }
+        ShapeDesc::Plane { .. } => None,
     }
 }
 

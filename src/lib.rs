@@ -39,6 +39,7 @@ pub mod desc;
 pub mod light;
 pub mod material;
 pub mod methods;
+pub mod occlusion;
 pub mod pattern;
 pub mod ray;
 pub mod render;

@@ -7,6 +7,7 @@
 use crate::color::Rgb;
 use crate::light::Light;
 use crate::methods::{BiasMethod, RootMethod};
+use crate::occlusion::Cone;
 use crate::pattern::{Pattern, SHADOW_PROBES, SampleId};
 use crate::ray::{Ray, Span};
 use crate::scalar::{RayKind, Scalar, Work};
@@ -89,6 +90,8 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
         Tracer {
             objects: &self.objects,
             lights: &self.lights,
+            cones: self.cones.as_flattened(),
+            objects_capacity: OBJECTS,
             settings: &self.settings,
             id,
         }
@@ -100,6 +103,10 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
 pub(crate) struct Tracer<'a, S> {
     objects: &'a [Object<S>],
     lights: &'a [Light<S>],
+    /// Each light's cones ([`crate::occlusion`]), one per object: a run of
+    /// `objects_capacity` for each light.
+    cones: &'a [Cone<S>],
+    objects_capacity: usize,
     settings: &'a Settings<S>,
     /// Which ray of the image is traced.
     id: SampleId,
@@ -109,6 +116,12 @@ impl<S: Scalar> Tracer<'_, S> {
     /// The objects.
     pub(crate) const fn objects(&self) -> &[Object<S>] {
         self.objects
+    }
+
+    /// The cones of the objects from `light`.
+    fn cones_of(&self, light: &Light<S>) -> &[Cone<S>] {
+        let start = usize::from(light.index) * self.objects_capacity;
+        self.cones.get(start..).unwrap_or(&[])
     }
 
     /// Rays per pixel.
@@ -307,7 +320,10 @@ impl<S: Scalar> Tracer<'_, S> {
             let shadow = if light.shadow_rays > 1 {
                 self.visible_share(light, above, facing, this_side, met)
             } else {
-                self.transmittance(&Ray::new(above, l), distance, this_side, met)
+                let cones = self.cones_of(light);
+                self.transmittance(&Ray::new(above, l), distance, this_side, met, |i| {
+                    cones.get(i).is_none_or(|cone| cone.admits(l))
+                })
             };
             if shadow == S::ZERO {
                 continue;
@@ -400,12 +416,22 @@ impl<S: Scalar> Tracer<'_, S> {
     /// Inlined into both its callers: called out of line, it cost the M4F's one-ray `whitted`
     /// about 60 instructions per pixel.
     #[inline(always)]
-    fn transmittance(&self, ray: &Ray<S>, distance: S, from: Leaving<S>, met: &mut u64) -> S {
+    fn transmittance(
+        &self,
+        ray: &Ray<S>,
+        distance: S,
+        from: Leaving<S>,
+        met: &mut u64,
+        admits: impl Fn(usize) -> bool,
+    ) -> S {
         S::note(Work::Search(RayKind::Shadow));
         let span = self.span(Some(from), distance);
         let mut passed = S::ONE;
         let mut per_ray = PerRay::new();
         for (index, object) in self.objects.iter().enumerate() {
+            if !admits(index) {
+                continue;
+            }
             S::note(Work::Test);
             if self
                 .meet(ray, span, index, object, Some(from), &mut per_ray)
@@ -446,6 +472,15 @@ impl<S: Scalar> Tracer<'_, S> {
         let roots = self.settings.methods.roots;
         let pattern = Pattern::light(self.id, light.index);
         let l = (light.position - origin).normalized(roots);
+        // Every ray to the disc is in the cone of an object it can meet ([`crate::occlusion`]).
+        let cones = self.cones_of(light);
+        let admitted = (0..self.objects.len()).fold(0, |admitted, i| {
+            if cones.get(i).is_none_or(|cone| cone.admits(l)) {
+                admitted | bit(i)
+            } else {
+                admitted
+            }
+        });
         let [across, up] = perpendiculars(l, roots);
         let n = light.shadow_rays;
         let (mut first, mut agree, mut sum) = (0, true, 0_u32);
@@ -457,7 +492,9 @@ impl<S: Scalar> Tracer<'_, S> {
                 .add_scaled(up, light.radius * b);
             let (dir, distance) = (target - origin).normalized_with_length(roots);
             let passed = if facing.dot(dir) > S::ZERO {
-                self.transmittance(&Ray::new(origin, dir), distance, from, met)
+                self.transmittance(&Ray::new(origin, dir), distance, from, met, |i| {
+                    admitted & bit(i) != 0
+                })
             } else {
                 S::ZERO
             };

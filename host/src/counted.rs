@@ -13,8 +13,8 @@
 //!
 //! A phase is read from the source file of the core that forms the operation (the core's
 //! vector and colour operations pass their caller's place on, `#[track_caller]`): the camera's,
-//! the shapes', the shading's (`shade`, `light`, `material`, and a shape's surface point, normal
-//! and pattern once its test is over), the pixel loop's and the colours'. The helpers every
+//! the shapes', the shadow cones' (`occlusion`), the shading's (`shade`, `light`, `material`,
+//! and a shape's surface point, normal and pattern once its test is over), the pixel loop's and the colours'. The helpers every
 //! phase calls (vectors, rays, roots, sample patterns, the number formats) count for the phase
 //! that called them; everything from a [`Work::Test`] on is the test's until a phase's own
 //! source forms an operation.
@@ -101,6 +101,8 @@ pub enum Phase {
     Camera,
     /// Object tests, of every kind of ray.
     Tests,
+    /// Which objects a shadow ray tests: their cones.
+    Cones,
     /// Shading: lights, shadow and secondary rays set up, surface points and normals.
     Shading,
     /// The pixel loop, samples averaged, colours quantised for the display.
@@ -121,6 +123,7 @@ impl Phase {
                 Self::Tests
             }
             "shade.rs" | "light.rs" | "material.rs" => Self::Shading,
+            "occlusion.rs" => Self::Cones,
             "render.rs" | "color.rs" | "adaptive.rs" => Self::Output,
             "vec3.rs" | "ray.rs" | "methods.rs" | "pattern.rs" => return None,
             file if file.starts_with("scalar/") => return None,
@@ -134,6 +137,8 @@ impl Phase {
 pub struct Tally {
     /// Operations by phase, but the tests.
     pub camera: Operations,
+    /// See [`Self::camera`].
+    pub cones: Operations,
     /// See [`Self::camera`].
     pub shading: Operations,
     /// See [`Self::camera`].
@@ -195,6 +200,7 @@ impl Tally {
         self.phase = Some(phase);
         match phase {
             Phase::Camera => self.camera += operations,
+            Phase::Cones => self.cones += operations,
             Phase::Shading => self.shading += operations,
             Phase::Output => self.output += operations,
             Phase::Setup => self.setup += operations,

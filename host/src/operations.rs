@@ -85,6 +85,11 @@ impl FrameCount {
             }
         }));
         lines.push(Line {
+            phase: "shadow cones: which objects to test",
+            measured: (tally.cones, 0),
+            floor: (Operations::default(), 0),
+        });
+        lines.push(Line {
             phase: "shading (the floor: the same)",
             measured: (tally.shading, 0),
             floor: (tally.shading, 0),

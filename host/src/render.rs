@@ -11,6 +11,7 @@ use embedded_graphics::primitives::Rectangle;
 use image::RgbImage;
 use indicatif::{ProgressBar, ProgressStyle};
 use obscura::cull::first_skipped_hit;
+use obscura::occlusion::first_skipped_shadow;
 use obscura::pattern::{Pattern, SampleId};
 use obscura::{
     Camera, Corner, Methods, Presentation, Ray, RootMethod, Scalar, Scene, SceneDesc, SceneError,
@@ -270,7 +271,9 @@ impl<S: Scalar> Prepared<S> {
     }
 
     /// The first pixel whose rays meet an object that culling leaves out of its row
-    /// ([`obscura::cull::first_skipped_hit`]), as (x, y, object), or `None`.
+    /// ([`obscura::cull::first_skipped_hit`]), or whose ray tree changes when its shadow rays
+    /// skip what the shadow cones rule out ([`obscura::occlusion::first_skipped_shadow`]), as
+    /// (x, y, object), or `None`.
     ///
     /// # Errors
     /// As [`Self::render`].
@@ -282,7 +285,8 @@ impl<S: Scalar> Prepared<S> {
                 return Ok(Some((x, y, object)));
             }
         }
-        Ok(None)
+        checked::catch(|| first_skipped_shadow(&self.scene, &self.camera))
+            .map_err(|overflowed| self.overflow_at(0..self.camera.height(), overflowed))
     }
 
     /// The objects each pixel's ray tree meets ([`obscura::Sample::met`]), row by row.

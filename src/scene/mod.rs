@@ -9,11 +9,12 @@ pub use error::{Item, Remedy, SceneError};
 
 use crate::camera::{Camera, Frame, MAX_IMAGE_SIDE};
 use crate::color::Rgb;
-use crate::cull::Bound;
+use crate::cull::{self, Bound, REACH_ERRORS};
 use crate::desc::{BackgroundDesc, CheckerDesc, LightDesc, MaterialDesc, SceneDesc, ShapeDesc};
 use crate::light::{Background, Light};
 use crate::material::Material;
 use crate::methods::{Methods, RootMethod};
+use crate::occlusion::Cone;
 use crate::scalar::{FormatInfo, FormatSet, Scalar};
 use crate::shape::{Checker, Plane, Shape, Sphere, Triangle};
 use crate::vec3::Vec3;
@@ -59,6 +60,8 @@ pub struct Object<S> {
 pub struct Scene<S, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize> {
     pub(crate) objects: Vec<Object<S>, OBJECTS>,
     pub(crate) lights: Vec<Light<S>, LIGHTS>,
+    /// For each light, each object's cone ([`crate::occlusion`]).
+    pub(crate) cones: Vec<[Cone<S>; OBJECTS], LIGHTS>,
     pub(crate) settings: Settings<S>,
     frame: Frame,
 }
@@ -261,14 +264,23 @@ impl<S: Scalar> Converter<S> {
                 .map_err(|_| too_many("objects", desc.objects.len(), O))?;
         }
         let mut lights = Vec::new();
+        let mut cones = Vec::new();
         for (i, light) in desc.lights.iter().enumerate() {
             lights
                 .push(self.light(i, light, desc.shadow_samples)?)
+                .map_err(|_| too_many("lights", desc.lights.len(), L))?;
+            let mut of_light = [Cone::Everywhere; O];
+            for (cone, object) in of_light.iter_mut().zip(desc.objects) {
+                *cone = self.cone(Item::Light(i), light, &object.shape, desc.camera.eye)?;
+            }
+            cones
+                .push(of_light)
                 .map_err(|_| too_many("lights", desc.lights.len(), L))?;
         }
         Ok(Scene {
             objects,
             lights,
+            cones,
             settings: self.settings(desc)?,
             frame: self.frame,
         })
@@ -294,6 +306,26 @@ impl<S: Scalar> Converter<S> {
             // Fewer lights than the capacity, far fewer than 2¹⁶.
             index: i as u16,
         })
+    }
+
+    /// The cone of `shape` from `light` ([`crate::occlusion`]). Out of line, as
+    /// [`Self::object`] is.
+    #[inline(never)]
+    fn cone(
+        &self,
+        item: Item,
+        light: &LightDesc,
+        shape: &ShapeDesc,
+        eye: [f32; 3],
+    ) -> Result<Cone<S>, SceneError> {
+        let position = Vec3::from_f32(light.position) - self.eye;
+        // A shadow ray starts within the world (or its slack beyond it) and ends at the light.
+        let longest = self.world + self.slack + position.length();
+        let ball = range::finding_error::<S>(shape, &self.methods, eye, longest)
+            .zip(cull::ball(shape, self.eye))
+            .map(|(error, (centre, radius))| (centre, radius + REACH_ERRORS * error));
+        Cone::of(ball, position, f64::from(light.radius), longest)
+            .ok_or_else(|| self.out_of_range(item, "a shadow cone's axis", position))
     }
 
     /// What the tracer needs of `desc` besides its objects and lights. Out of line, as
@@ -451,7 +483,7 @@ impl<S: Scalar> Converter<S> {
             material,
             tolerance: self.scalar(item, "the surface tolerance", tolerance)?,
             // A primary ray may be judged to meet the object this far beyond it (if bounded).
-            bound: range::primary_error::<S>(shape_desc, &self.methods, desc.camera.eye)
+            bound: range::finding_error::<S>(shape_desc, &self.methods, desc.camera.eye, 0.0)
                 .map_or(Bound::Everywhere, |error| {
                     Bound::of(shape_desc, self.eye, error, &self.frame)
                 }),

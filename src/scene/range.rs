@@ -563,29 +563,31 @@ fn locating(shape: &ShapeDesc, methods: &Methods, from: f64, eye: [f32; 3]) -> T
     }
 }
 
-/// The error with which a ray from the eye finds `shape` by `methods` ([`locating`], at the
-/// shape's far side), and the rounding of its description into the format: how far outside
-/// the described shape a primary ray may be judged to meet it; `None` where no such bound
-/// holds. Möller–Trumbore multiplies by 1/det rounded, which in a coarse format
+/// The error with which a ray from the eye, or from a point up to `beyond` farther from the
+/// shape, finds `shape` by `methods` ([`locating`], at the shape's far side), and the rounding
+/// of its description into the format: how far outside the described shape such a ray (a
+/// primary ray, for `beyond` 0) may be judged to meet it; `None` where no such bound holds. Möller–Trumbore multiplies by 1/det rounded, which in a coarse format
 /// can make a ray meet a small triangle pixels away from it (the fuzzer found rays in `i10f22`
 /// meeting a triangle two hundredths of a unit across two pixels of a five-pixel-wide image
 /// beyond its edge): beyond what the error model bounds.
-pub(crate) fn primary_error<S: Scalar>(
+pub(crate) fn finding_error<S: Scalar>(
     shape: &ShapeDesc,
     methods: &Methods,
     eye: [f32; 3],
+    beyond: f64,
 ) -> Option<f64> {
-    let reach = match *shape {
-        ShapeDesc::Sphere { center, radius } => distance(center, eye) + f64::from(radius),
-        ShapeDesc::Plane { point, .. } => distance(point, eye),
-        ShapeDesc::Triangle { .. } if methods.triangle == TriangleMethod::MollerTrumbore => {
-            return None;
-        }
-        ShapeDesc::Triangle { vertices } => vertices
-            .iter()
-            .map(|&corner| distance(corner, eye))
-            .fold(0.0, f64::max),
-    };
+    let reach = beyond
+        + match *shape {
+            ShapeDesc::Sphere { center, radius } => distance(center, eye) + f64::from(radius),
+            ShapeDesc::Plane { point, .. } => distance(point, eye),
+            ShapeDesc::Triangle { .. } if methods.triangle == TriangleMethod::MollerTrumbore => {
+                return None;
+            }
+            ShapeDesc::Triangle { vertices } => vertices
+                .iter()
+                .map(|&corner| distance(corner, eye))
+                .fold(0.0, f64::max),
+        };
     let rounding = Terms::new(&[(2.0, reach)]);
     Some(error::<S>(
         &locating(shape, methods, reach, eye).plus(rounding),

@@ -76,7 +76,8 @@ pub enum Failure {
         /// The panic's message.
         message: String,
     },
-    /// A primary ray meets an object that culling leaves out of its pixel.
+    /// A primary ray meets an object that culling leaves out of its pixel, or a shadow ray one
+    /// that its cone leaves out.
     SkippedHit {
         /// The pixel and the object.
         message: String,
