@@ -21,7 +21,9 @@ use crate::cull::REACH_ERRORS;
 use crate::pattern::SampleId;
 use crate::scalar::Scalar;
 use crate::scene::Scene;
+use crate::shade::Task;
 use crate::vec3::Vec3;
+use heapless::Vec;
 
 /// The directions from a light towards the points an object may shadow.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -114,15 +116,17 @@ pub fn first_skipped_shadow<
     scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
     camera: &Camera<S>,
 ) -> Option<(u32, u32, usize)> {
-    let mut open = scene.clone();
-    for cones in &mut open.cones {
-        cones.fill(Cone::Everywhere);
-    }
+    let mut stack: Vec<Task<S>, RAYS> = Vec::new();
     for y in 0..camera.height() {
         let row = camera.row(y)?;
         for (x, ray) in (0..).zip(row.rays()) {
             let id = SampleId { x, y, sample: 0 };
-            let (coned, open) = (scene.trace(ray, id), open.trace(ray, id));
+            let coned = scene.trace(ray, id);
+            let open =
+                scene
+                    .tracer(id)
+                    .without_cones()
+                    .trace_ray(ray, id, u32::MAX, stack.as_mut_view());
             if coned != open {
                 let differing = coned.met ^ open.met;
                 let object = if differing == 0 {

@@ -118,7 +118,13 @@ impl<S: Scalar> Tracer<'_, S> {
         self.objects
     }
 
-    /// The cones of the objects from `light`.
+    /// This tracer with shadow rays that test every object, whatever their cones: what the
+    /// cones are checked against ([`crate::occlusion::first_skipped_shadow`]).
+    pub(crate) fn without_cones(self) -> Self {
+        Self { cones: &[], ..self }
+    }
+
+    /// The cones of the objects from `light` (none: every object is tested).
     fn cones_of(&self, light: &Light<S>) -> &[Cone<S>] {
         let start = usize::from(light.index) * self.objects_capacity;
         self.cones.get(start..).unwrap_or(&[])
