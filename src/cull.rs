@@ -400,32 +400,22 @@ pub fn first_skipped_hit<
 mod tests {
     use super::*;
     use crate::desc::CameraDesc;
-    use crate::methods::Methods;
-    use crate::scenes::BUILT_IN;
+    use crate::test_util::each_built_in_scene;
 
     /// Every built-in scene that `S` holds, by the lecture's methods and each variant, at a
     /// small size: no ray of any pixel meets an object its row leaves out.
     fn culling_keeps_every_hit<S: Scalar>() {
         const SIDE: u32 = 40;
-        for built_in in &BUILT_IN {
-            for methods in Methods::LECTURE.variants() {
-                let Ok(scene) = Scene::<S, 8, 4, 8>::build_with(&built_in.desc, methods) else {
-                    continue;
-                };
-                let Ok(camera) = scene.camera(SIDE, SIDE) else {
-                    continue;
-                };
-                for y in 0..SIDE {
-                    assert_eq!(
-                        first_skipped_hit(&scene, &camera, y),
-                        None,
-                        "{} in {} by {methods:?}, row {y}",
-                        built_in.name,
-                        S::NAME
-                    );
-                }
+        each_built_in_scene::<S>(SIDE, |name, methods, scene, camera| {
+            for y in 0..SIDE {
+                assert_eq!(
+                    first_skipped_hit(scene, camera, y),
+                    None,
+                    "{name} in {} by {methods:?}, row {y}",
+                    S::NAME
+                );
             }
-        }
+        });
     }
 
     macro_rules! every_format {

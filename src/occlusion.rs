@@ -144,31 +144,20 @@ pub fn first_skipped_shadow<
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::methods::Methods;
-    use crate::scenes::BUILT_IN;
+    use crate::test_util::each_built_in_scene;
 
     /// Every built-in scene that `S` holds, by the lecture's methods and each variant, at a
     /// small size: no pixel's ray tree changes when its shadow rays skip what the cones rule
     /// out.
     fn cones_keep_every_shadow<S: Scalar>() {
-        const SIDE: u32 = 40;
-        for built_in in &BUILT_IN {
-            for methods in Methods::LECTURE.variants() {
-                let Ok(scene) = Scene::<S, 8, 4, 8>::build_with(&built_in.desc, methods) else {
-                    continue;
-                };
-                let Ok(camera) = scene.camera(SIDE, SIDE) else {
-                    continue;
-                };
-                assert_eq!(
-                    first_skipped_shadow(&scene, &camera),
-                    None,
-                    "{} in {} by {methods:?}",
-                    built_in.name,
-                    S::NAME
-                );
-            }
-        }
+        each_built_in_scene::<S>(40, |name, methods, scene, camera| {
+            assert_eq!(
+                first_skipped_shadow(scene, camera),
+                None,
+                "{name} in {} by {methods:?}",
+                S::NAME
+            );
+        });
     }
 
     macro_rules! every_format {

@@ -1,7 +1,11 @@
 //! Helpers shared by the unit tests.
 
+use crate::camera::Camera;
+use crate::methods::Methods;
 use crate::ray::Span;
 use crate::scalar::Scalar;
+use crate::scene::Scene;
+use crate::scenes::BUILT_IN;
 use crate::vec3::Vec3;
 
 /// Runs a block once per number format, with `$s` naming the format.
@@ -49,4 +53,24 @@ pub(crate) fn assert_close<S: Scalar>(got: S, want: f64, tol: f64) {
         "{}: got {got}, want {want} ± {tol}",
         S::NAME
     );
+}
+
+/// Runs `check` on every built-in scene that format `S` holds, by the lecture's methods and
+/// each variant that changes one of them, with room for 8 objects, 4 lights and 8 rays, and its
+/// camera at `side` × `side` pixels; `check` gets the scene's name and the methods too.
+pub(crate) fn each_built_in_scene<S: Scalar>(
+    side: u32,
+    mut check: impl FnMut(&str, Methods, &Scene<S, 8, 4, 8>, &Camera<S>),
+) {
+    for built_in in &BUILT_IN {
+        for methods in Methods::LECTURE.variants() {
+            let Ok(scene) = Scene::<S, 8, 4, 8>::build_with(&built_in.desc, methods) else {
+                continue;
+            };
+            let Ok(camera) = scene.camera(side, side) else {
+                continue;
+            };
+            check(built_in.name, methods, &scene, &camera);
+        }
+    }
 }
