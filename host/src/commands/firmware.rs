@@ -2,13 +2,15 @@
 
 use crate::cli::{FirmwareArgs, FormatChoice};
 use crate::cost::Machine;
+use crate::counted::Operations;
 use crate::firmware::{self, Target};
 use crate::firmware_build::{self, Configuration, Image};
 use crate::format::Format;
 use crate::heatmap::heatmap;
+use crate::operations;
 use crate::output::{self, say};
 use crate::profile::{self, Profile};
-use crate::render::rgb565_image;
+use crate::render::{Request, rgb565_image};
 use crate::scene_file::{self, NamedScene};
 use anyhow::{Context, Result, bail};
 use obscura::methods::MethodName;
@@ -231,6 +233,11 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
     print_table(target, &reports)?;
     if args.profile {
         print_profile(target, &Profile::read(&elf, &counts)?, &reports)?;
+        for scene in &scenes {
+            for &format in &formats {
+                print_operations(&scene.scene.desc(), &scene.name, format, methods, &reports)?;
+            }
+        }
     }
     let budget = target.budget();
     let stack = reports.iter().map(|r| r.stack_bytes).max().unwrap_or(0);
@@ -315,6 +322,47 @@ fn print_profile(target: Target, profile: &Profile, reports: &[Report]) -> Resul
             say!("| `{name}` | {:.0} | {:.1} % |", per_pixel(*n), share(*n))?;
         }
     }
+    Ok(())
+}
+
+/// The tracer's operations per pixel for `name` in `format` by `methods`, counted on the host
+/// (`render --count`), beside the instructions the target took for the frame.
+fn print_operations(
+    desc: &obscura::SceneDesc<'_>,
+    name: &str,
+    format: Format,
+    methods: Methods,
+    reports: &[Report],
+) -> Result<()> {
+    let Some(report) = reports
+        .iter()
+        .find(|r| r.scene == name && r.format == format.name())
+    else {
+        return Ok(());
+    };
+    let request = Request {
+        desc,
+        width: report.width,
+        height: report.height,
+        methods,
+    };
+    let (count, _) = operations::count(format, &request)
+        .with_context(|| format!("counting the operations of {name} in {format}"))?;
+    let Some(whole) = count.lines().pop() else {
+        return Ok(());
+    };
+    let sum = |o: Operations| (o.products + o.quotients + o.roots + o.sums) as f64;
+    let per_operation =
+        report.instructions_per_pixel as f64 * count.pixels as f64 / sum(whole.measured.0).max(1.0);
+    say!(
+        "\n{name} in {format}, the tracer's operations (counted on the host, one per textbook \
+         operation; `render --count`), beside the target's {} instructions per pixel: {:.1} per \
+         operation, and at that rate the floor is about {:.0} instructions per pixel:\n{}",
+        report.instructions_per_pixel,
+        per_operation,
+        per_operation * sum(whole.floor.0) / count.pixels.max(1) as f64,
+        count.table()
+    )?;
     Ok(())
 }
 
