@@ -400,34 +400,31 @@ pub fn first_skipped_hit<
 mod tests {
     use super::*;
     use crate::desc::CameraDesc;
-    use crate::test_util::each_built_in_scene;
+    use crate::test_util::{FormatCheck, each_built_in_scene, for_every_format};
 
-    /// Every built-in scene that `S` holds, by the lecture's methods and each variant, at a
-    /// small size: no ray of any pixel meets an object its row leaves out.
-    fn culling_keeps_every_hit<S: Scalar>() {
-        const SIDE: u32 = 40;
-        each_built_in_scene::<S>(SIDE, |name, methods, scene, camera| {
-            for y in 0..SIDE {
-                assert_eq!(
-                    first_skipped_hit(scene, camera, y),
-                    None,
-                    "{name} in {} by {methods:?}, row {y}",
-                    S::NAME
-                );
-            }
-        });
-    }
+    /// Every built-in scene that the format holds, by the lecture's methods and each variant,
+    /// at a small size: no ray of any pixel meets an object its row leaves out.
+    struct CullingKeepsEveryHit;
 
-    macro_rules! every_format {
-        (fixed { $($f:ident => $raw:ident,)* } float { $($v:ident => $t:ty,)* }) => {
-            $(culling_keeps_every_hit::<crate::scalar::Fx<fixed::types::$raw>>();)*
-            $(culling_keeps_every_hit::<$t>();)*
-        };
+    impl FormatCheck for CullingKeepsEveryHit {
+        fn check<S: Scalar>(&self) {
+            const SIDE: u32 = 40;
+            each_built_in_scene::<S>(SIDE, |name, methods, scene, camera| {
+                for y in 0..SIDE {
+                    assert_eq!(
+                        first_skipped_hit(scene, camera, y),
+                        None,
+                        "{name} in {} by {methods:?}, row {y}",
+                        S::NAME
+                    );
+                }
+            });
+        }
     }
 
     #[test]
     fn culling_keeps_every_hit_of_the_built_in_scenes_in_every_format() {
-        crate::for_each_format!(every_format);
+        for_every_format(&CullingKeepsEveryHit);
     }
 
     /// A camera at the origin looking down +z, x to the left (right = forward × up = −x).

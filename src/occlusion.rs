@@ -144,32 +144,29 @@ pub fn first_skipped_shadow<
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_util::each_built_in_scene;
+    use crate::test_util::{FormatCheck, each_built_in_scene, for_every_format};
 
-    /// Every built-in scene that `S` holds, by the lecture's methods and each variant, at a
-    /// small size: no pixel's ray tree changes when its shadow rays skip what the cones rule
-    /// out.
-    fn cones_keep_every_shadow<S: Scalar>() {
-        each_built_in_scene::<S>(40, |name, methods, scene, camera| {
-            assert_eq!(
-                first_skipped_shadow(scene, camera),
-                None,
-                "{name} in {} by {methods:?}",
-                S::NAME
-            );
-        });
-    }
+    /// Every built-in scene that the format holds, by the lecture's methods and each variant,
+    /// at a small size: no pixel's ray tree changes when its shadow rays skip what the cones
+    /// rule out.
+    struct ConesKeepEveryShadow;
 
-    macro_rules! every_format {
-        (fixed { $($f:ident => $raw:ident,)* } float { $($v:ident => $t:ty,)* }) => {
-            $(cones_keep_every_shadow::<crate::scalar::Fx<fixed::types::$raw>>();)*
-            $(cones_keep_every_shadow::<$t>();)*
-        };
+    impl FormatCheck for ConesKeepEveryShadow {
+        fn check<S: Scalar>(&self) {
+            each_built_in_scene::<S>(40, |name, methods, scene, camera| {
+                assert_eq!(
+                    first_skipped_shadow(scene, camera),
+                    None,
+                    "{name} in {} by {methods:?}",
+                    S::NAME
+                );
+            });
+        }
     }
 
     #[test]
     fn cones_keep_every_shadow_of_the_built_in_scenes_in_every_format() {
-        crate::for_each_format!(every_format);
+        for_every_format(&ConesKeepEveryShadow);
     }
 
     #[test]

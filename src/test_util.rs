@@ -74,3 +74,21 @@ pub(crate) fn each_built_in_scene<S: Scalar>(
         }
     }
 }
+
+/// A check generic over the number format, for [`for_every_format`].
+pub(crate) trait FormatCheck {
+    /// Runs the check in format `S`.
+    fn check<S: Scalar>(&self);
+}
+
+/// Runs `check` in every format of [`crate::scalar::FORMATS`] (where [`for_each_format`] takes
+/// four that stand for them).
+pub(crate) fn for_every_format(check: &impl FormatCheck) {
+    macro_rules! each {
+        (fixed { $($f:ident => $raw:ident,)* } float { $($v:ident => $t:ty,)* }) => {
+            $(check.check::<crate::scalar::Fx<fixed::types::$raw>>();)*
+            $(check.check::<$t>();)*
+        };
+    }
+    crate::for_each_format!(each);
+}
