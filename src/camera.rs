@@ -325,11 +325,15 @@ impl<S: Scalar> Row<S> {
                 S::ONE,
                 S::from_int(i32::try_from(width).unwrap_or(i32::MAX)),
             );
+        let centres = (self.camera.rays == RayMethod::PerPixel && roots == RootMethod::Exact)
+            .then(|| Centres::new(width))
+            .flatten();
         Rays {
             row: self,
             x: 0,
             s: first,
             step,
+            centres,
         }
     }
 
@@ -346,6 +350,8 @@ pub struct Rays<S> {
     /// The stepped point on the image plane.
     s: Vec3<S>,
     step: Vec3<S>,
+    /// The per-pixel rays' centres, stepped exactly where the format allows.
+    centres: Option<Centres<S>>,
 }
 
 impl<S: Scalar> Iterator for Rays<S> {
@@ -358,7 +364,10 @@ impl<S: Scalar> Iterator for Rays<S> {
         }
         let ray = match self.row.camera.rays {
             RayMethod::PerPixel => {
-                let fx = pixel_centre::<S>(self.x, self.row.camera.width, self.row.camera.roots);
+                let fx = match &mut self.centres {
+                    Some(centres) => centres.next(),
+                    None => pixel_centre::<S>(self.x, self.row.camera.width, self.row.camera.roots),
+                };
                 self.row
                     .through(self.row.start.add_scaled(self.row.camera.across, fx))
             }
@@ -397,6 +406,57 @@ fn pixel_centre<S: Scalar>(i: u32, n: u32, roots: RootMethod) -> S {
     let num = i32::try_from(2 * i + 1).unwrap_or(i32::MAX);
     let den = i32::try_from(2 * n).unwrap_or(i32::MAX);
     roots.div(S::from_int(num), S::from_int(den))
+}
+
+/// The pixel centres (2i + 1)/2n of a row, i = 0, 1, …, each bit for bit the quotient
+/// [`pixel_centre`] divides for it, by additions. A fixed format with f fraction bits truncates
+/// (2i + 1)·2^f / 2n; adding 2·2^f to the dividend adds ⌊2^f / n⌋ units to the quotient and
+/// 2·(2^f mod n) to the remainder, and one unit more where the remainder reaches 2n. A float
+/// rounds its quotient to its exponent's places, which no constant step follows: it divides.
+#[derive(Clone, Copy, Debug)]
+struct Centres<S> {
+    /// The next centre, ⌊(2i + 1)·2^f / 2n⌋ units.
+    next: S,
+    /// ⌊2^f / n⌋ units.
+    step: S,
+    /// One unit, 2^−f.
+    unit: S,
+    /// (2i + 1)·2^f mod 2n.
+    remainder: u64,
+    /// 2·2^f mod 2n.
+    remainder_step: u64,
+    /// 2n.
+    divisor: u64,
+}
+
+impl<S: Scalar> Centres<S> {
+    /// The centres across `n` pixels, or `None` for a float.
+    fn new(n: u32) -> Option<Self> {
+        let (_, fraction) = S::SPLIT?;
+        let one = 1_u64 << fraction;
+        let divisor = 2 * u64::from(n);
+        Some(Self {
+            next: pixel_centre::<S>(0, n, RootMethod::Exact),
+            step: S::ratio(1, i32::try_from(n).ok()?),
+            unit: S::from_f64(1.0 / one as f64)?,
+            remainder: one % divisor,
+            remainder_step: (2 * one) % divisor,
+            divisor,
+        })
+    }
+
+    /// The next pixel's centre.
+    #[inline(always)]
+    fn next(&mut self) -> S {
+        let centre = self.next;
+        self.next = self.next + self.step;
+        self.remainder += self.remainder_step;
+        if self.remainder >= self.divisor {
+            self.remainder -= self.divisor;
+            self.next = self.next + self.unit;
+        }
+        centre
+    }
 }
 
 #[cfg(test)]
@@ -476,6 +536,38 @@ mod tests {
                     .map(|x| per_pixel.ray(x, 3).unwrap())
                     .collect::<Vec<_>>()
             );
+        });
+    }
+
+    #[test]
+    fn stepped_centres_are_the_quotients_bit_for_bit() {
+        for_each_format!(S, {
+            let widths = [
+                1,
+                2,
+                3,
+                7,
+                63,
+                64,
+                100,
+                240,
+                320,
+                1000,
+                1024,
+                4095,
+                MAX_IMAGE_SIDE,
+            ];
+            // A format counts a row's pixels only while 2n fits it (i8f24: 63).
+            for n in widths.into_iter().filter(|&n| f64::from(2 * n) < S::RANGE) {
+                let Some(mut centres) = Centres::<S>::new(n) else {
+                    assert!(S::SPLIT.is_none(), "{} {n}", S::NAME);
+                    continue;
+                };
+                for i in 0..n {
+                    let divided = pixel_centre::<S>(i, n, RootMethod::Exact);
+                    assert_eq!(centres.next(), divided, "{} {i}/{n}", S::NAME);
+                }
+            }
         });
     }
 
