@@ -244,6 +244,50 @@ mod tests {
         quantize_every_format::<f64>();
     }
 
+    /// The default `⌊clamp(v, 0, 1)·levels + threshold⌋`, clamped to `levels`, as every format
+    /// but the floats computes it.
+    fn quantized_by_the_floor<S: Scalar>(v: S, levels: u8, threshold: S) -> u8 {
+        let scaled = v.clamp(S::ZERO, S::ONE) * S::from_int(i32::from(levels)) + threshold;
+        u8::try_from(scaled.floor_int().clamp(0, i32::from(levels))).unwrap_or(levels)
+    }
+
+    #[test]
+    fn a_floats_quantisation_is_the_floor_of_the_default() {
+        fn check<S: Scalar>(values: impl Iterator<Item = S>) {
+            let thresholds = [0.0, 0.5, 1.0 / 32.0, 31.0 / 32.0, 0.999_999];
+            for v in values {
+                for levels in [1, 31, 63, 255] {
+                    for t in thresholds.map(|t| S::from_f64(t).unwrap()) {
+                        assert_eq!(
+                            v.quantize(levels, t),
+                            quantized_by_the_floor(v, levels, t),
+                            "{} {v:?} {levels} {t:?}",
+                            S::NAME
+                        );
+                    }
+                }
+            }
+        }
+        let edges = [
+            -1.0,
+            -0.0,
+            0.0,
+            1e-30,
+            0.5,
+            1.0 - 1e-7,
+            1.0,
+            1.5,
+            f64::NAN,
+            f64::INFINITY,
+        ];
+        check::<f32>(
+            (0..=4096)
+                .map(|i| i as f32 / 4096.0)
+                .chain(edges.map(|e| e as f32)),
+        );
+        check::<f64>((0..=4096).map(|i| f64::from(i) / 4096.0).chain(edges));
+    }
+
     #[test]
     fn quantisation_matches_the_integer_formula_for_every_level() {
         // For every 8-bit level v, the colour v/255 lands exactly on level v, and on the 5- and

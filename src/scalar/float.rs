@@ -80,6 +80,15 @@ macro_rules! float_scalar {
                 (self * 65_536.0).floor_int()
             }
 
+            /// As the default, but clamped to [0, 1] the scaled value is never negative, so a
+            /// truncating cast is its floor: one conversion, no correction for negatives.
+            #[inline]
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "in [0, 256)")]
+            fn quantize(self, levels: u8, threshold: Self) -> u8 {
+                let scaled = Scalar::clamp(self, 0.0, 1.0) * Self::from(levels) + threshold;
+                (scaled as u8).min(levels)
+            }
+
             #[inline]
             #[allow(clippy::cast_possible_truncation, reason = "saturating cast intended")]
             #[allow(clippy::cast_precision_loss, reason = "only compared")]
