@@ -244,13 +244,6 @@ mod tests {
         quantize_every_format::<f64>();
     }
 
-    /// The default `⌊clamp(v, 0, 1)·levels + threshold⌋`, clamped to `levels`, as every format
-    /// but the floats computes it.
-    fn quantized_by_the_floor<S: Scalar>(v: S, levels: u8, threshold: S) -> u8 {
-        let scaled = v.clamp(S::ZERO, S::ONE) * S::from_int(i32::from(levels)) + threshold;
-        u8::try_from(scaled.floor_int().clamp(0, i32::from(levels))).unwrap_or(levels)
-    }
-
     #[test]
     fn a_floats_quantisation_is_the_floor_of_the_default() {
         fn check<S: Scalar>(values: impl Iterator<Item = S>) {
@@ -260,7 +253,7 @@ mod tests {
                     for t in thresholds.map(|t| S::from_f64(t).unwrap()) {
                         assert_eq!(
                             v.quantize(levels, t),
-                            quantized_by_the_floor(v, levels, t),
+                            crate::scalar::quantize_by_floor(v, levels, t),
                             "{} {v:?} {levels} {t:?}",
                             S::NAME
                         );

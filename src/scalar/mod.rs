@@ -203,9 +203,7 @@ pub trait Scalar:
     /// fit i8f24).
     #[must_use]
     fn quantize(self, levels: u8, threshold: Self) -> u8 {
-        let scaled =
-            self.clamp(Self::ZERO, Self::ONE) * Self::from_int(i32::from(levels)) + threshold;
-        u8::try_from(scaled.floor_int().clamp(0, i32::from(levels))).unwrap_or(levels)
+        quantize_by_floor(self, levels, threshold)
     }
 
     /// `num / den` for small integers, rounded as the format's division rounds.
@@ -238,6 +236,14 @@ pub trait Scalar:
         }
         result
     }
+}
+
+/// [`Scalar::quantize`] as written: `⌊clamp(v, 0, 1)·levels + threshold⌋` by the format's
+/// floor, at most `levels`. The default, and what a format's own version must equal.
+#[inline]
+pub(crate) fn quantize_by_floor<S: Scalar>(v: S, levels: u8, threshold: S) -> u8 {
+    let scaled = v.clamp(S::ZERO, S::ONE) * S::from_int(i32::from(levels)) + threshold;
+    u8::try_from(scaled.floor_int().clamp(0, i32::from(levels))).unwrap_or(levels)
 }
 
 /// A step of the tracer's work that [`Scalar::note`] hears of: where a ray's search for what it
