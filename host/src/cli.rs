@@ -3,7 +3,6 @@
 use crate::cost::Machine;
 use crate::firmware::Target;
 use crate::format::Format;
-use crate::owned::OwnedScene;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use obscura::methods::MethodName;
@@ -11,6 +10,7 @@ use obscura::pattern::MAX_SAMPLES;
 use obscura::{
     BiasMethod, Dither, Methods, RayMethod, RootMethod, RowOrder, SphereMethod, TriangleMethod,
 };
+use obscura_scene::OwnedScene;
 use std::path::PathBuf;
 use std::sync::LazyLock;
 

@@ -22,7 +22,6 @@ use crate::cost::Machine;
 use crate::firmware::SIDE;
 use crate::format::Format;
 use crate::render::{Request, prepare};
-use crate::scene_file::{self, NamedScene};
 use anyhow::{Context, Result, bail};
 use clap::ValueEnum;
 use obscura::methods::MethodName;
@@ -31,6 +30,7 @@ use obscura::{
     BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, Methods, ObjectDesc,
     Presentation, SceneDesc, ShapeDesc,
 };
+use obscura_scene::NamedScene;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -208,7 +208,7 @@ pub fn configure(
             } else {
                 name.to_owned()
             };
-            scene_file::load(&name).context(SCENES)
+            obscura_scene::load(&name).context(SCENES)
         })
         .collect::<Result<Vec<_>>>()?;
     let count = |variable| match value(variable).trim() {

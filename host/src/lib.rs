@@ -1,7 +1,7 @@
 //! The desktop harness of the obscura ray tracer: the `obscura` command ([`main`]), which runs
 //! the very same `no_std` core as the firmware, writes PNGs and measures each number format
 //! against an f64 reference; and what the firmware's build script takes from it
-//! ([`firmware_build`]): scene files, `--format auto` and the scene as const data.
+//! ([`firmware_build`]): the configuration, `--format auto` and the scene as const data.
 
 mod analysis;
 mod canvas;
@@ -18,7 +18,6 @@ mod heatmap;
 mod metrics;
 mod operations;
 mod output;
-mod owned;
 mod pareto;
 #[cfg(test)]
 mod peak;
@@ -28,7 +27,6 @@ mod quantized;
 #[cfg(test)]
 mod regressions;
 mod render;
-mod scene_file;
 mod stress;
 mod timing;
 
@@ -53,18 +51,8 @@ pub fn main() -> ExitCode {
         // `obscura scenes | head -1`: the reader has what it wanted.
         Err(error) if output::is_closed_pipe(&error) => ExitCode::SUCCESS,
         Err(error) => {
-            eprintln!("{}", error_text(&error));
+            eprintln!("{}", obscura_scene::error_text(&error));
             ExitCode::FAILURE
         }
-    }
-}
-
-/// An error as the `obscura` command prints it: `error: ` and its chain, and where it is at a
-/// place in a scene file, that line with the place marked.
-#[must_use]
-pub fn error_text(error: &anyhow::Error) -> String {
-    match error.downcast_ref::<scene_file::Located>() {
-        Some(place) => format!("error: {error:#}\n{}", place.excerpt()),
-        None => format!("error: {error:#}"),
     }
 }

@@ -9,15 +9,14 @@ use crate::cost::Machine;
 use crate::format::Format;
 use crate::fuzz::false_accept;
 use crate::metrics::accuracy;
-use crate::owned::OwnedScene;
 use crate::render::{Request, exact_roots, prepare, prepare_reference};
-use crate::scene_file;
 use obscura::{Methods, RayMethod, SphereMethod, TriangleMethod};
+use obscura_scene::OwnedScene;
 
 /// The scene of `host/scenes/hostile/NAME.toml`, whose header says what it broke.
 fn hostile(name: &str) -> OwnedScene {
     let path = format!("{}/scenes/hostile/{name}.toml", env!("CARGO_MANIFEST_DIR"));
-    scene_file::load(&path).expect("a scene file").scene
+    obscura_scene::load(&path).expect("a scene file").scene
 }
 
 /// `scene` in `format` by `methods` at `size`: refused for a reason with one of `words` in it,

@@ -10,7 +10,6 @@ pub use predict::{Prediction, Reference};
 use crate::cost::{Machine, cost};
 use crate::format::{Format, FormatJob};
 use crate::metrics::accuracy;
-use crate::owned::OwnedScene;
 use crate::render::{HostScene, Request, all_cores, exact_roots, prepare, prepare_reference};
 use anyhow::Result;
 use obscura::methods::MethodName;
@@ -19,6 +18,7 @@ use obscura::scene::range::{self, Feature, Magnitude};
 use obscura::{
     Item, Methods, Scalar, SceneDesc, SceneError, ShapeDesc, SphereMethod, TriangleMethod, Vec3,
 };
+use obscura_scene::OwnedScene;
 
 /// The largest power of two a scene is rescaled by, either way.
 const MAX_RESCALE_POWER: i32 = 24;

@@ -5,8 +5,8 @@ use crate::cli::AnalyzeArgs;
 use crate::cost::Machine;
 use crate::format::Format;
 use crate::output::say;
-use crate::scene_file::NamedScene;
 use anyhow::Result;
+use obscura_scene::NamedScene;
 use std::io;
 
 pub fn run(args: &AnalyzeArgs) -> Result<()> {

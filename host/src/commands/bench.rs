@@ -5,10 +5,10 @@ use crate::cli::BenchArgs;
 use crate::format::Format;
 use crate::output::{self, say};
 use crate::render::{Request, exact_roots, prepare};
-use crate::scene_file::NamedScene;
 use crate::timing::interleaved_median_ms;
 use anyhow::{Context, Result};
 use obscura::Methods;
+use obscura_scene::NamedScene;
 use serde::Serialize;
 
 #[derive(Debug, Serialize)]

@@ -6,11 +6,11 @@ use crate::heatmap::heatmap;
 use crate::metrics::{Accuracy, accuracy};
 use crate::output::{self, say};
 use crate::render::{Request, all_cores, prepare, prepare_reference, rgb565_image};
-use crate::scene_file::NamedScene;
 use crate::timing::interleaved_median_ms;
 use anyhow::{Context, Result};
 use obscura::methods::MethodName;
 use obscura::{Dither, Presentation};
+use obscura_scene::NamedScene;
 use serde::Serialize;
 use std::io;
 

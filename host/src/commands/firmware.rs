@@ -11,10 +11,10 @@ use crate::operations;
 use crate::output::{self, say};
 use crate::profile::{self, Profile};
 use crate::render::{Request, rgb565_image};
-use crate::scene_file::{self, NamedScene};
 use anyhow::{Context, Result, bail};
 use obscura::methods::MethodName;
 use obscura::{Methods, Presentation};
+use obscura_scene::NamedScene;
 use serde::Serialize;
 use std::io;
 use std::path::Path;
@@ -96,7 +96,7 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
         .scene
         .iter()
         .map(|name| {
-            let mut named = scene_file::load(name)?;
+            let mut named = obscura_scene::load(name)?;
             args.sampling.apply(&mut named.scene);
             Ok(named)
         })

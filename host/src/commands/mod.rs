@@ -14,11 +14,11 @@ use crate::analysis::{Analysis, Pick, pick};
 use crate::cli::{AutoArgs, Command, FormatChoice, SamplingArgs, SceneArgs};
 use crate::format::Format;
 use crate::output::say;
-use crate::owned::OwnedScene;
-use crate::scene_file::{self, NamedScene};
 use anyhow::{Result, bail};
 use obscura::Methods;
 use obscura::scenes;
+use obscura_scene::NamedScene;
+use obscura_scene::OwnedScene;
 
 /// Runs a subcommand.
 pub fn run(command: Command) -> Result<()> {
@@ -64,7 +64,7 @@ pub fn on_scene(
     sampling: &SamplingArgs,
     command: impl FnOnce(&NamedScene) -> Result<()>,
 ) -> Result<()> {
-    let mut named = scene_file::load(name)?;
+    let mut named = obscura_scene::load(name)?;
     sampling.apply(&mut named.scene);
     command(&named).map_err(|error| named.locate(error))
 }

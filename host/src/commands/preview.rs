@@ -11,10 +11,10 @@ use crate::firmware_build;
 use crate::format::Format;
 use crate::output::say;
 use crate::render::{Request, prepare, rgb565_image};
-use crate::scene_file::NamedScene;
 use anyhow::{Result, bail};
 use obscura::Presentation;
 use obscura::methods::MethodName;
+use obscura_scene::NamedScene;
 use std::time::Duration;
 
 pub fn run(args: &PreviewArgs) -> Result<()> {

@@ -4,8 +4,8 @@ use crate::cli::RenderArgs;
 use crate::operations;
 use crate::output::{self, say};
 use crate::render::{Request, prepare};
-use crate::scene_file::NamedScene;
 use anyhow::{Context, Result};
+use obscura_scene::NamedScene;
 use std::time::Instant;
 
 pub fn run(args: &RenderArgs) -> Result<()> {

@@ -3,12 +3,12 @@
 //! surfaces, extreme materials, area lights, lenses and several samples), with enough plausible
 //! ones among them that every format builds some. A scene is a function of its seed alone.
 
-use crate::owned::OwnedScene;
 use obscura::scene::range;
 use obscura::{
     BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, ObjectDesc, ShapeDesc, Vec3,
     Y_UP,
 };
+use obscura_scene::OwnedScene;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 

@@ -30,12 +30,12 @@ use crate::analysis::{Analysis, Fit, Prediction, Reference};
 use crate::checked;
 use crate::format::Format;
 use crate::metrics::{Accuracy, accuracy};
-use crate::owned::OwnedScene;
 use crate::render::{Request, exact_roots, prepare, prepare_reference};
 use anyhow::{Context, Result};
 use image::RgbImage;
 use obscura::methods::MethodName;
 use obscura::{BiasMethod, Methods, RayMethod, RootMethod, SphereMethod, TriangleMethod};
+use obscura_scene::OwnedScene;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use rayon::prelude::*;
@@ -502,7 +502,6 @@ fn write_reproducer(dir: &Path, scene: &OwnedScene, finding: &Finding) -> Result
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene_file;
 
     #[test]
     fn a_reproducer_is_the_scene_with_what_failed_and_the_command_that_shows_it() {
@@ -533,7 +532,7 @@ mod tests {
             text.contains("--format i20f12 --size 24x16") && text.contains("--bias exclude"),
             "{text}"
         );
-        let loaded = scene_file::load(path.to_str().unwrap()).unwrap();
+        let loaded = obscura_scene::load(path.to_str().unwrap()).unwrap();
         assert_eq!(loaded.scene, generated.scene);
     }
 }

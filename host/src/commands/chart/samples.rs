@@ -11,12 +11,12 @@ use crate::firmware_build::Image;
 use crate::format::Format;
 use crate::metrics::accuracy;
 use crate::output::say;
-use crate::owned::OwnedScene;
 use crate::plot::{self, StabilitySeries};
 use crate::render::{AnyFormat, Request, all_cores, prepare, prepare_reference};
 use crate::timing::frame_ms;
 use anyhow::{Context, Result, bail};
 use obscura::{Methods, Presentation, scenes};
+use obscura_scene::OwnedScene;
 use std::path::Path;
 use std::time::Duration;
 

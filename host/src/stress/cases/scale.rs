@@ -3,11 +3,11 @@
 
 use super::{image_row, log_sweep, psnr};
 use crate::format::FormatJob;
-use crate::owned::OwnedScene;
 use crate::stress::{Case, Row};
 use anyhow::Result;
 use obscura::methods::MethodName;
 use obscura::{Methods, Scalar, SphereMethod, scenes};
+use obscura_scene::OwnedScene;
 
 pub const CASE: Case = Case {
     name: "scale",

@@ -1,0 +1,33 @@
+//! obscura's scene files: a TOML file read into an [`OwnedScene`] (the core's
+//! [`obscura::SceneDesc`] with owned lists, which serde deserializes), or a built-in scene by
+//! name ([`load`]); and the core's refusals of a scene placed at the file's line and column
+//! ([`NamedScene::locate`], [`Located`], [`error_text`]). The desktop harness and the
+//! firmware's build script both read scenes through it, so a refusal reads the same from
+//! either.
+//!
+//! ```
+//! # fn main() -> anyhow::Result<()> {
+//! # let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../host/scenes/pyramid.toml");
+//! let named = obscura_scene::load(path)?;
+//! let scene = obscura::Scene::<f32, 8, 4, 6>::build(&named.scene.desc())
+//!     .map_err(|refusal| named.locate(refusal.into()))?;
+//! # let _ = scene;
+//! # Ok(())
+//! # }
+//! ```
+
+mod file;
+mod owned;
+
+pub use file::{Located, MAX_FILE_BYTES, NamedScene, load, parse};
+pub use owned::OwnedScene;
+
+/// An error as the `obscura` command and the firmware's build print it: `error: ` and its
+/// chain, and where it is at a place in a scene file, that line with the place marked.
+#[must_use]
+pub fn error_text(error: &anyhow::Error) -> String {
+    match error.downcast_ref::<Located>() {
+        Some(place) => format!("error: {error:#}\n{}", place.excerpt()),
+        None => format!("error: {error:#}"),
+    }
+}
