@@ -1,9 +1,9 @@
-//! Configures the firmware from the environment (see `obscura_host::firmware_build` and the
-//! README): resolves and proves its scenes and formats with the host's own code, writes what it
+//! Configures the firmware from the environment (see `obscura_scene::firmware` and the README):
+//! reads and proves its scenes in its formats with the core's own scene build, writes what it
 //! draws to `$OUT_DIR/frames.rs`, and puts the workspace's `memory.x` on the linker's path for
 //! the boards' binaries.
 
-use obscura_host::firmware_build::{self, VARIABLES};
+use obscura_scene::firmware::{self, VARIABLES};
 use std::env;
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -17,7 +17,7 @@ fn main() {
     for (name, _) in VARIABLES {
         println!("cargo::rerun-if-env-changed={name}");
     }
-    match firmware_build::generate(workspace, &target) {
+    match firmware::generate(workspace) {
         Ok(generated) => {
             for input in &generated.inputs {
                 println!("cargo::rerun-if-changed={}", input.display());

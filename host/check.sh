@@ -9,7 +9,7 @@ step() { printf '\n==> %s\n' "$*"; }
 
 M4F=thumbv7em-none-eabihf
 M0=thumbv6m-none-eabi
-# The firmware's configuration (firmware_build in the host): every scene, format and method.
+# The firmware's configuration (obscura_scene::firmware): every scene, format and method.
 EVERYTHING=(OBSCURA_SCENES=whitted,shapes OBSCURA_FORMATS=i16f16,i20f12,i32f32,f32-approx,f32
     OBSCURA_VARIANTS=each)
 
@@ -76,6 +76,15 @@ if cargo tree -p obscura -e normal --locked --prefix none | grep -E "cortex-m|st
     echo "the obscura library depends on a firmware crate (above)" >&2
     exit 1
 fi
+
+step "the firmware's build graph: the core and the scene crate, no desktop crate"
+for board in obscura-qemu obscura-black-pill obscura-pico; do
+    if cargo tree -p "$board" --target all -e normal,build --locked --prefix none \
+        | grep -E "^(obscura-host|clap|plotters|rayon|image|indicatif) "; then
+        echo "the firmware's build ($board) depends on a desktop crate (above)" >&2
+        exit 1
+    fi
+done
 
 step "firmware for the ST7789 on an STM32F411 Black Pill and on a Raspberry Pi Pico, from a scene file"
 OBSCURA_SCENES=host/scenes/pyramid.toml cargo build --release -p obscura-black-pill --target "$M4F" --locked

@@ -4,7 +4,7 @@
 //! wrapped number; [`catch`] turns it back into an error. The bits are the firmware's wherever
 //! nothing overflows.
 
-use obscura::scalar::{Fx, Operation, Overflow};
+use obscura::scalar::{Operation, Overflow};
 use std::fmt;
 use std::panic::{self, AssertUnwindSafe, Location};
 use std::sync::Once;
@@ -38,8 +38,10 @@ impl Overflow for Checked {
     }
 }
 
-/// `fixed`'s type `F` with checked arithmetic.
-pub type CheckedFx<F> = Fx<F, Checked>;
+/// `fixed`'s type `F` with checked arithmetic (what [`obscura_scene::Format::run`] runs a fixed
+/// format in, with [`Checked`]).
+#[cfg(test)]
+pub type CheckedFx<F> = obscura::scalar::Fx<F, Checked>;
 
 /// Runs `work`, and returns the overflow that stopped it, if one did. Other panics go on.
 pub fn catch<T>(work: impl FnOnce() -> T) -> Result<T, Overflowed> {

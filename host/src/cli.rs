@@ -2,7 +2,6 @@
 
 use crate::cost::Machine;
 use crate::firmware::Target;
-use crate::format::Format;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use obscura::methods::MethodName;
@@ -10,7 +9,7 @@ use obscura::pattern::MAX_SAMPLES;
 use obscura::{
     BiasMethod, Dither, Methods, RayMethod, RootMethod, RowOrder, SphereMethod, TriangleMethod,
 };
-use obscura_scene::OwnedScene;
+use obscura_scene::{Format, Sampling};
 use std::path::PathBuf;
 use std::sync::LazyLock;
 
@@ -145,48 +144,6 @@ impl ValueEnum for FormatChoice {
     }
 }
 
-/// How many rays a pixel and an area light take, over the scene's own `samples` and
-/// `shadow_samples`.
-#[derive(Clone, Copy, Debug, Default, Args)]
-pub struct SamplingArgs {
-    /// Rays per pixel, 1 to 256, spread over the pixel and averaged (anti-aliasing); the
-    /// scene's own `samples` when not given.
-    #[arg(long, value_parser = clap::value_parser!(u16).range(1..=i64::from(MAX_SAMPLES)))]
-    pub samples: Option<u16>,
-    /// Whether a pixel takes rays at its corners and splits where they differ, down to
-    /// 1/samples of it (`true`: Whitted's adaptive anti-aliasing, samples 4, 16, 64 or 256),
-    /// or takes all its samples (`false`); the scene's own `adaptive_samples` when not given.
-    #[arg(long)]
-    pub adaptive_samples: Option<bool>,
-    /// Shadow rays per light with a radius, 1 to 256, spread over the light (soft shadows);
-    /// the scene's own `shadow_samples` when not given.
-    #[arg(long, value_parser = clap::value_parser!(u16).range(1..=i64::from(MAX_SAMPLES)))]
-    pub shadow_samples: Option<u16>,
-    /// Whether a point takes an area light's first 4 shadow rays and the rest only where they
-    /// disagree (`true`), or all of them (`false`); the scene's own `adaptive_shadows` when not
-    /// given.
-    #[arg(long)]
-    pub adaptive_shadows: Option<bool>,
-}
-
-impl SamplingArgs {
-    /// `scene` with the counts given here.
-    pub fn apply(&self, scene: &mut OwnedScene) {
-        if let Some(samples) = self.samples {
-            scene.samples = samples;
-        }
-        if let Some(adaptive) = self.adaptive_samples {
-            scene.adaptive_samples = adaptive;
-        }
-        if let Some(shadow_samples) = self.shadow_samples {
-            scene.shadow_samples = shadow_samples;
-        }
-        if let Some(adaptive) = self.adaptive_shadows {
-            scene.adaptive_shadows = adaptive;
-        }
-    }
-}
-
 /// How `--format auto` chooses.
 #[derive(Clone, Copy, Debug, Args)]
 pub struct AutoArgs {
@@ -213,7 +170,7 @@ pub struct SceneArgs {
     #[command(flatten)]
     pub methods: MethodArgs,
     #[command(flatten)]
-    pub sampling: SamplingArgs,
+    pub sampling: Sampling,
     #[command(flatten)]
     pub auto: AutoArgs,
 }
@@ -229,7 +186,7 @@ pub struct AnalyzeArgs {
     #[command(flatten)]
     pub methods: MethodArgs,
     #[command(flatten)]
-    pub sampling: SamplingArgs,
+    pub sampling: Sampling,
     #[command(flatten)]
     pub auto: AutoArgs,
 }
@@ -295,7 +252,7 @@ pub struct BenchArgs {
     #[command(flatten)]
     pub methods: MethodArgs,
     #[command(flatten)]
-    pub sampling: SamplingArgs,
+    pub sampling: Sampling,
 }
 
 /// `obscura firmware`.
@@ -318,7 +275,7 @@ pub struct FirmwareArgs {
     #[command(flatten)]
     pub methods: MethodArgs,
     #[command(flatten)]
-    pub sampling: SamplingArgs,
+    pub sampling: Sampling,
     /// The order of the rows on the display: top-down, or progressive (every 8th row first,
     /// each as a block down to the next; the final frame is the same).
     #[arg(long, value_parser = method::<RowOrder>(), default_value = "top-down")]
@@ -364,7 +321,7 @@ pub struct PreviewArgs {
     #[command(flatten)]
     pub methods: MethodArgs,
     #[command(flatten)]
-    pub sampling: SamplingArgs,
+    pub sampling: Sampling,
     /// The order of the rows: top-down, or progressive (every 8th row first, as blocks).
     #[arg(long, value_parser = method::<RowOrder>(), default_value = "progressive")]
     pub order: RowOrder,

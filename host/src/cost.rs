@@ -4,10 +4,10 @@
 //! cheapest format by these measurements.
 
 use crate::firmware::Target;
-use crate::format::Format;
 use clap::ValueEnum;
 use obscura::Methods;
 use obscura::scenes::{self, BuiltIn};
+use obscura_scene::Format;
 use std::fmt;
 use std::sync::OnceLock;
 

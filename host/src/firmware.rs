@@ -2,20 +2,17 @@
 //! build it for a set of scenes and formats, how to run it and read what it reports, and how
 //! much flash and RAM its image takes.
 
-use crate::firmware_build::Image;
-use crate::format::Format;
 use anyhow::{Context, Result, bail};
 use clap::ValueEnum;
 use object::{Object, ObjectSection, SectionFlags, SectionKind};
 use obscura::methods::MethodName;
 use obscura::{Methods, Presentation};
+use obscura_scene::Format;
+use obscura_scene::firmware::Image;
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
-
-/// The side of the firmware's square frame in pixels: the ST7789's 240.
-pub const SIDE: u32 = 240;
 
 /// A microcontroller the firmware is built for, with the QEMU machine that emulates it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, ValueEnum)]

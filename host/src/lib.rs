@@ -1,7 +1,8 @@
 //! The desktop harness of the obscura ray tracer: the `obscura` command ([`main`]), which runs
-//! the very same `no_std` core as the firmware, writes PNGs and measures each number format
-//! against an f64 reference; and what the firmware's build script takes from it
-//! ([`firmware_build`]): the configuration, `--format auto` and the scene as const data.
+//! the very same `no_std` core as the firmware, writes PNGs, measures each number format
+//! against an f64 reference and picks one (`--format auto`). Scene files, the formats by name
+//! and the firmware's configuration are the `obscura-scene` crate's, which the firmware's build
+//! reads them with too.
 
 mod analysis;
 mod canvas;
@@ -11,8 +12,6 @@ mod commands;
 mod cost;
 mod counted;
 mod firmware;
-pub mod firmware_build;
-mod format;
 mod fuzz;
 mod heatmap;
 mod metrics;

@@ -10,13 +10,14 @@
 //! that reaches its light test nothing); shading as measured; and each pixel's colour a product
 //! and a sum per channel on its way to the display.
 
+use crate::checked::Checked;
 use crate::counted::{Counted, Operations, Tally, kind_index, reset, take};
-use crate::format::{Format, FormatJob};
 use crate::render::{Prepared, Request};
 use anyhow::Result;
 use image::RgbImage;
 use obscura::Scalar;
 use obscura::scalar::RayKind;
+use obscura_scene::{Format, FormatJob};
 use std::fmt::Write;
 
 /// The floor of a primary ray's direction: stepped by three sums, then a unit vector (see the
@@ -178,7 +179,7 @@ pub fn count(format: Format, request: &Request<'_>) -> Result<(FrameCount, RgbIm
             Ok((FrameCount { pixels, tally }, image))
         }
     }
-    format.run(Count(request))
+    format.run::<Checked, _>(Count(request))
 }
 
 #[cfg(test)]

@@ -6,12 +6,11 @@
 
 use crate::analysis::{Analysis, Fit, measure, pick};
 use crate::cost::Machine;
-use crate::format::Format;
 use crate::fuzz::false_accept;
 use crate::metrics::accuracy;
 use crate::render::{Request, exact_roots, prepare, prepare_reference};
 use obscura::{Methods, RayMethod, SphereMethod, TriangleMethod};
-use obscura_scene::OwnedScene;
+use obscura_scene::{Format, OwnedScene};
 
 /// The scene of `host/scenes/hostile/NAME.toml`, whose header says what it broke.
 fn hostile(name: &str) -> OwnedScene {

@@ -1,8 +1,7 @@
 //! Whole frames on the desktop: the core's scanline renderer run band by band of rows on a
 //! thread pool, into an image, with every fixed-point sum and product checked ([`crate::checked`]).
 
-use crate::checked::{self, Overflowed};
-use crate::format::{Format, FormatJob};
+use crate::checked::{self, Checked, Overflowed};
 use anyhow::{Context, Result, anyhow};
 use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::{IntoStorage, Rgb565, Rgb888, RgbColor};
@@ -17,6 +16,7 @@ use obscura::{
     Camera, Corner, Methods, Presentation, Ray, RootMethod, Scalar, Scene, SceneDesc, SceneError,
     corner_rows, render_frame, render_rows,
 };
+use obscura_scene::{Format, FormatJob, MAX_LIGHTS, MAX_OBJECTS, RAY_STACK};
 use rayon::prelude::*;
 use std::convert::Infallible;
 use std::io::IsTerminal;
@@ -51,18 +51,11 @@ pub fn prepare_reference(request: &Request<'_>) -> Result<Box<dyn AnyFormat>> {
     )
 }
 
-/// Objects a scene on the host may have.
-pub const MAX_OBJECTS: usize = 64;
-/// Lights a scene on the host may have.
-pub const MAX_LIGHTS: usize = 16;
-/// The host's ray stack: ray trees up to 15 levels deep.
-pub const RAY_STACK: usize = 16;
-
 /// Rows a thread renders at a time: a band shares its corner rows between its rows (adaptive
 /// anti-aliasing traces one more corner row a band than in one pass over the frame).
 const BAND: usize = 8;
 
-/// A scene in format `S` with the host's capacities.
+/// A scene in format `S` with the capacities of a scene built at run time.
 pub type HostScene<S> = Scene<S, MAX_OBJECTS, MAX_LIGHTS, RAY_STACK>;
 
 /// A render request: a scene, an image size and the methods.
@@ -356,7 +349,7 @@ pub fn prepare(format: Format, request: &Request<'_>) -> Result<Box<dyn AnyForma
             Ok(Box::new(Prepared::<S>::new(self.0)?))
         }
     }
-    format.run(Job(request))
+    format.run::<Checked, _>(Job(request))
 }
 
 /// A progress bar of `rows` rows labelled `label`, drawn on standard error when that is a

@@ -17,10 +17,23 @@
 //! ```
 
 mod file;
+pub mod firmware;
+mod format;
 mod owned;
+mod sampling;
 
 pub use file::{Located, MAX_FILE_BYTES, NamedScene, load, parse};
+pub use format::{Format, FormatJob};
 pub use owned::OwnedScene;
+pub use sampling::Sampling;
+
+/// Objects a scene built at run time may have (the harness's scenes, and the proof of a
+/// firmware's; a firmware's own capacities are exactly its scene's).
+pub const MAX_OBJECTS: usize = 64;
+/// Lights a scene built at run time may have.
+pub const MAX_LIGHTS: usize = 16;
+/// The ray stack of a scene built at run time: ray trees up to 15 levels deep.
+pub const RAY_STACK: usize = 16;
 
 /// An error as the `obscura` command and the firmware's build print it: `error: ` and its
 /// chain, and where it is at a place in a scene file, that line with the place marked.

@@ -7,18 +7,19 @@ mod predict;
 
 pub use predict::{Prediction, Reference};
 
+use crate::checked::Checked;
 use crate::cost::{Machine, cost};
-use crate::format::{Format, FormatJob};
 use crate::metrics::accuracy;
 use crate::render::{HostScene, Request, all_cores, exact_roots, prepare, prepare_reference};
-use anyhow::Result;
+use anyhow::{Context, Result};
 use obscura::methods::MethodName;
 use obscura::scalar::FormatInfo;
 use obscura::scene::range::{self, Feature, Magnitude};
 use obscura::{
     Item, Methods, Scalar, SceneDesc, SceneError, ShapeDesc, SphereMethod, TriangleMethod, Vec3,
 };
-use obscura_scene::OwnedScene;
+use obscura_scene::firmware::SIDE;
+use obscura_scene::{Format, FormatJob, NamedScene, OwnedScene};
 
 /// The largest power of two a scene is rescaled by, either way.
 const MAX_RESCALE_POWER: i32 = 24;
@@ -260,6 +261,35 @@ pub fn pick(
     Ok(None)
 }
 
+/// `--format auto` for a firmware: the cheapest format on `machine` that holds every scene as it is (a firmware's scenes are
+/// built in: it cannot rescale them) and reaches `target_psnr` on each at the display's size,
+/// measured on the host, whose frames are the firmware's.
+///
+/// # Errors
+/// When no format does, or a render fails.
+pub fn firmware_format(
+    scenes: &[NamedScene],
+    methods: Methods,
+    machine: Machine,
+    target_psnr: f64,
+) -> Result<Format> {
+    let analyses = scenes
+        .iter()
+        .map(|named| {
+            Analysis::of(&named.scene, methods, SIDE, SIDE).map_err(|error| named.locate(error))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let pairs: Vec<_> = scenes.iter().map(|s| &s.scene).zip(&analyses).collect();
+    let Pick { format, .. } = pick(&pairs, methods, (SIDE, SIDE), machine, target_psnr, false)?
+        .with_context(|| {
+            format!(
+                "no firmware format holds every scene and reaches {target_psnr} dB; `obscura \
+                 analyze` says why"
+            )
+        })?;
+    Ok(format)
+}
+
 /// The PSNR of `format` against f64 on `scene` at `size` by `methods`, measured.
 ///
 /// # Errors
@@ -346,7 +376,7 @@ fn builds(
             Ok(())
         }
     }
-    format.run(Build(desc, methods, width, height))
+    format.run::<Checked, _>(Build(desc, methods, width, height))
 }
 
 /// The scene's extents, relative to the eye.
@@ -499,6 +529,15 @@ mod tests {
     use obscura::{BiasMethod, RayMethod, RootMethod, SphereMethod, scenes};
 
     #[test]
+    fn a_firmwares_auto_format_is_priced_for_its_machine() {
+        let whitted = [obscura_scene::load("whitted").unwrap()];
+        let pick = |machine| firmware_format(&whitted, Methods::default(), machine, 40.0).unwrap();
+        assert_eq!(pick(Machine::M4f), Format::F32);
+        // The built-in scenes' 32-bit split.
+        assert_eq!(pick(Machine::M0), Format::I12f20);
+    }
+
+    #[test]
     fn integer_bits_count_the_sign() {
         assert_eq!(integer_bits(f64::INFINITY), u32::MAX);
         // i16f16 holds up to 32768 (exclusive) in 16 integer bits.
@@ -648,7 +687,7 @@ mod tests {
                 );
                 let reached = peak::largest();
                 for format in [Format::I16f16, Format::I20f12, Format::I32f32] {
-                    let range = format.run(Range);
+                    let range = format.run::<Checked, _>(Range);
                     match builds(format, &desc, Methods::LECTURE, (96, 96)) {
                         Err(SceneError::OutOfRange { .. }) => {
                             refused += 1;

@@ -34,7 +34,7 @@
 //! [`crate::fuzz::MARGIN`]). Nothing is rendered in the format itself.
 
 use super::extents;
-use crate::format::{Format, FormatJob};
+use crate::checked::Checked;
 use crate::metrics::accuracy;
 use crate::quantized::{COSINE_STEPS, Quantized};
 use crate::render::{Prepared, Request, all_cores, exact_roots};
@@ -45,6 +45,7 @@ use obscura::scene::range::{self, FAST_ROOT_ERROR};
 use obscura::{
     Item, Methods, RayMethod, RootMethod, Scalar, SceneDesc, ShapeDesc, TriangleMethod, Vec3,
 };
+use obscura_scene::{Format, FormatJob};
 use rayon::prelude::*;
 use std::f64::consts::FRAC_1_SQRT_2;
 
@@ -216,7 +217,7 @@ pub fn predict(
             predict_in::<S>(self.0, self.1, self.2)
         }
     }
-    format.run(Job(desc, methods, reference))
+    format.run::<Checked, _>(Job(desc, methods, reference))
 }
 
 fn predict_in<S: Scalar>(

@@ -3,10 +3,9 @@
 use crate::analysis::{Analysis, Bits, Extents, Fit, Pick, measure, pick};
 use crate::cli::AnalyzeArgs;
 use crate::cost::Machine;
-use crate::format::Format;
 use crate::output::say;
 use anyhow::Result;
-use obscura_scene::NamedScene;
+use obscura_scene::{Format, NamedScene};
 use std::io;
 
 pub fn run(args: &AnalyzeArgs) -> Result<()> {

@@ -2,13 +2,12 @@
 //! machines and runs; ratios taken side by side, interleaved, do not).
 
 use crate::cli::BenchArgs;
-use crate::format::Format;
 use crate::output::{self, say};
 use crate::render::{Request, exact_roots, prepare};
 use crate::timing::interleaved_median_ms;
 use anyhow::{Context, Result};
 use obscura::Methods;
-use obscura_scene::NamedScene;
+use obscura_scene::{Format, NamedScene};
 use serde::Serialize;
 
 #[derive(Debug, Serialize)]

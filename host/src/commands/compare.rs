@@ -1,7 +1,6 @@
 //! `obscura compare`: a format against the f64 reference, in numbers and pictures.
 
 use crate::cli::CompareArgs;
-use crate::format::Format;
 use crate::heatmap::heatmap;
 use crate::metrics::{Accuracy, accuracy};
 use crate::output::{self, say};
@@ -10,7 +9,7 @@ use crate::timing::interleaved_median_ms;
 use anyhow::{Context, Result};
 use obscura::methods::MethodName;
 use obscura::{Dither, Presentation};
-use obscura_scene::NamedScene;
+use obscura_scene::{Format, NamedScene};
 use serde::Serialize;
 use std::io;
 

@@ -1,11 +1,10 @@
 //! `obscura firmware`: the firmware under QEMU against the host, bit for bit, and what it costs.
 
+use crate::analysis;
 use crate::cli::{FirmwareArgs, FormatChoice};
 use crate::cost::Machine;
 use crate::counted::Operations;
 use crate::firmware::{self, Target};
-use crate::firmware_build::{self, Configuration, Image};
-use crate::format::Format;
 use crate::heatmap::heatmap;
 use crate::operations;
 use crate::output::{self, say};
@@ -14,7 +13,8 @@ use crate::render::{Request, rgb565_image};
 use anyhow::{Context, Result, bail};
 use obscura::methods::MethodName;
 use obscura::{Methods, Presentation};
-use obscura_scene::NamedScene;
+use obscura_scene::firmware::{Configuration, Image, SIDE};
+use obscura_scene::{Format, NamedScene};
 use serde::Serialize;
 use std::io;
 use std::path::Path;
@@ -46,23 +46,19 @@ struct Report {
 
 /// The formats `args` ask for, `auto` resolved to the cheapest on the target that holds every
 /// scene as it is and reaches the target PSNR on each at the display's size
-/// ([`firmware_build::auto`]).
+/// ([`analysis::firmware_format`]).
 fn formats(args: &FirmwareArgs, scenes: &[NamedScene], methods: Methods) -> Result<Vec<Format>> {
     let mut formats = Vec::new();
     for &choice in &args.format {
         let format = match choice {
             FormatChoice::Given(Format::F64) => bail!(
                 "the firmware computes in {}, not f64 (which stays on the host)",
-                Format::FIRMWARE
-                    .iter()
-                    .map(|f| f.name())
-                    .collect::<Vec<_>>()
-                    .join(", ")
+                Format::firmware_names()
             ),
             FormatChoice::Given(format) => format,
             FormatChoice::Auto => {
                 let machine = Machine::from(args.target);
-                let format = firmware_build::auto(scenes, methods, machine, args.target_psnr)?;
+                let format = analysis::firmware_format(scenes, methods, machine, args.target_psnr)?;
                 eprintln!(
                     "--format auto: {format} is the cheapest on {machine} that reaches {} dB on \
                      every scene (measured on the host, whose frames are the firmware's)",
@@ -157,7 +153,7 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
     )?;
 
     let corner_rows_bytes = if scenes.iter().any(|s| s.scene.adaptive_samples) {
-        (obscura::corner_rows(firmware::SIDE) * size_of::<obscura::Corner>()) as u64
+        (obscura::corner_rows(SIDE) * size_of::<obscura::Corner>()) as u64
     } else {
         0
     };
@@ -433,7 +429,7 @@ fn print_table(target: Target, reports: &[Report]) -> io::Result<()> {
         say!(
             "adaptive samples keep two rows of {} corners, {bytes} bytes, on the stack (within \
              the stack column)",
-            obscura::corner_rows(firmware::SIDE) / 2
+            obscura::corner_rows(SIDE) / 2
         )?;
     }
     say!(

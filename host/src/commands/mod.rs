@@ -11,14 +11,12 @@ mod render;
 mod stress;
 
 use crate::analysis::{Analysis, Pick, pick};
-use crate::cli::{AutoArgs, Command, FormatChoice, SamplingArgs, SceneArgs};
-use crate::format::Format;
+use crate::cli::{AutoArgs, Command, FormatChoice, SceneArgs};
 use crate::output::say;
 use anyhow::{Result, bail};
 use obscura::Methods;
 use obscura::scenes;
-use obscura_scene::NamedScene;
-use obscura_scene::OwnedScene;
+use obscura_scene::{Format, NamedScene, OwnedScene, Sampling};
 
 /// Runs a subcommand.
 pub fn run(command: Command) -> Result<()> {
@@ -61,7 +59,7 @@ pub struct Resolved {
 /// file.
 pub fn on_scene(
     name: &str,
-    sampling: &SamplingArgs,
+    sampling: &Sampling,
     command: impl FnOnce(&NamedScene) -> Result<()>,
 ) -> Result<()> {
     let mut named = obscura_scene::load(name)?;

@@ -4,17 +4,16 @@
 //! the committed chart's instructions per pixel at the target's clock); the final frame, the
 //! firmware's to the bit, is written as a PNG. With `--headless` there is no window and no pace.
 
+use crate::analysis;
 use crate::cli::{FormatChoice, PreviewArgs};
 use crate::cost::{self, Machine};
-use crate::firmware::SIDE;
-use crate::firmware_build;
-use crate::format::Format;
 use crate::output::say;
 use crate::render::{Request, prepare, rgb565_image};
 use anyhow::{Result, bail};
 use obscura::Presentation;
 use obscura::methods::MethodName;
-use obscura_scene::NamedScene;
+use obscura_scene::firmware::SIDE;
+use obscura_scene::{Format, NamedScene};
 use std::time::Duration;
 
 pub fn run(args: &PreviewArgs) -> Result<()> {
@@ -28,14 +27,10 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
     let format = match args.format {
         FormatChoice::Given(Format::F64) => bail!(
             "a firmware computes in {}, not f64 (which stays on the host)",
-            Format::FIRMWARE
-                .iter()
-                .map(|f| f.name())
-                .collect::<Vec<_>>()
-                .join(", ")
+            Format::firmware_names()
         ),
         FormatChoice::Given(format) => format,
-        FormatChoice::Auto => firmware_build::auto(
+        FormatChoice::Auto => analysis::firmware_format(
             std::slice::from_ref(named),
             methods,
             machine,
@@ -89,7 +84,6 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
 /// The live window, where the simulator has SDL2 to open one.
 #[cfg(feature = "window")]
 mod window {
-    use crate::firmware::SIDE;
     use crate::render::AnyFormat;
     use anyhow::Result;
     use embedded_graphics::pixelcolor::Rgb565;
@@ -99,6 +93,7 @@ mod window {
         OutputSettingsBuilder, SimulatorDisplay, SimulatorEvent, Window,
     };
     use obscura::Presentation;
+    use obscura_scene::firmware::SIDE;
     use std::time::{Duration, Instant};
 
     /// Draws the frame into a window, each traced row when the board would have it after

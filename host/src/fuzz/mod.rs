@@ -28,14 +28,13 @@ pub mod generate;
 
 use crate::analysis::{Analysis, Fit, Prediction, Reference};
 use crate::checked;
-use crate::format::Format;
 use crate::metrics::{Accuracy, accuracy};
 use crate::render::{Request, exact_roots, prepare, prepare_reference};
 use anyhow::{Context, Result};
 use image::RgbImage;
 use obscura::methods::MethodName;
 use obscura::{BiasMethod, Methods, RayMethod, RootMethod, SphereMethod, TriangleMethod};
-use obscura_scene::OwnedScene;
+use obscura_scene::{Format, OwnedScene};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use rayon::prelude::*;

@@ -16,8 +16,8 @@ mod check;
 
 pub use cases::CASES;
 
-use crate::format::Format;
 use anyhow::Result;
+use obscura_scene::Format;
 use serde::Serialize;
 use std::fmt;
 

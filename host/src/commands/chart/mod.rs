@@ -6,11 +6,9 @@
 
 mod samples;
 
-use crate::cli::{ChartArgs, SamplingArgs};
+use crate::cli::ChartArgs;
 use crate::cost;
 use crate::firmware::{self, Target};
-use crate::firmware_build::Image;
-use crate::format::Format;
 use crate::metrics::accuracy;
 use crate::output::{self, say};
 use crate::pareto;
@@ -20,6 +18,8 @@ use crate::timing::frame_ms;
 use anyhow::{Context, Result, bail};
 use obscura::scenes::{self, BuiltIn};
 use obscura::{Methods, Presentation};
+use obscura_scene::firmware::Image;
+use obscura_scene::{Format, Sampling};
 use std::collections::HashMap;
 use std::io;
 use std::path::Path;
@@ -74,7 +74,7 @@ pub fn run(args: &ChartArgs) -> Result<()> {
         for (i, formats) in target.chart_images().iter().enumerate() {
             let image = Image {
                 scenes: scenes::one_ray().map(|s| s.name.to_owned()).collect(),
-                sampling: SamplingArgs::default(),
+                sampling: Sampling::default(),
                 formats,
                 methods: Methods::LECTURE,
                 variants: true,

@@ -5,10 +5,8 @@
 //! render of [`CONVERGED`] rays per pixel: how far each image is from the converged picture,
 //! its numeric error included.
 
-use crate::cli::{ChartArgs, SamplingArgs};
+use crate::cli::ChartArgs;
 use crate::firmware::{self, Target};
-use crate::firmware_build::Image;
-use crate::format::Format;
 use crate::metrics::accuracy;
 use crate::output::say;
 use crate::plot::{self, StabilitySeries};
@@ -16,7 +14,8 @@ use crate::render::{AnyFormat, Request, all_cores, prepare, prepare_reference};
 use crate::timing::frame_ms;
 use anyhow::{Context, Result, bail};
 use obscura::{Methods, Presentation, scenes};
-use obscura_scene::OwnedScene;
+use obscura_scene::firmware::Image;
+use obscura_scene::{Format, OwnedScene, Sampling};
 use std::path::Path;
 use std::time::Duration;
 
@@ -177,10 +176,10 @@ fn firmware_costs(args: &ChartArgs) -> Result<Vec<Cost>> {
             let (samples, adaptive) = sampling;
             let image = Image {
                 scenes: vec![SCENE.to_owned()],
-                sampling: SamplingArgs {
+                sampling: Sampling {
                     samples: Some(samples),
                     adaptive_samples: Some(adaptive),
-                    ..SamplingArgs::default()
+                    ..Sampling::default()
                 },
                 formats,
                 methods: Methods::LECTURE,

@@ -3,7 +3,7 @@
 //! method, the wrongly shadowed pixels.
 
 use super::{image_row, log_sweep, wrong};
-use crate::format::FormatJob;
+use crate::checked::Checked;
 use crate::stress::{Case, Row};
 use anyhow::Result;
 use obscura::methods::MethodName;
@@ -11,6 +11,7 @@ use obscura::{
     BackgroundDesc, BiasMethod, CameraDesc, LightDesc, MaterialDesc, Methods, ObjectDesc, Scalar,
     SceneDesc, ShapeDesc,
 };
+use obscura_scene::FormatJob;
 
 pub const CASE: Case = Case {
     name: "acne",
@@ -18,7 +19,7 @@ pub const CASE: Case = Case {
     x_label: "the light's elevation (degrees)",
     log_x: true,
     y_label: "wrong pixels (%)",
-    run: |format| format.run(Job),
+    run: |format| format.run::<Checked, _>(Job),
 };
 
 const FLOOR: [ObjectDesc; 1] = [ObjectDesc {

@@ -4,13 +4,14 @@
 //! radius to cancellation; the scene build refuses it where that happens.
 
 use super::{MATTE, Tally, bare, log_sweep, refused, sphere_truth};
-use crate::format::FormatJob;
+use crate::checked::Checked;
 use crate::render::HostScene;
 use crate::stress::check::{MODEL_ERRORS, discriminant, model_error, to_f64, towards};
 use crate::stress::{Case, Row};
 use anyhow::Result;
 use obscura::methods::MethodName;
 use obscura::{Methods, ObjectDesc, Scalar, ShapeDesc, SphereMethod};
+use obscura_scene::FormatJob;
 
 pub const CASE: Case = Case {
     name: "distant",
@@ -18,7 +19,7 @@ pub const CASE: Case = Case {
     x_label: "r / |o − c|",
     log_x: true,
     y_label: "misjudged rays (%)",
-    run: |format| format.run(Job),
+    run: |format| format.run::<Checked, _>(Job),
 };
 
 const DISTANCE: f64 = 10.0;

@@ -3,7 +3,7 @@
 //! them. Model no more than the scene needs.
 
 use super::{MATTE, image_row, log_sweep, psnr};
-use crate::format::FormatJob;
+use crate::checked::Checked;
 use crate::stress::{Case, Row};
 use anyhow::Result;
 use obscura::methods::MethodName;
@@ -11,6 +11,7 @@ use obscura::{
     BackgroundDesc, CameraDesc, LightDesc, Methods, ObjectDesc, Scalar, SceneDesc, ShapeDesc,
     SphereMethod,
 };
+use obscura_scene::FormatJob;
 
 pub const CASE: Case = Case {
     name: "floor",
@@ -18,7 +19,7 @@ pub const CASE: Case = Case {
     x_label: "the floor sphere's radius",
     log_x: true,
     y_label: "PSNR against f64 (dB)",
-    run: |format| format.run(Job),
+    run: |format| format.run::<Checked, _>(Job),
 };
 
 /// The scene: the camera 2 above the floor looking down at it, one light.

@@ -7,13 +7,14 @@
 //! [`MIN_FEATURE_STEPS`](obscura::scene::range::MIN_FEATURE_STEPS)); below that it must refuse.
 
 use super::{CAMERA, MATTE, SIZE, bare, log_sweep, refused};
-use crate::format::FormatJob;
+use crate::checked::Checked;
 use crate::render::HostScene;
 use crate::stress::{Case, Outcome, Row};
 use anyhow::{Context as _, Result};
 use obscura::pattern::Pattern;
 use obscura::scene::range::MIN_FEATURE_STEPS;
 use obscura::{CameraDesc, ObjectDesc, Scalar, SceneDesc, ShapeDesc, Vec3};
+use obscura_scene::FormatJob;
 
 pub const CASE: Case = Case {
     name: "focal-plane",
@@ -21,7 +22,7 @@ pub const CASE: Case = Case {
     x_label: "the lens's radius (aperture)",
     log_x: true,
     y_label: "largest miss on the focal plane (% of the aperture)",
-    run: |format| format.run(Job),
+    run: |format| format.run::<Checked, _>(Job),
 };
 
 /// How far ahead the lens focuses: far, where its tilt is small, and near, where its tilt is

@@ -3,7 +3,7 @@
 //! critical angle are totally reflected. Per self-intersection method.
 
 use super::{image_row, wrong};
-use crate::format::FormatJob;
+use crate::checked::Checked;
 use crate::stress::{Case, Row};
 use anyhow::Result;
 use obscura::methods::MethodName;
@@ -11,6 +11,7 @@ use obscura::{
     BackgroundDesc, BiasMethod, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, Methods,
     ObjectDesc, Scalar, SceneDesc, ShapeDesc, Y_UP,
 };
+use obscura_scene::FormatJob;
 
 pub const CASE: Case = Case {
     name: "glass",
@@ -18,7 +19,7 @@ pub const CASE: Case = Case {
     x_label: "the eye's distance from the sphere's centre, over its radius",
     log_x: false,
     y_label: "wrong pixels (%)",
-    run: |format| format.run(Job),
+    run: |format| format.run::<Checked, _>(Job),
 };
 
 const OFFSETS: [f64; 5] = [0.0, 0.3, 0.6, 0.9, 0.99];

@@ -3,13 +3,14 @@
 //! miss for hit) only within a few of the error model's discriminant errors of tangency.
 
 use super::{MATTE, Tally, bare, log_sweep, refused, sphere_truth};
-use crate::format::FormatJob;
+use crate::checked::Checked;
 use crate::render::HostScene;
 use crate::stress::check::{MODEL_ERRORS, discriminant, model_error, to_f64};
 use crate::stress::{Case, Row};
 use anyhow::Result;
 use obscura::methods::MethodName;
 use obscura::{Methods, ObjectDesc, Ray, Scalar, ShapeDesc, SphereMethod, Vec3};
+use obscura_scene::FormatJob;
 
 pub const CASE: Case = Case {
     name: "grazing",
@@ -17,7 +18,7 @@ pub const CASE: Case = Case {
     x_label: "δ: the ray's distance from tangency, over the radius",
     log_x: true,
     y_label: "misjudged rays (%)",
-    run: |format| format.run(Job),
+    run: |format| format.run::<Checked, _>(Job),
 };
 
 const CENTER: [f64; 3] = [0.0, 0.0, 8.0];

@@ -4,12 +4,13 @@
 //! be none for the watertight test; for the others the count is reported, their known weakness.
 
 use super::{MATTE, Tally, bare, log_sweep, refused};
-use crate::format::FormatJob;
+use crate::checked::Checked;
 use crate::render::HostScene;
 use crate::stress::{Case, Outcome, Row};
 use anyhow::Result;
 use obscura::methods::MethodName;
 use obscura::{Methods, ObjectDesc, Ray, Scalar, ShapeDesc, TriangleMethod, Vec3};
+use obscura_scene::FormatJob;
 
 pub const CASE: Case = Case {
     name: "mesh",
@@ -17,7 +18,7 @@ pub const CASE: Case = Case {
     x_label: "the mesh's distance from the eye",
     log_x: true,
     y_label: "rays slipping through (%)",
-    run: |format| format.run(Job),
+    run: |format| format.run::<Checked, _>(Job),
 };
 
 /// Points along each edge a ray is aimed at, as fractions of it (0 is a vertex).

@@ -5,12 +5,13 @@
 //! points crowd within a few steps of the centre and finally round onto it.
 
 use super::{MATTE, image_row, log_sweep, psnr};
-use crate::format::FormatJob;
+use crate::checked::Checked;
 use crate::stress::{Case, Row};
 use anyhow::Result;
 use obscura::{
     BackgroundDesc, CameraDesc, LightDesc, Methods, ObjectDesc, Scalar, SceneDesc, ShapeDesc,
 };
+use obscura_scene::FormatJob;
 
 pub const CASE: Case = Case {
     name: "penumbra",
@@ -18,7 +19,7 @@ pub const CASE: Case = Case {
     x_label: "the light's radius",
     log_x: true,
     y_label: "PSNR against f64 (dB)",
-    run: |format| format.run(Job),
+    run: |format| format.run::<Checked, _>(Job),
 };
 
 /// The floor, and the ball whose shadow is the penumbra.

@@ -4,12 +4,13 @@
 //! errors of that edge, and a world larger than the format holds is refused.
 
 use super::{MATTE, Tally, bare, log_sweep, refused};
-use crate::format::FormatJob;
+use crate::checked::Checked;
 use crate::render::HostScene;
 use crate::stress::check::{MODEL_ERRORS, to_f64};
 use crate::stress::{Case, Row};
 use anyhow::Result;
 use obscura::{Methods, ObjectDesc, Ray, Scalar, ShapeDesc, Vec3};
+use obscura_scene::FormatJob;
 
 pub const CASE: Case = Case {
     name: "plane",
@@ -17,7 +18,7 @@ pub const CASE: Case = Case {
     x_label: "the world's radius (far)",
     log_x: true,
     y_label: "misjudged rays (%)",
-    run: |format| format.run(Job),
+    run: |format| format.run::<Checked, _>(Job),
 };
 
 /// Rays per world, their hits log-spaced from far/4 to 4·far.

@@ -2,12 +2,12 @@
 //! in every format that holds it, refused by those that cannot.
 
 use super::{image_row, log_sweep, psnr};
-use crate::format::FormatJob;
+use crate::checked::Checked;
 use crate::stress::{Case, Row};
 use anyhow::Result;
 use obscura::methods::MethodName;
 use obscura::{Methods, Scalar, SphereMethod, scenes};
-use obscura_scene::OwnedScene;
+use obscura_scene::{FormatJob, OwnedScene};
 
 pub const CASE: Case = Case {
     name: "scale",
@@ -15,7 +15,7 @@ pub const CASE: Case = Case {
     x_label: "scale",
     log_x: true,
     y_label: "PSNR against f64 (dB)",
-    run: |format| format.run(Job),
+    run: |format| format.run::<Checked, _>(Job),
 };
 
 struct Job;

@@ -4,13 +4,14 @@
 //! the format resolves is refused.
 
 use super::{MATTE, Tally, bare, log_sweep, refused};
-use crate::format::FormatJob;
+use crate::checked::Checked;
 use crate::render::HostScene;
 use crate::stress::check::{MODEL_ERRORS, model_error, to_f64, towards};
 use crate::stress::{Case, Row};
 use anyhow::{Context, Result};
 use obscura::methods::MethodName;
 use obscura::{Methods, ObjectDesc, Scalar, ShapeDesc, TriangleMethod};
+use obscura_scene::FormatJob;
 
 pub const CASE: Case = Case {
     name: "sliver",
@@ -18,7 +19,7 @@ pub const CASE: Case = Case {
     x_label: "the triangle's height over its width",
     log_x: true,
     y_label: "misjudged rays (%)",
-    run: |format| format.run(Job),
+    run: |format| format.run::<Checked, _>(Job),
 };
 
 const DEPTH: f64 = 5.0;

@@ -1,48 +1,47 @@
-//! What the firmware's build script (`firmware/build.rs`) runs: it reads the firmware's
-//! configuration from the environment, resolves the scenes (built-in names or scene files) and
-//! the formats (`auto` by the host's own analysis, priced for the target), proves that each
-//! scene builds in each format by the chosen methods — with the host's code, so a refusal says
-//! what the host says, placed at the scene file's line and column — and writes the Rust source
-//! of what the firmware draws: each scene as const data, with capacities exactly its own.
+//! What a firmware draws, as its build script (`firmware/build.rs`) reads it from the
+//! environment: the scenes (built-in names or scene files), the formats, the methods, the
+//! sampling and the presentation. It proves that each scene builds in each format by the
+//! chosen methods, with the core's own scene build (a refusal placed at the scene file's line
+//! and column), and writes the Rust source of what the firmware draws: each scene as const
+//! data, with capacities exactly its own. The harness (`obscura firmware`, `obscura chart`)
+//! asks for an image through the same variables ([`Image::environment`]).
 //!
 //! | variable | what | default |
 //! |---|---|---|
-//! | `OBSCURA_SCENES` | built-in scenes or scene files (relative to the workspace), comma-separated | `whitted` |
-//! | `OBSCURA_FORMATS` | formats, comma-separated; `auto` is the cheapest on the target that holds every scene as it is and reaches `OBSCURA_TARGET_PSNR` | `auto` |
-//! | `OBSCURA_TARGET_PSNR` | the PSNR against f64, in dB, that `auto` aims for | `40` |
+//! | `OBSCURA_SCENES` | built-in scenes or scene files (relative to the workspace, or absolute), comma-separated | `whitted` |
+//! | `OBSCURA_FORMATS` | formats, comma-separated (`auto` is the harness's: `obscura firmware --format auto` prints the one it takes) | `i16f16` |
+//! | `OBSCURA_SAMPLES` | rays per pixel for every scene, or `scene`: each scene's own | `scene` |
+//! | `OBSCURA_ADAPTIVE_SAMPLES` | adaptive anti-aliasing (`true` or `false`) for every scene, or `scene` | `scene` |
+//! | `OBSCURA_SHADOW_SAMPLES` | shadow rays per area light for every scene, or `scene` | `scene` |
+//! | `OBSCURA_ADAPTIVE_SHADOWS` | adaptive shadow rays (`true` or `false`) for every scene, or `scene` | `scene` |
 //! | `OBSCURA_METHODS` | the methods that differ from the lecture's, e.g. `sphere=stable,bias=exclude` | the lecture's |
 //! | `OBSCURA_VARIANTS` | `each`: also draw each variant that changes one method (what `obscura chart` measures) | none |
 //! | `OBSCURA_ORDER` | the order of the rows: `top-down`, or `progressive` (every 8th row first, as blocks) | `top-down` |
 //! | `OBSCURA_DITHER` | the rounding to RGB565: `none`, or `ordered` (a 4×4 Bayer dither) | `none` |
 
-use crate::analysis::{Analysis, Pick, pick};
-use crate::cli::FormatChoice;
-use crate::cli::SamplingArgs;
-use crate::cost::Machine;
-use crate::firmware::SIDE;
-use crate::format::Format;
-use crate::render::{Request, prepare};
+use crate::{Format, FormatJob, MAX_LIGHTS, MAX_OBJECTS, NamedScene, RAY_STACK, Sampling};
 use anyhow::{Context, Result, bail};
-use clap::ValueEnum;
 use obscura::methods::MethodName;
 use obscura::pattern::MAX_SAMPLES;
+use obscura::scalar::Proven;
 use obscura::{
     BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, Methods, ObjectDesc,
-    Presentation, SceneDesc, ShapeDesc,
+    Presentation, Scalar, Scene, SceneDesc, SceneError, ShapeDesc,
 };
-use obscura_scene::NamedScene;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+/// The side of the firmware's square display, in pixels.
+pub const SIDE: u32 = 240;
+
 /// The environment variables the configuration is read from, as (name, default).
-pub const VARIABLES: [(&str, &str); 11] = [
+pub const VARIABLES: [(&str, &str); 10] = [
     (SCENES, "whitted"),
     (SAMPLES, SCENES_OWN),
     (ADAPTIVE_SAMPLES, SCENES_OWN),
     (SHADOW_SAMPLES, SCENES_OWN),
     (ADAPTIVE_SHADOWS, SCENES_OWN),
-    (FORMATS, "auto"),
-    (TARGET_PSNR, "40"),
+    (FORMATS, "i16f16"),
     (METHODS, "lecture"),
     (VARIANTS, "none"),
     (ORDER, "top-down"),
@@ -64,7 +63,6 @@ const ADAPTIVE_SHADOWS: &str = "OBSCURA_ADAPTIVE_SHADOWS";
 /// that keeps each scene's own.
 const SCENES_OWN: &str = "scene";
 const FORMATS: &str = "OBSCURA_FORMATS";
-const TARGET_PSNR: &str = "OBSCURA_TARGET_PSNR";
 const METHODS: &str = "OBSCURA_METHODS";
 const VARIANTS: &str = "OBSCURA_VARIANTS";
 const ORDER: &str = "OBSCURA_ORDER";
@@ -92,7 +90,7 @@ pub struct Image<'a> {
     /// Built-in scenes' names, or scene files' paths.
     pub scenes: Vec<String>,
     /// Rays per pixel and per area light for every scene, where not each scene's own.
-    pub sampling: SamplingArgs,
+    pub sampling: Sampling,
     /// The formats.
     pub formats: &'a [Format],
     /// The methods.
@@ -107,7 +105,7 @@ impl Image<'_> {
     /// The build script's environment for this image: every variable, so that none is
     /// inherited from the caller's.
     #[must_use]
-    pub fn environment(&self) -> [(&'static str, String); 11] {
+    pub fn environment(&self) -> [(&'static str, String); 10] {
         fn given<T: ToString>(value: Option<T>) -> String {
             value.map_or_else(|| SCENES_OWN.to_owned(), |v| v.to_string())
         }
@@ -126,7 +124,6 @@ impl Image<'_> {
                     .collect::<Vec<_>>()
                     .join(","),
             ),
-            (TARGET_PSNR, "40".to_owned()),
             (METHODS, self.methods.to_string()),
             (
                 VARIANTS,
@@ -147,29 +144,13 @@ pub struct Generated {
     pub inputs: Vec<PathBuf>,
 }
 
-/// The machine whose cost `auto` is priced by, for a Rust target triple.
-#[must_use]
-pub fn machine(triple: &str) -> Machine {
-    if triple.starts_with("thumbv7em") {
-        Machine::M4f
-    } else if triple.starts_with("thumbv6m") {
-        Machine::M0
-    } else {
-        Machine::Host
-    }
-}
-
 /// The configuration the environment gives (`var` reads a variable), scene files found from
-/// `workspace`, `auto` priced for `machine`.
+/// `workspace`.
 ///
 /// # Errors
-/// When a variable is malformed, a scene cannot be read, a format cannot hold a scene (said
-/// as the host says it, at the scene file's line and column), or `auto` finds no format.
-pub fn configure(
-    workspace: &Path,
-    machine: Machine,
-    var: impl Fn(&str) -> Option<String>,
-) -> Result<Configuration> {
+/// When a variable is malformed, a scene cannot be read, or a format cannot hold a scene (said
+/// as the harness says it, at the scene file's line and column).
+pub fn configure(workspace: &Path, var: impl Fn(&str) -> Option<String>) -> Result<Configuration> {
     let value = |name: &str| {
         var(name)
             .filter(|v| !v.trim().is_empty())
@@ -192,12 +173,6 @@ pub fn configure(
         order: choice(ORDER, &value(ORDER))?,
         dither: choice(DITHER, &value(DITHER))?,
     };
-    let target_psnr: f64 = value(TARGET_PSNR)
-        .trim()
-        .parse()
-        .ok()
-        .filter(|psnr: &f64| psnr.is_finite() && *psnr > 0.0)
-        .with_context(|| format!("{TARGET_PSNR} is a PSNR in dB, such as 40"))?;
     let mut scenes = value(SCENES)
         .split(',')
         .map(str::trim)
@@ -208,7 +183,7 @@ pub fn configure(
             } else {
                 name.to_owned()
             };
-            obscura_scene::load(&name).context(SCENES)
+            crate::load(&name).context(SCENES)
         })
         .collect::<Result<Vec<_>>>()?;
     let count = |variable| match value(variable).trim() {
@@ -230,7 +205,7 @@ pub fn configure(
             format!("{variable} is `{SCENES_OWN}`, `true` or `false`, not `{given}`")
         }),
     };
-    let sampling = SamplingArgs {
+    let sampling = Sampling {
         samples: count(SAMPLES)?,
         adaptive_samples: switch(ADAPTIVE_SAMPLES)?,
         shadow_samples: count(SHADOW_SAMPLES)?,
@@ -241,17 +216,17 @@ pub fn configure(
     }
     let mut formats = Vec::new();
     for name in value(FORMATS).split(',').map(str::trim) {
-        let format = match FormatChoice::from_str(name, false) {
-            Ok(FormatChoice::Given(Format::F64)) | Err(_) => bail!(
-                "{FORMATS}: `{name}` is not a firmware format: {}, or auto",
-                Format::FIRMWARE
-                    .iter()
-                    .map(|f| f.name())
-                    .collect::<Vec<_>>()
-                    .join(", ")
+        let format = match Format::from_name(name) {
+            None if name == "auto" => bail!(
+                "{FORMATS}: `auto` is the harness's choice, made by rendering the scenes on the \
+                 host: `obscura firmware --target <m4f or m0> --scene <scenes> --format auto` \
+                 prints the format it takes; give that here"
             ),
-            Ok(FormatChoice::Given(format)) => format,
-            Ok(FormatChoice::Auto) => auto(&scenes, methods, machine, target_psnr)?,
+            Some(Format::F64) | None => bail!(
+                "{FORMATS}: `{name}` is not a firmware format: {}",
+                Format::firmware_names()
+            ),
+            Some(format) => format,
         };
         if !formats.contains(&format) {
             formats.push(format);
@@ -284,35 +259,6 @@ fn choice<M: MethodName + PartialEq>(variable: &str, text: &str) -> Result<M> {
     })
 }
 
-/// The cheapest format on `machine` that holds every scene as it is (a firmware's scenes are
-/// built in: it cannot rescale them) and reaches `target_psnr` on each at the display's size,
-/// measured on the host, whose frames are the firmware's.
-///
-/// # Errors
-/// When no format does, or a render fails.
-pub fn auto(
-    scenes: &[NamedScene],
-    methods: Methods,
-    machine: Machine,
-    target_psnr: f64,
-) -> Result<Format> {
-    let analyses = scenes
-        .iter()
-        .map(|named| {
-            Analysis::of(&named.scene, methods, SIDE, SIDE).map_err(|error| named.locate(error))
-        })
-        .collect::<Result<Vec<_>>>()?;
-    let pairs: Vec<_> = scenes.iter().map(|s| &s.scene).zip(&analyses).collect();
-    let Pick { format, .. } = pick(&pairs, methods, (SIDE, SIDE), machine, target_psnr, false)?
-        .with_context(|| {
-            format!(
-                "no firmware format holds every scene and reaches {target_psnr} dB; `obscura \
-                 analyze` says why"
-            )
-        })?;
-    Ok(format)
-}
-
 impl Configuration {
     /// Proves that each scene builds in each format by the methods, as the firmware will build
     /// it: what the firmware would refuse (by the same code), this refuses, with the figures.
@@ -323,20 +269,18 @@ impl Configuration {
         for named in &self.scenes {
             let desc = named.scene.desc();
             for &format in &self.formats {
-                let request = Request {
-                    desc: &desc,
-                    width: SIDE,
-                    height: SIDE,
-                    methods: self.methods,
-                };
-                prepare(format, &request).map_err(|error| match named.path() {
-                    // A scene file's refusal names the file, its line and its column.
-                    Some(_) => named.locate(error),
-                    None => error.context(format!(
-                        "the firmware cannot draw {} in {format}",
-                        named.name
-                    )),
-                })?;
+                format
+                    .run::<Proven, _>(Prove(&desc, self.methods))
+                    .map_err(anyhow::Error::new)
+                    .with_context(|| format!("the scene cannot be built in {format}"))
+                    .map_err(|error| match named.path() {
+                        // A scene file's refusal names the file, its line and its column.
+                        Some(_) => named.locate(error),
+                        None => error.context(format!(
+                            "the firmware cannot draw {} in {format}",
+                            named.name
+                        )),
+                    })?;
             }
         }
         Ok(())
@@ -362,7 +306,7 @@ impl Configuration {
         };
         let _ = writeln!(
             out,
-            "// Written by obscura_host::firmware_build for the configuration the environment \
+            "// Written by obscura_scene::firmware for the configuration the environment \
              gave the build; do not edit.\n"
         );
         let adaptive = self.scenes.iter().any(|s| s.scene.adaptive_samples);
@@ -446,17 +390,29 @@ impl Configuration {
     }
 }
 
-/// The configuration from the environment of a build script for `triple`, checked, and its
-/// source.
+/// The configuration from the environment of a build script, checked, and its source.
 ///
 /// # Errors
 /// As [`configure`].
-pub fn generate(workspace: &Path, triple: &str) -> Result<Generated> {
-    let configuration = configure(workspace, machine(triple), |name| std::env::var(name).ok())?;
+pub fn generate(workspace: &Path) -> Result<Generated> {
+    let configuration = configure(workspace, |name| std::env::var(name).ok())?;
     Ok(Generated {
         source: configuration.source(),
         inputs: configuration.inputs(),
     })
+}
+
+/// Builds a scene in a format, and its camera at the display's size, as a firmware does
+/// (with the capacities of a scene built at run time: a firmware's are exactly its scene's).
+struct Prove<'a>(&'a SceneDesc<'a>, Methods);
+
+impl FormatJob for Prove<'_> {
+    type Output = Result<(), SceneError>;
+    fn run<S: Scalar>(self) -> Self::Output {
+        let scene = Scene::<S, MAX_OBJECTS, MAX_LIGHTS, RAY_STACK>::build_with(self.0, self.1)?;
+        scene.camera(SIDE, SIDE)?;
+        Ok(())
+    }
 }
 
 /// `methods` as a Rust expression.
@@ -628,7 +584,10 @@ mod tests {
     }
 
     fn workspace() -> PathBuf {
-        crate::firmware::workspace()
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .parent()
+            .expect("the scene crate is in the workspace")
+            .to_path_buf()
     }
 
     #[test]
@@ -652,7 +611,6 @@ mod tests {
     fn a_configuration_reads_scene_files_formats_and_methods() {
         let configuration = configure(
             &workspace(),
-            Machine::M4f,
             env(&[
                 (SCENES, "whitted, host/scenes/marbles.toml"),
                 (FORMATS, "f32,i32f32,f32"),
@@ -687,7 +645,6 @@ mod tests {
         let configure_sampling = |variable, value| {
             configure(
                 &workspace(),
-                Machine::M4f,
                 env(&[
                     (SCENES, "whitted,shapes"),
                     (FORMATS, "f32"),
@@ -745,7 +702,6 @@ mod tests {
     fn a_scene_the_format_cannot_hold_is_refused_at_its_line_and_column() {
         let error = configure(
             &workspace(),
-            Machine::M4f,
             env(&[
                 (SCENES, "host/scenes/hostile/low-light.toml"),
                 (FORMATS, "i16f16"),
@@ -770,7 +726,7 @@ mod tests {
                 "the sphere method is quadratic or stable",
             ),
             (&[(VARIANTS, "all")][..], "`none` or `each`"),
-            (&[(TARGET_PSNR, "loud")][..], "a PSNR in dB"),
+            (&[(FORMATS, "auto")][..], "obscura firmware --target"),
             (
                 &[(DITHER, "floyd")][..],
                 "OBSCURA_DITHER is none or ordered, not `floyd`",
@@ -778,21 +734,16 @@ mod tests {
             (&[(ORDER, "bottom-up")][..], "top-down or progressive"),
             (&[(SCENES, "no-such-scene")][..], "there is no scene"),
         ] {
-            let error = configure(&workspace(), Machine::M4f, env(pairs)).unwrap_err();
+            let error = configure(&workspace(), env(pairs)).unwrap_err();
             let message = format!("{error:#}");
             assert!(message.contains(expected), "{message}");
         }
     }
 
     #[test]
-    fn auto_picks_by_the_target() {
-        let pick = |machine| {
-            configure(&workspace(), machine, env(&[(FORMATS, "auto")]))
-                .unwrap()
-                .formats
-        };
-        assert_eq!(pick(Machine::M4f), [Format::F32]);
-        // The built-in scenes' 32-bit split.
-        assert_eq!(pick(Machine::M0), [Format::I12f20]);
+    fn without_a_format_the_firmware_computes_in_i16f16() {
+        let configuration = configure(&workspace(), env(&[])).unwrap();
+        assert_eq!(configuration.formats, [Format::I16f16]);
+        assert_eq!(configuration.scenes[0].name, "whitted");
     }
 }

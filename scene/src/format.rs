@@ -1,9 +1,8 @@
-//! The number formats the harness can run the core in, chosen at run time. The fixed formats
-//! are the firmware's with checked arithmetic ([`crate::checked`]).
+//! [`Format`]: the core's number formats, chosen at run time by name, each run in its type
+//! ([`Format::run`]) with the fixed formats' overflow policy the caller's: the core's own
+//! ([`Proven`]) where a firmware's build proves its scenes, a checked one in the harness.
 
-use crate::checked::CheckedFx;
-use clap::ValueEnum;
-use clap::builder::PossibleValue;
+use obscura::scalar::{Fx, Overflow, Proven};
 use obscura::{Methods, Scalar};
 use std::fmt;
 
@@ -29,10 +28,10 @@ macro_rules! format_enum {
             /// floats, f64 last.
             pub const ALL: &'static [Self] = &[$(Self::$fixed,)* $(Self::$float,)*];
 
-            /// Runs `job` in this format.
-            pub fn run<J: FormatJob>(self, job: J) -> J::Output {
+            /// Runs `job` in this format, a fixed format with the overflow policy `O`.
+            pub fn run<O: Overflow, J: FormatJob>(self, job: J) -> J::Output {
                 match self {
-                    $(Self::$fixed => job.run::<CheckedFx<obscura::fixed::types::$raw>>(),)*
+                    $(Self::$fixed => job.run::<Fx<obscura::fixed::types::$raw, O>>(),)*
                     $(Self::$float => job.run::<$ty>(),)*
                 }
             }
@@ -49,7 +48,7 @@ macro_rules! format_enum {
 }
 obscura::for_each_format!(format_enum);
 
-/// Work that is generic over the number format: `Format::run` picks the instantiation.
+/// Work that is generic over the number format: [`Format::run`] picks the instantiation.
 pub trait FormatJob {
     /// What the work produces.
     type Output;
@@ -61,6 +60,20 @@ impl Format {
     /// Every format a firmware can compute in (f64 stays on the host).
     pub const FIRMWARE: &'static [Self] = Self::ALL.split_last().expect("f64 is listed").1;
 
+    /// The firmware's formats' names, comma-separated: what a message lists where another was
+    /// given.
+    #[must_use]
+    pub fn firmware_names() -> String {
+        let names: Vec<_> = Self::FIRMWARE.iter().map(|f| f.name()).collect();
+        names.join(", ")
+    }
+
+    /// The format called `name` ([`Scalar::NAME`]), if there is one.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.iter().copied().find(|f| f.name() == name)
+    }
+
     /// The name the core gives the format.
     pub fn name(self) -> &'static str {
         struct Name;
@@ -70,7 +83,7 @@ impl Format {
                 S::NAME
             }
         }
-        self.run(Name)
+        self.run::<Proven, _>(Name)
     }
 
     /// Whether `methods` differ meaningfully from `base` in this format for a scene with or
@@ -83,7 +96,7 @@ impl Format {
                 self.0.matter::<S>(self.1, self.2)
             }
         }
-        self.run(Matter(methods, base, has_triangles))
+        self.run::<Proven, _>(Matter(methods, base, has_triangles))
     }
 
     /// The fixed format's integer and fraction bits (the sign among the integer's); `None` for
@@ -96,7 +109,7 @@ impl Format {
                 S::SPLIT
             }
         }
-        self.run(Split)
+        self.run::<Proven, _>(Split)
     }
 
     /// Whether the format is fixed point (whose firmware frames must match the host's bit for
@@ -112,13 +125,14 @@ impl Format {
     }
 }
 
-impl ValueEnum for Format {
+#[cfg(feature = "clap")]
+impl clap::ValueEnum for Format {
     fn value_variants<'a>() -> &'a [Self] {
         Self::ALL
     }
 
-    fn to_possible_value(&self) -> Option<PossibleValue> {
-        Some(PossibleValue::new(self.name()))
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        Some(clap::builder::PossibleValue::new(self.name()))
     }
 }
 
@@ -139,7 +153,8 @@ mod tests {
         assert_eq!(names, core);
         assert_eq!(Format::ALL.last(), Some(&Format::F64));
         assert!(!Format::FIRMWARE.contains(&Format::F64));
-        assert_eq!(Format::from_str("i20f12", false), Ok(Format::I20f12));
+        assert_eq!(Format::from_name("i20f12"), Some(Format::I20f12));
+        assert_eq!(Format::from_name("i17f15"), None);
         assert_eq!(Format::I20f12.split(), Some((20, 12)));
         assert!(Format::I20f12.is_fixed_32() && !Format::I32f32.is_fixed_32());
         assert_eq!(Format::F32Approx.split(), None);
