@@ -3,7 +3,6 @@
 //! ray stack) sized by const generics to exactly what it needs. The build script writes the
 //! list ([`render_all`]) from the configuration, having proven each scene in each format.
 
-use crate::SIDE;
 use crate::clock::Clock;
 use crate::stack;
 use core::fmt;
@@ -89,7 +88,7 @@ pub struct Report<'a> {
     pub fixed_storage_bytes: usize,
 }
 
-pub use configured::{CORNER_ROWS, render_all};
+pub use configured::{CORNER_ROWS, SIDE, render_all};
 
 /// The frames the build configured, as its script wrote them.
 mod configured {

@@ -12,5 +12,5 @@ pub mod frames;
 pub mod screen;
 pub mod stack;
 
-/// The side of the square display, in pixels.
-pub const SIDE: u32 = 240;
+/// The side of the square display, in pixels: the build's (`obscura_scene::firmware::SIDE`).
+pub use frames::SIDE;

@@ -286,7 +286,8 @@ impl Configuration {
         Ok(())
     }
 
-    /// The firmware's source: a function `render_all(backend, clock)` that draws each scene in
+    /// The firmware's source: the display's side (`SIDE`), the corner rows adaptive samples
+    /// keep (`CORNER_ROWS`), and a function `render_all(backend, clock)` that draws each scene in
     /// each format by calling the firmware's `frames::variants::<S, OBJECTS, LIGHTS, RAYS>(backend,
     /// clock, name, &DESC, METHODS)`, with the scene as a const and
     /// its capacities exactly its own.
@@ -308,6 +309,10 @@ impl Configuration {
             out,
             "// Written by obscura_scene::firmware for the configuration the environment \
              gave the build; do not edit.\n"
+        );
+        let _ = writeln!(
+            out,
+            "/// The side of the square display, in pixels.\npub const SIDE: u32 = {SIDE};\n"
         );
         let adaptive = self.scenes.iter().any(|s| s.scene.adaptive_samples);
         let _ = writeln!(
