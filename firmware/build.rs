@@ -3,7 +3,7 @@
 //! draws to `$OUT_DIR/frames.rs`, and puts the workspace's `memory.x` on the linker's path for
 //! the boards' binaries.
 
-use obscura_scene::firmware::{self, VARIABLES};
+use obscura_scene::firmware;
 use std::env;
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -14,7 +14,7 @@ fn main() {
     let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
     let target = env::var("TARGET").unwrap_or_default();
     println!("cargo::rerun-if-changed=build.rs");
-    for (name, _) in VARIABLES {
+    for name in firmware::variables() {
         println!("cargo::rerun-if-env-changed={name}");
     }
     match firmware::generate(workspace) {

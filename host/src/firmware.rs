@@ -181,13 +181,18 @@ pub fn check_prerequisites(target: Target) -> Result<()> {
 pub fn build(target: Target, image: &Image<'_>) -> Result<PathBuf> {
     let workspace = workspace();
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    let status = Command::new(cargo)
+    let mut command = Command::new(cargo);
+    command
         .current_dir(&workspace)
         .args(["build", "--release", "-p", "obscura-qemu"])
-        .args(["--target", target.triple()])
-        .envs(image.environment())
-        .status()
-        .context("cannot run cargo")?;
+        .args(["--target", target.triple()]);
+    for (name, value) in image.environment() {
+        match value {
+            Some(value) => command.env(name, value),
+            None => command.env_remove(name),
+        };
+    }
+    let status = command.status().context("cannot run cargo")?;
     if !status.success() {
         bail!(
             "building the firmware for {} failed (see cargo's messages above)",

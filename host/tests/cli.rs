@@ -231,8 +231,14 @@ fn bad_arguments_fail_with_a_clear_message() {
         (&["render", "whitted", "--size", "0x10"], "1 to 8192"),
         (&["render", "whitted", "--format", "q15"], "i16f16"),
         (&["compare", "whitted", "--runs", "0"], "runs"),
-        (&["compare", "whitted", "--samples", "0"], "1..=256"),
-        (&["compare", "soft", "--shadow-samples", "300"], "1..=256"),
+        (
+            &["compare", "whitted", "--samples", "0"],
+            "from 1 to 256, not `0`",
+        ),
+        (
+            &["compare", "soft", "--shadow-samples", "300"],
+            "from 1 to 256, not `300`",
+        ),
         (&["compare", "soft", "--adaptive-shadows", "maybe"], "true"),
         (&["compare", "whitted", "--converged", "257"], "1..=256"),
     ];

@@ -10,10 +10,7 @@
 //! |---|---|---|
 //! | `OBSCURA_SCENES` | built-in scenes or scene files (relative to the workspace, or absolute), comma-separated | `whitted` |
 //! | `OBSCURA_FORMATS` | formats, comma-separated (`auto` is the harness's: `obscura firmware --format auto` prints the one it takes) | `i16f16` |
-//! | `OBSCURA_SAMPLES` | rays per pixel for every scene, or `scene`: each scene's own | `scene` |
-//! | `OBSCURA_ADAPTIVE_SAMPLES` | adaptive anti-aliasing (`true` or `false`) for every scene, or `scene` | `scene` |
-//! | `OBSCURA_SHADOW_SAMPLES` | shadow rays per area light for every scene, or `scene` | `scene` |
-//! | `OBSCURA_ADAPTIVE_SHADOWS` | adaptive shadow rays (`true` or `false`) for every scene, or `scene` | `scene` |
+//! | `OBSCURA_SAMPLES`, `OBSCURA_ADAPTIVE_SAMPLES`, `OBSCURA_SHADOW_SAMPLES`, `OBSCURA_ADAPTIVE_SHADOWS` | the [`Sampling`] of every scene | unset: each scene's own |
 //! | `OBSCURA_METHODS` | the methods that differ from the lecture's, e.g. `sphere=stable,bias=exclude` | the lecture's |
 //! | `OBSCURA_VARIANTS` | `each`: also draw each variant that changes one method (what `obscura chart` measures) | none |
 //! | `OBSCURA_ORDER` | the order of the rows: `top-down`, or `progressive` (every 8th row first, as blocks) | `top-down` |
@@ -22,7 +19,6 @@
 use crate::{Format, FormatJob, MAX_LIGHTS, MAX_OBJECTS, NamedScene, RAY_STACK, Sampling};
 use anyhow::{Context, Result, bail};
 use obscura::methods::MethodName;
-use obscura::pattern::MAX_SAMPLES;
 use obscura::scalar::Proven;
 use obscura::{
     BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, Methods, ObjectDesc,
@@ -34,34 +30,26 @@ use std::path::{Path, PathBuf};
 /// The side of the firmware's square display, in pixels.
 pub const SIDE: u32 = 240;
 
-/// The environment variables the configuration is read from, as (name, default).
-pub const VARIABLES: [(&str, &str); 10] = [
+/// The firmware's own environment variables, as (name, default); the sampling's are
+/// [`Sampling::VARIABLES`] (unset: each scene's own).
+pub const VARIABLES: [(&str, &str); 6] = [
     (SCENES, "whitted"),
-    (SAMPLES, SCENES_OWN),
-    (ADAPTIVE_SAMPLES, SCENES_OWN),
-    (SHADOW_SAMPLES, SCENES_OWN),
-    (ADAPTIVE_SHADOWS, SCENES_OWN),
     (FORMATS, "i16f16"),
     (METHODS, "lecture"),
     (VARIANTS, "none"),
     (ORDER, "top-down"),
     (DITHER, "none"),
 ];
+
+/// Every variable a firmware's build reads: its own and the sampling's.
+pub fn variables() -> impl Iterator<Item = &'static str> {
+    VARIABLES
+        .iter()
+        .map(|(name, _)| *name)
+        .chain(Sampling::VARIABLES)
+}
+
 const SCENES: &str = "OBSCURA_SCENES";
-/// Rays per pixel for every scene, or [`SCENES_OWN`]: each scene's own `samples`.
-const SAMPLES: &str = "OBSCURA_SAMPLES";
-/// Shadow rays per area light for every scene, or [`SCENES_OWN`]: each scene's own
-/// `shadow_samples`.
-const SHADOW_SAMPLES: &str = "OBSCURA_SHADOW_SAMPLES";
-/// Adaptive anti-aliasing for every scene (`true` or `false`), or [`SCENES_OWN`]: each scene's
-/// own `adaptive_samples`.
-const ADAPTIVE_SAMPLES: &str = "OBSCURA_ADAPTIVE_SAMPLES";
-/// Adaptive shadow rays for every scene (`true` or `false`), or [`SCENES_OWN`]: each scene's
-/// own `adaptive_shadows`.
-const ADAPTIVE_SHADOWS: &str = "OBSCURA_ADAPTIVE_SHADOWS";
-/// The value of [`SAMPLES`], [`ADAPTIVE_SAMPLES`], [`SHADOW_SAMPLES`] or [`ADAPTIVE_SHADOWS`]
-/// that keeps each scene's own.
-const SCENES_OWN: &str = "scene";
 const FORMATS: &str = "OBSCURA_FORMATS";
 const METHODS: &str = "OBSCURA_METHODS";
 const VARIANTS: &str = "OBSCURA_VARIANTS";
@@ -103,19 +91,11 @@ pub struct Image<'a> {
 
 impl Image<'_> {
     /// The build script's environment for this image: every variable, so that none is
-    /// inherited from the caller's.
+    /// inherited from the caller's (`None`: to be unset).
     #[must_use]
-    pub fn environment(&self) -> [(&'static str, String); 10] {
-        fn given<T: ToString>(value: Option<T>) -> String {
-            value.map_or_else(|| SCENES_OWN.to_owned(), |v| v.to_string())
-        }
-        let sampling = &self.sampling;
-        [
+    pub fn environment(&self) -> Vec<(&'static str, Option<String>)> {
+        let own = [
             (SCENES, self.scenes.join(",")),
-            (SAMPLES, given(sampling.samples)),
-            (ADAPTIVE_SAMPLES, given(sampling.adaptive_samples)),
-            (SHADOW_SAMPLES, given(sampling.shadow_samples)),
-            (ADAPTIVE_SHADOWS, given(sampling.adaptive_shadows)),
             (
                 FORMATS,
                 self.formats
@@ -131,7 +111,11 @@ impl Image<'_> {
             ),
             (ORDER, self.presentation.order.name().to_owned()),
             (DITHER, self.presentation.dither.name().to_owned()),
-        ]
+        ];
+        own.into_iter()
+            .map(|(name, value)| (name, Some(value)))
+            .chain(self.sampling.environment())
+            .collect()
     }
 }
 
@@ -186,31 +170,7 @@ pub fn configure(workspace: &Path, var: impl Fn(&str) -> Option<String>) -> Resu
             crate::load(&name).context(SCENES)
         })
         .collect::<Result<Vec<_>>>()?;
-    let count = |variable| match value(variable).trim() {
-        SCENES_OWN => Ok(None),
-        n => n
-            .parse()
-            .ok()
-            .filter(|n| (1..=MAX_SAMPLES).contains(n))
-            .map(Some)
-            .with_context(|| {
-                format!(
-                    "{variable} is `{SCENES_OWN}` or a number from 1 to {MAX_SAMPLES}, not `{n}`"
-                )
-            }),
-    };
-    let switch = |variable| match value(variable).trim() {
-        SCENES_OWN => Ok(None),
-        given => given.parse().map(Some).ok().with_context(|| {
-            format!("{variable} is `{SCENES_OWN}`, `true` or `false`, not `{given}`")
-        }),
-    };
-    let sampling = Sampling {
-        samples: count(SAMPLES)?,
-        adaptive_samples: switch(ADAPTIVE_SAMPLES)?,
-        shadow_samples: count(SHADOW_SAMPLES)?,
-        adaptive_shadows: switch(ADAPTIVE_SHADOWS)?,
-    };
+    let sampling = Sampling::from_env(&var)?;
     for scene in &mut scenes {
         sampling.apply(&mut scene.scene);
     }
@@ -657,10 +617,10 @@ mod tests {
                 ]),
             )
         };
-        let configuration = configure_sampling(SAMPLES, "4").unwrap();
+        let configuration = configure_sampling("OBSCURA_SAMPLES", "4").unwrap();
         assert!(configuration.scenes.iter().all(|s| s.scene.samples == 4));
         assert_eq!(configuration.source().matches(" samples: 4,").count(), 2);
-        let configuration = configure_sampling(SHADOW_SAMPLES, "16").unwrap();
+        let configuration = configure_sampling("OBSCURA_SHADOW_SAMPLES", "16").unwrap();
         assert!(
             configuration
                 .scenes
@@ -674,7 +634,7 @@ mod tests {
                 .count(),
             2
         );
-        let configuration = configure_sampling(ADAPTIVE_SHADOWS, "true").unwrap();
+        let configuration = configure_sampling("OBSCURA_ADAPTIVE_SHADOWS", "true").unwrap();
         assert!(
             configuration
                 .scenes
@@ -689,11 +649,11 @@ mod tests {
             2
         );
         for (variable, wrong) in [
-            (SAMPLES, "0"),
-            (SAMPLES, "257"),
-            (SAMPLES, "four"),
-            (SHADOW_SAMPLES, "0"),
-            (ADAPTIVE_SHADOWS, "yes"),
+            ("OBSCURA_SAMPLES", "0"),
+            ("OBSCURA_SAMPLES", "257"),
+            ("OBSCURA_SAMPLES", "four"),
+            ("OBSCURA_SHADOW_SAMPLES", "0"),
+            ("OBSCURA_ADAPTIVE_SHADOWS", "yes"),
         ] {
             let message = format!("{:#}", configure_sampling(variable, wrong).unwrap_err());
             assert!(
