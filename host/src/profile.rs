@@ -166,6 +166,10 @@ pub struct Profile {
     pub phases: Vec<(&'static str, u64)>,
     /// Every instruction the run executed.
     pub total: u64,
+    /// Bytes of the image's code per phase, each halfword by the functions inlined there as an
+    /// executed address is, in [`PHASES`]' order then [`OTHER`]: what each part of the tracer
+    /// costs in flash, whether it ran or not.
+    pub code_bytes: Vec<(&'static str, u64)>,
 }
 
 impl Profile {
@@ -181,17 +185,13 @@ impl Profile {
             let inlined = e.inlined.iter().chain([&e.function]).map(String::as_str);
             *by_phase.entry(phase_of(inlined)).or_default() += e.times;
         }
-        let phases = PHASES
-            .iter()
-            .map(|phase| phase.name)
-            .chain([OTHER])
-            .filter_map(|phase| Some((phase, *by_phase.get(phase)?)))
-            .collect();
+        let phases = in_phase_order(&by_phase);
         Self {
             total: executed.iter().map(|e| e.times).sum(),
             functions: most_first(by_function),
             sources: most_first(by_source),
             phases,
+            code_bytes: Vec::new(),
         }
     }
 
@@ -205,6 +205,21 @@ impl Profile {
                 elf.display()
             )
         })?;
+        let inlined_at = |address: u64| -> Result<Vec<String>> {
+            let mut inlined = Vec::new();
+            let mut frames = debug
+                .find_frames(address)
+                .map_err(|e| anyhow!("the debug information at {address:#x}: {e}"))?;
+            while let Some(frame) = frames
+                .next()
+                .map_err(|e| anyhow!("the debug information at {address:#x}: {e}"))?
+            {
+                if let Some(name) = frame.function.as_ref().and_then(|f| f.demangle().ok()) {
+                    inlined.push(name.into_owned());
+                }
+            }
+            Ok(inlined)
+        };
         let text = std::fs::read_to_string(counts)
             .with_context(|| format!("the profiling plugin wrote no {}", counts.display()))?;
         let executed = parse_counts(&text)?
@@ -212,27 +227,41 @@ impl Profile {
             .map(|(address, times)| {
                 let function = holding(&functions, address)
                     .map_or_else(|| format!("{address:#x}"), |f| f.name.clone());
-                let mut inlined = Vec::new();
-                let mut frames = debug
-                    .find_frames(address)
-                    .map_err(|e| anyhow!("the debug information at {address:#x}: {e}"))?;
-                while let Some(frame) = frames
-                    .next()
-                    .map_err(|e| anyhow!("the debug information at {address:#x}: {e}"))?
-                {
-                    if let Some(name) = frame.function.as_ref().and_then(|f| f.demangle().ok()) {
-                        inlined.push(name.into_owned());
-                    }
-                }
                 Ok(Executed {
                     times,
                     function,
-                    inlined,
+                    inlined: inlined_at(address)?,
                 })
             })
             .collect::<Result<Vec<_>>>()?;
-        Ok(Self::attribute(&executed))
+        // Thumb code is in halfwords: each is attributed as an executed address would be.
+        let mut by_phase: HashMap<&str, u64> = HashMap::new();
+        for function in &functions {
+            for address in (function.start..function.start + function.size).step_by(2) {
+                let inlined = inlined_at(address)?;
+                let names = inlined
+                    .iter()
+                    .map(String::as_str)
+                    .chain([function.name.as_str()]);
+                *by_phase.entry(phase_of(names)).or_default() += 2;
+            }
+        }
+        Ok(Self {
+            code_bytes: in_phase_order(&by_phase),
+            ..Self::attribute(&executed)
+        })
     }
+}
+
+/// The phases of `by_phase`, in [`PHASES`]' order then [`OTHER`]; one without a count is left
+/// out.
+fn in_phase_order(by_phase: &HashMap<&str, u64>) -> Vec<(&'static str, u64)> {
+    PHASES
+        .iter()
+        .map(|phase| phase.name)
+        .chain([OTHER])
+        .filter_map(|phase| Some((phase, *by_phase.get(phase)?)))
+        .collect()
 }
 
 /// The counts of `by_name`, most first (ties by name).

@@ -228,7 +228,7 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
     }
     print_table(target, &reports)?;
     if args.profile {
-        print_profile(target, &Profile::read(&elf, &counts)?, &reports)?;
+        print_profile(target, &Profile::read(&elf, &counts)?, &reports, size.flash)?;
         for scene in &scenes {
             for &format in &formats {
                 print_operations(&scene.scene.desc(), &scene.name, format, methods, &reports)?;
@@ -275,7 +275,7 @@ const PROFILED_FUNCTIONS: usize = 12;
 
 /// Where the run's instructions went, per pixel drawn: by phase, then the functions that took
 /// most. Fails when the plugin counted fewer instructions than SysTick did for the frames alone.
-fn print_profile(target: Target, profile: &Profile, reports: &[Report]) -> Result<()> {
+fn print_profile(target: Target, profile: &Profile, reports: &[Report], flash: u64) -> Result<()> {
     let pixels: u64 = reports
         .iter()
         .map(|r| u64::from(r.width) * u64::from(r.height))
@@ -318,6 +318,27 @@ fn print_profile(target: Target, profile: &Profile, reports: &[Report]) -> Resul
             say!("| `{name}` | {:.0} | {:.1} % |", per_pixel(*n), share(*n))?;
         }
     }
+    say!(
+        "\nwhere the flash goes ({flash} bytes; code by the functions inlined at each halfword, \
+         as the instructions above):\n"
+    )?;
+    say!("| phase | bytes | share |")?;
+    say!("|---|---:|---:|")?;
+    let flash_share = |n: u64| 100.0 * n as f64 / flash.max(1) as f64;
+    for &(phase, n) in &profile.code_bytes {
+        say!("| {phase} | {n} | {:.1} % |", flash_share(n))?;
+    }
+    let code: u64 = profile.code_bytes.iter().map(|(_, n)| n).sum();
+    if code > flash {
+        bail!(
+            "the image's functions span {code} bytes, more than its {flash} of flash: the profile is wrong"
+        );
+    }
+    let rest = flash - code;
+    say!(
+        "| constants, vector table and code no symbol covers | {rest} | {:.1} % |",
+        flash_share(rest)
+    )?;
     Ok(())
 }
 
