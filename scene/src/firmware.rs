@@ -62,7 +62,7 @@ const DITHER: &str = "OBSCURA_DITHER";
 pub struct Configuration {
     /// The scenes, in order.
     pub scenes: Vec<NamedScene>,
-    /// The formats, in order, `auto` resolved.
+    /// The formats, in order.
     pub formats: Vec<Format>,
     /// The methods.
     pub methods: Methods,
