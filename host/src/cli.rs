@@ -1,5 +1,6 @@
 //! The command line: what each subcommand takes.
 
+use crate::analysis::TARGET_PSNR;
 use crate::cost::Machine;
 use crate::firmware::Target;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
@@ -148,7 +149,7 @@ impl ValueEnum for FormatChoice {
 #[derive(Clone, Copy, Debug, Args)]
 pub struct AutoArgs {
     /// The PSNR against f64, in dB, that `--format auto` and `analyze` aim for.
-    #[arg(long, default_value_t = 40.0, value_parser = parse_psnr)]
+    #[arg(long, default_value_t = TARGET_PSNR, value_parser = parse_psnr)]
     pub target_psnr: f64,
     /// The machine whose cost `--format auto` and `analyze` minimise, as the committed chart
     /// measured it.
@@ -270,7 +271,7 @@ pub struct FirmwareArgs {
     #[arg(long, value_enum, value_delimiter = ',', default_value = "i16f16")]
     pub format: Vec<FormatChoice>,
     /// The PSNR against f64, in dB, that `--format auto` aims for.
-    #[arg(long, default_value_t = 40.0, value_parser = parse_psnr)]
+    #[arg(long, default_value_t = TARGET_PSNR, value_parser = parse_psnr)]
     pub target_psnr: f64,
     #[command(flatten)]
     pub methods: MethodArgs,
@@ -312,11 +313,11 @@ pub struct PreviewArgs {
     #[arg(long, value_enum, default_value = "m4f")]
     pub target: Target,
     /// The format; `auto` is the cheapest on the target that holds the scene and reaches
-    /// --target-psnr, as the firmware's build picks it.
+    /// --target-psnr, as `obscura firmware --format auto` picks it.
     #[arg(long, value_enum, default_value = "auto")]
     pub format: FormatChoice,
     /// The PSNR against f64, in dB, that `--format auto` aims for.
-    #[arg(long, default_value_t = 40.0, value_parser = parse_psnr)]
+    #[arg(long, default_value_t = TARGET_PSNR, value_parser = parse_psnr)]
     pub target_psnr: f64,
     #[command(flatten)]
     pub methods: MethodArgs,

@@ -177,7 +177,8 @@ pub fn check_prerequisites(target: Target) -> Result<()> {
 }
 
 /// Builds the QEMU firmware for `target` to draw `image`, and returns the path of its ELF image.
-/// Its build script proves every scene in every format again (by the same code as the host).
+/// Its build script proves every scene in every format again (by the core's own scene build,
+/// as the host does).
 pub fn build(target: Target, image: &Image<'_>) -> Result<PathBuf> {
     let workspace = workspace();
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());

@@ -4,7 +4,7 @@
 //! bound. Each scene is a file in `host/scenes/hostile/` whose header says what it broke; the
 //! fuzzer ([`crate::fuzz`]) tries the same promises on scenes nobody wrote.
 
-use crate::analysis::{Analysis, Fit, measure, pick};
+use crate::analysis::{Analysis, Fit, TARGET_PSNR, measure, pick};
 use crate::cost::Machine;
 use crate::fuzz::false_accept;
 use crate::metrics::accuracy;
@@ -138,7 +138,7 @@ fn a_checker_too_large_for_its_reciprocal_is_refused_or_predicted_so() {
             Methods::LECTURE,
             (64, 64),
             Machine::M0,
-            40.0,
+            TARGET_PSNR,
             true,
         )
         .expect("renders");

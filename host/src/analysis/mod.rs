@@ -261,6 +261,9 @@ pub fn pick(
     Ok(None)
 }
 
+/// The PSNR against f64, in dB, that `--format auto` and `analyze` aim for unless told.
+pub const TARGET_PSNR: f64 = 40.0;
+
 /// `--format auto` for a firmware: the cheapest format on `machine` that holds every scene as it is (a firmware's scenes are
 /// built in: it cannot rescale them) and reaches `target_psnr` on each at the display's size,
 /// measured on the host, whose frames are the firmware's.
@@ -531,7 +534,8 @@ mod tests {
     #[test]
     fn a_firmwares_auto_format_is_priced_for_its_machine() {
         let whitted = [obscura_scene::load("whitted").unwrap()];
-        let pick = |machine| firmware_format(&whitted, Methods::default(), machine, 40.0).unwrap();
+        let pick =
+            |machine| firmware_format(&whitted, Methods::default(), machine, TARGET_PSNR).unwrap();
         assert_eq!(pick(Machine::M4f), Format::F32);
         // The built-in scenes' 32-bit split.
         assert_eq!(pick(Machine::M0), Format::I12f20);

@@ -6,6 +6,7 @@
 
 mod samples;
 
+use crate::analysis::TARGET_PSNR;
 use crate::cli::ChartArgs;
 use crate::cost;
 use crate::firmware::{self, Target};
@@ -24,9 +25,6 @@ use std::collections::HashMap;
 use std::io;
 use std::path::Path;
 use std::time::Duration;
-
-/// The PSNR a render must reach, on both scenes, to be recommended.
-const TARGET_PSNR_DB: f64 = 40.0;
 
 /// One variant: a scene in a format by some methods.
 struct Variant {
@@ -337,12 +335,12 @@ fn print_table(points: &[SpeedPoint]) -> io::Result<()> {
     Ok(())
 }
 
-/// For each cost axis, the cheapest format and methods that reach [`TARGET_PSNR_DB`] on every
+/// For each cost axis, the cheapest format and methods that reach [`TARGET_PSNR`] on every
 /// scene (cost summed over the scenes). On a scene where the methods change nothing (a triangle
 /// method, and no triangles) the lecture's run stands in for them; a scene they are refused on
 /// rules them out.
 fn print_recommendations(measured: &[&Variant], points: &[SpeedPoint]) -> io::Result<()> {
-    say!("\nthe cheapest to reach {TARGET_PSNR_DB} dB on every scene:")?;
+    say!("\nthe cheapest to reach {TARGET_PSNR} dB on every scene:")?;
     let point = |scene: &str, format: Format, methods: &Methods| {
         measured
             .iter()
@@ -367,7 +365,7 @@ fn print_recommendations(measured: &[&Variant], points: &[SpeedPoint]) -> io::Re
                 .collect();
             let Some(runs) = runs else { continue };
             let total: Option<f64> = runs.iter().map(|p| cost(p)).sum();
-            let good = runs.iter().all(|p| p.psnr_db >= TARGET_PSNR_DB);
+            let good = runs.iter().all(|p| p.psnr_db >= TARGET_PSNR);
             if let (Some(total), true) = (total, good) {
                 if best.is_none_or(|(b, _, _)| total < b) {
                     best = Some((total, format, methods));
