@@ -89,16 +89,12 @@ pub struct Report<'a> {
 }
 
 pub use configured::{CORNER_ROWS, SIDE, render_all};
+use configured::{MAX_LIGHTS, MAX_OBJECTS, RAY_STACK};
 
 /// The frames the build configured, as its script wrote them.
 mod configured {
     include!(concat!(env!("OUT_DIR"), "/frames.rs"));
 }
-
-/// The host's capacities, against which the sized storage is reported.
-const FIXED_OBJECTS: usize = 64;
-const FIXED_LIGHTS: usize = 16;
-const FIXED_RAYS: usize = 16;
 
 /// Renders a scene in format `S` by each of `methods` that tells it apart from the first
 /// ([`Methods::matter`]): the first is the configured methods, the others its variants.
@@ -159,8 +155,7 @@ fn render<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usiz
             ticks,
             stack_bytes,
             storage_bytes: Scene::<S, OBJECTS, LIGHTS, RAYS>::storage_bytes(),
-            fixed_storage_bytes: Scene::<S, FIXED_OBJECTS, FIXED_LIGHTS, FIXED_RAYS>::storage_bytes(
-            ),
+            fixed_storage_bytes: Scene::<S, MAX_OBJECTS, MAX_LIGHTS, RAY_STACK>::storage_bytes(),
         }),
         Err(error) => backend.failed(job, &error),
     }

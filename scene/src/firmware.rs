@@ -246,8 +246,8 @@ impl Configuration {
         Ok(())
     }
 
-    /// The firmware's source: the display's side (`SIDE`), the corner rows adaptive samples
-    /// keep (`CORNER_ROWS`), and a function `render_all(backend, clock)` that draws each scene in
+    /// The firmware's source: the display's side (`SIDE`), the run-time capacities the sized
+    /// storage is reported against, the corner rows adaptive samples keep (`CORNER_ROWS`), and a function `render_all(backend, clock)` that draws each scene in
     /// each format by calling the firmware's `frames::variants::<S, OBJECTS, LIGHTS, RAYS>(backend,
     /// clock, name, &DESC, METHODS)`, with the scene as a const and
     /// its capacities exactly its own.
@@ -273,6 +273,14 @@ impl Configuration {
         let _ = writeln!(
             out,
             "/// The side of the square display, in pixels.\npub const SIDE: u32 = {SIDE};\n"
+        );
+        let _ = writeln!(
+            out,
+            "/// The capacities of a scene built at run time (the harness's), against which the \
+             storage sized to the scene is reported: objects, lights and the ray stack.\n\
+             pub const MAX_OBJECTS: usize = {MAX_OBJECTS};\n/// Lights, as above.\n\
+             pub const MAX_LIGHTS: usize = {MAX_LIGHTS};\n/// The ray stack, as above.\n\
+             pub const RAY_STACK: usize = {RAY_STACK};\n"
         );
         let adaptive = self.scenes.iter().any(|s| s.scene.adaptive_samples);
         let _ = writeln!(
