@@ -264,9 +264,9 @@ pub fn pick(
 /// The PSNR against f64, in dB, that `--format auto` and `analyze` aim for unless told.
 pub const TARGET_PSNR: f64 = 40.0;
 
-/// `--format auto` for a firmware: the cheapest format on `machine` that holds every scene as it is (a firmware's scenes are
-/// built in: it cannot rescale them) and reaches `target_psnr` on each at the display's size,
-/// measured on the host, whose frames are the firmware's.
+/// `--format auto` for a firmware: the cheapest format on `machine` that holds every scene as
+/// it is (a firmware's scenes are built in: it cannot rescale them) and reaches `target_psnr`
+/// on each at the display's size, measured on the host, whose frames are the firmware's.
 ///
 /// # Errors
 /// When no format does, or a render fails.

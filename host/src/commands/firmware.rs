@@ -1,7 +1,6 @@
 //! `obscura firmware`: the firmware under QEMU against the host, bit for bit, and what it costs.
 
-use crate::analysis;
-use crate::cli::{FirmwareArgs, FormatChoice};
+use crate::cli::FirmwareArgs;
 use crate::cost::Machine;
 use crate::counted::Operations;
 use crate::firmware::{self, Target};
@@ -44,29 +43,13 @@ struct Report {
     corner_rows_bytes: u64,
 }
 
-/// The formats `args` ask for, `auto` resolved to the cheapest on the target that holds every
-/// scene as it is and reaches the target PSNR on each at the display's size
-/// ([`analysis::firmware_format`]).
+/// The formats `args` ask for, `auto` resolved for the target ([`super::firmware_format`]),
+/// each once.
 fn formats(args: &FirmwareArgs, scenes: &[NamedScene], methods: Methods) -> Result<Vec<Format>> {
     let mut formats = Vec::new();
     for &choice in &args.format {
-        let format = match choice {
-            FormatChoice::Given(Format::F64) => bail!(
-                "the firmware computes in {}, not f64 (which stays on the host)",
-                Format::firmware_names()
-            ),
-            FormatChoice::Given(format) => format,
-            FormatChoice::Auto => {
-                let machine = Machine::from(args.target);
-                let format = analysis::firmware_format(scenes, methods, machine, args.target_psnr)?;
-                eprintln!(
-                    "--format auto: {format} is the cheapest on {machine} that reaches {} dB on \
-                     every scene (measured on the host, whose frames are the firmware's)",
-                    args.target_psnr
-                );
-                format
-            }
-        };
+        let machine = Machine::from(args.target);
+        let format = super::firmware_format(choice, scenes, methods, machine, args.target_psnr)?;
         if !formats.contains(&format) {
             formats.push(format);
         }
@@ -325,14 +308,14 @@ fn print_profile(target: Target, profile: &Profile, reports: &[Report], flash: u
     say!("| phase | bytes | share |")?;
     say!("|---|---:|---:|")?;
     let flash_share = |n: u64| 100.0 * n as f64 / flash.max(1) as f64;
-    for &(phase, n) in &profile.code_bytes {
-        say!("| {phase} | {n} | {:.1} % |", flash_share(n))?;
-    }
     let code: u64 = profile.code_bytes.iter().map(|(_, n)| n).sum();
     if code > flash {
         bail!(
             "the image's functions span {code} bytes, more than its {flash} of flash: the profile is wrong"
         );
+    }
+    for &(phase, n) in &profile.code_bytes {
+        say!("| {phase} | {n} | {:.1} % |", flash_share(n))?;
     }
     let rest = flash - code;
     say!(

@@ -10,8 +10,9 @@ mod preview;
 mod render;
 mod stress;
 
-use crate::analysis::{Analysis, Pick, pick};
+use crate::analysis::{self, Analysis, Pick, pick};
 use crate::cli::{AutoArgs, Command, FormatChoice, SceneArgs};
+use crate::cost::Machine;
 use crate::output::say;
 use anyhow::{Result, bail};
 use obscura::Methods;
@@ -65,6 +66,33 @@ pub fn on_scene(
     let mut named = obscura_scene::load(name)?;
     sampling.apply(&mut named.scene);
     command(&named).map_err(|error| named.locate(error))
+}
+
+/// The format a firmware computes in by `choice`: the format given (f64 refused: it stays on the
+/// host), or with `auto` the cheapest on `machine` that holds every scene as it is and reaches
+/// `target_psnr` on each ([`analysis::firmware_format`]), said aloud on standard error.
+pub fn firmware_format(
+    choice: FormatChoice,
+    scenes: &[NamedScene],
+    methods: Methods,
+    machine: Machine,
+    target_psnr: f64,
+) -> Result<Format> {
+    match choice {
+        FormatChoice::Given(Format::F64) => bail!(
+            "a firmware computes in {}, not f64 (which stays on the host)",
+            Format::firmware_names()
+        ),
+        FormatChoice::Given(format) => Ok(format),
+        FormatChoice::Auto => {
+            let format = analysis::firmware_format(scenes, methods, machine, target_psnr)?;
+            eprintln!(
+                "--format auto: {format} is the cheapest on {machine} that reaches {target_psnr} \
+                 dB on every scene (measured on the host, whose frames are the firmware's)"
+            );
+            Ok(format)
+        }
+    }
 }
 
 /// Picks the format for `named` by `args`: the format given, or with `auto` the cheapest that

@@ -4,16 +4,15 @@
 //! the committed chart's instructions per pixel at the target's clock); the final frame, the
 //! firmware's to the bit, is written as a PNG. With `--headless` there is no window and no pace.
 
-use crate::analysis;
-use crate::cli::{FormatChoice, PreviewArgs};
+use crate::cli::PreviewArgs;
 use crate::cost::{self, Machine};
 use crate::output::say;
 use crate::render::{Request, prepare, rgb565_image};
-use anyhow::{Result, bail};
+use anyhow::Result;
 use obscura::Presentation;
 use obscura::methods::MethodName;
+use obscura_scene::NamedScene;
 use obscura_scene::firmware::SIDE;
-use obscura_scene::{Format, NamedScene};
 use std::time::Duration;
 
 pub fn run(args: &PreviewArgs) -> Result<()> {
@@ -24,19 +23,13 @@ pub fn run(args: &PreviewArgs) -> Result<()> {
 fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
     let methods = args.methods.methods();
     let machine = Machine::from(args.target);
-    let format = match args.format {
-        FormatChoice::Given(Format::F64) => bail!(
-            "a firmware computes in {}, not f64 (which stays on the host)",
-            Format::firmware_names()
-        ),
-        FormatChoice::Given(format) => format,
-        FormatChoice::Auto => analysis::firmware_format(
-            std::slice::from_ref(named),
-            methods,
-            machine,
-            args.target_psnr,
-        )?,
-    };
+    let format = super::firmware_format(
+        args.format,
+        std::slice::from_ref(named),
+        methods,
+        machine,
+        args.target_psnr,
+    )?;
     let desc = named.scene.desc();
     let request = Request {
         desc: &desc,
