@@ -7,9 +7,10 @@ use crate::cull::ImagePlane;
 use crate::desc::CameraDesc;
 use crate::methods::{Methods, RayMethod, RootMethod};
 use crate::ray::Ray;
-use crate::scalar::Scalar;
+use crate::scalar::{Bits, Scalar};
 use crate::scene::range::FAST_ROOT_ERROR;
 use crate::vec3::Vec3;
+use crate::words::{self, WordsError};
 
 /// The largest image side: it keeps every pixel coordinate exact in every format.
 pub const MAX_IMAGE_SIDE: u32 = 8192;
@@ -37,6 +38,20 @@ pub struct Camera<S> {
     roots: RootMethod,
 }
 
+crate::words::words_of_struct!(Camera<S> {
+    width,
+    height,
+    top_left,
+    across,
+    down,
+    pixel_across,
+    pixel_down,
+    lens,
+    plane,
+    rays,
+    roots
+});
+
 /// A thin lens of radius A about the eye, focused on the plane f ahead (Cook, Porter and
 /// Carpenter, 1984). A point (a, b) of the unit disc is the lens point o = A·(a·right + b·up);
 /// the pinhole's ray through s on the image plane (one unit ahead) meets the focal plane at f·s,
@@ -53,6 +68,13 @@ pub struct Lens<S> {
     tilt_up: Vec3<S>,
 }
 
+crate::words::words_of_struct!(Lens<S> {
+    across,
+    up,
+    tilt_across,
+    tilt_up
+});
+
 /// The camera's frame in double precision: where it looks and how wide, per unit distance.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Frame {
@@ -65,6 +87,15 @@ pub(crate) struct Frame {
     pub(crate) aperture: f64,
     pub(crate) focus: f64,
 }
+
+crate::words::words_of_struct!(Frame {
+    forward,
+    right,
+    up,
+    half_height,
+    aperture,
+    focus
+});
 
 /// tan x for 0 < x < π/2 (half a field of view): beyond π/4 as cot(π/2 − x), π/2 − x taken
 /// with π/2 to twice f64's precision, so that a field of view near 180° loses nothing; the
@@ -131,6 +162,22 @@ impl Frame {
     }
 }
 
+impl<S: Bits> Camera<S> {
+    /// Writes the camera as words ([`crate::words`]) to `sink`: what a firmware's build keeps
+    /// as constants of a camera it has made from a proven scene ([`crate::Scene::camera`]).
+    pub fn write_words(&self, sink: &mut dyn FnMut(u32)) {
+        words::write::<S>("camera", self, sink);
+    }
+
+    /// The camera [`Self::write_words`] wrote in format `S`.
+    ///
+    /// # Errors
+    /// When `words` are not such a camera's.
+    pub fn from_words(words: &[u32]) -> Result<Self, WordsError> {
+        words::read::<S, _>("camera", words)
+    }
+}
+
 impl<S: Scalar> Camera<S> {
     /// The camera of `frame` for an image of `width × height` pixels (each in
     /// 1..=[`MAX_IMAGE_SIDE`], which the caller has checked), generating rays by `methods`, or
@@ -151,7 +198,7 @@ impl<S: Scalar> Camera<S> {
             None
         };
         let plane = lens.is_none().then(|| {
-            ImagePlane::new(half_width, frame.half_height, width, height, |corner| {
+            ImagePlane::new(frame.half_height, width, height, |corner| {
                 aim_error::<S>(corner, width, methods)
             })
         });

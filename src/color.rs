@@ -16,6 +16,8 @@ pub struct Rgb<S> {
     pub b: S,
 }
 
+crate::words::words_of_struct!(Rgb<S> { r, g, b });
+
 impl<S: Scalar> Rgb<S> {
     /// Black: no light.
     pub const BLACK: Self = Self::new(S::ZERO, S::ZERO, S::ZERO);

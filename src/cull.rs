@@ -9,12 +9,15 @@
 //! [`REACH_ERRORS`] of the errors with which a ray finds its object (the range proof's
 //! `locating`), and every bound, row by row, by the error of a primary ray's direction (its
 //! unit vector's, the image plane's rounding, fast roots', stepping's: the camera works it out
-//! for its [`ImagePlane`]) and to the whole of each pixel, which its samples may reach. The
-//! bounds and the ranges are worked out in `f64`, the same way on every machine, so that the
-//! host and a firmware skip the same tests. A lens starts rays away from the eye: its rows test
-//! every object.
+//! for its [`ImagePlane`]) and to the whole of each pixel, which its samples may reach. A lens
+//! starts rays away from the eye: its rows test every object.
+//!
+//! The bounds are worked out in `f64` when the scene is built and kept as integers
+//! ([`Coordinate`]), each rounded outwards; the rows' ranges come from them by integer
+//! arithmetic alone, exact and the same on every machine, so that the host and a firmware skip
+//! the same tests and a firmware needs no floating point for them.
 
-use crate::camera::{Camera, Frame};
+use crate::camera::{Camera, Frame, MAX_IMAGE_SIDE};
 use crate::desc::ShapeDesc;
 use crate::ray::{Ray, Span};
 use crate::scalar::Scalar;
@@ -27,8 +30,43 @@ use crate::vec3::Vec3;
 /// estimates, and a test skipped wrongly would change the picture.
 pub const REACH_ERRORS: f64 = 4.0;
 
+/// A coordinate on the image plane in units of 2⁻³² of its half height h = tan(vfov / 2): a
+/// coordinate c as c / h · 2³², clamped to ±[`COORDINATE_LIMIT`]. In these units pixel x of an
+/// image W × H pixels spans a from (2x − W)/H to (2x + 2 − W)/H, and row y spans b from
+/// (H − 2y − 2)/H to (H − 2y)/H (the image is 2h high and 2h·W/H wide).
+pub type Coordinate = i64;
+
+/// 2³²: a [`Coordinate`]'s units per half height.
+const UNITS: f64 = 4_294_967_296.0;
+
+/// The largest [`Coordinate`], 2¹⁶ half heights: beyond the widest image (8 192 half heights
+/// across), and small enough that a coordinate times an image side (up to 2¹³) and a few of
+/// their sums fit an `i64`.
+pub const COORDINATE_LIMIT: Coordinate = 1 << 48;
+
+/// `x` half heights as a [`Coordinate`], rounded by `round` (`libm::floor`, `libm::ceil` or
+/// `libm::round`) and clamped to ±[`COORDINATE_LIMIT`].
+fn coordinate(x: f64, round: fn(f64) -> f64) -> Coordinate {
+    let limit = COORDINATE_LIMIT as f64;
+    #[allow(
+        clippy::cast_possible_truncation,
+        reason = "clamped to ±2⁴⁸, an integer"
+    )]
+    let units = round(x * UNITS).clamp(-limit, limit) as Coordinate;
+    units
+}
+
+/// The range `[low, high]` of half heights as [`Coordinate`]s, rounded outwards and one unit
+/// further, for the rounding of the quotient that gave them.
+fn outwards([low, high]: [f64; 2]) -> [Coordinate; 2] {
+    [
+        coordinate(low, libm::floor).saturating_sub(1),
+        coordinate(high, libm::ceil).saturating_add(1),
+    ]
+}
+
 /// Where on the camera's image plane (see [`crate::cull`]) primary rays can meet an object.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Bound {
     /// Anywhere: the object surrounds the eye, or reaches beside or behind it.
     Everywhere,
@@ -37,20 +75,59 @@ pub enum Bound {
     /// Within the rectangle a ∈ `right`, b ∈ `up` (each a closed interval).
     Rectangle {
         /// The range of a.
-        right: [f64; 2],
+        right: [Coordinate; 2],
         /// The range of b.
-        up: [f64; 2],
+        up: [Coordinate; 2],
     },
-    /// Where `forward` + a·`right` + b·`up` ≥ 0, less a ray's error: the side of its horizon
-    /// a plane lies on (n·d ≥ 0, n its normal turned to face the eye's rays towards it).
+    /// Where `forward` + a·`right` + b·`up` ≥ 0, less a ray's error (a and b in half heights,
+    /// the terms in [`Coordinate`] units): the side of its horizon a plane lies on (n·d ≥ 0, n
+    /// its normal turned to face the eye's rays towards it, divided by h).
     Side {
-        /// n·forward.
-        forward: f64,
+        /// n·forward / h, widened by the rounding of the other two.
+        forward: Coordinate,
         /// n·right.
-        right: f64,
+        right: Coordinate,
         /// n·up.
-        up: f64,
+        up: Coordinate,
     },
+}
+
+impl crate::words::Words for Bound {
+    fn put(&self, out: &mut crate::words::Writer<'_>) {
+        match self {
+            Self::Everywhere => out.word(0),
+            Self::Nowhere => out.word(1),
+            Self::Rectangle { right, up } => {
+                out.word(2);
+                right.put(out);
+                up.put(out);
+            }
+            Self::Side { forward, right, up } => {
+                out.word(3);
+                forward.put(out);
+                right.put(out);
+                up.put(out);
+            }
+        }
+    }
+
+    fn take(input: &mut crate::words::Reader<'_>) -> Option<Self> {
+        use crate::words::Words;
+        match input.word()? {
+            0 => Some(Self::Everywhere),
+            1 => Some(Self::Nowhere),
+            2 => Some(Self::Rectangle {
+                right: Words::take(input)?,
+                up: Words::take(input)?,
+            }),
+            3 => Some(Self::Side {
+                forward: Words::take(input)?,
+                right: Words::take(input)?,
+                up: Words::take(input)?,
+            }),
+            _ => None,
+        }
+    }
 }
 
 impl Bound {
@@ -91,8 +168,12 @@ impl Bound {
             (Some(right), Some(up)) => {
                 // The rectangle's centre is the ellipse's: the cone's front half, or its back.
                 let middle = |[low, high]: [f64; 2]| 0.5 * (low + high);
+                let h = frame.half_height;
                 if f + middle(right) * r + middle(up) * u > 0.0 {
-                    Self::Rectangle { right, up }
+                    Self::Rectangle {
+                        right: outwards(right.map(|a| a / h)),
+                        up: outwards(up.map(|b| b / h)),
+                    }
                 } else {
                     Self::Nowhere
                 }
@@ -113,10 +194,15 @@ impl Bound {
         } else {
             return Self::Everywhere;
         };
+        // Rounded to nearest, right and up are off by at most half a unit each, which H·a and
+        // H·b (at most W and H within an image) multiply; forward, which H multiplies, is
+        // widened by half of the widest image's W/H + 1 units, and one more for its quotient.
+        let widening = Coordinate::from(MAX_IMAGE_SIDE / 2 + 2);
         Self::Side {
-            forward: n.dot(frame.forward),
-            right: n.dot(frame.right),
-            up: n.dot(frame.up),
+            forward: (coordinate(n.dot(frame.forward) / frame.half_height, libm::ceil) + widening)
+                .min(COORDINATE_LIMIT),
+            right: coordinate(n.dot(frame.right), libm::round),
+            up: coordinate(n.dot(frame.up), libm::round),
         }
     }
 }
@@ -252,29 +338,40 @@ impl Candidates<'_> {
 }
 
 /// A camera's image plane, for turning bounds into the pixel ranges of rows.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ImagePlane {
-    /// b at the image's top edge: its half height.
-    top: f64,
-    /// The image plane's width and height of a pixel.
-    pixel: f64,
-    /// a at the image's left edge: minus its half width.
-    left: f64,
-    /// Pixels per unit of a.
-    per_unit: f64,
-    /// The last pixel of a row.
-    last: u32,
-    /// How far a primary ray may be from where its pixel says, on the image plane.
-    slack: f64,
+    /// The image's width in pixels, W.
+    width: u32,
+    /// The image's height in pixels, H.
+    height: u32,
+    /// How far a primary ray may be from where its pixel says, on the image plane, in
+    /// [`Coordinate`] units, rounded up.
+    slack: Coordinate,
+}
+
+crate::words::words_of_struct!(ImagePlane {
+    width,
+    height,
+    slack
+});
+
+/// ⌊n / d⌋ for d > 0.
+const fn floor_div(n: i64, d: i64) -> i64 {
+    n.div_euclid(d)
+}
+
+/// ⌈n / d⌉ for d > 0.
+const fn ceil_div(n: i64, d: i64) -> i64 {
+    -(-n).div_euclid(d)
 }
 
 impl ImagePlane {
-    /// The image plane of half width `half_width` and half height `half_height` (a unit from
-    /// the eye) of an image of `width × height` pixels, whose rays' directions are off by at
-    /// most `aim_error(corner)`, an angle, with `corner` the distance of the plane's corner.
+    /// The image plane of half height `half_height` (a unit from the eye) of an image of
+    /// `width × height` pixels (each in 1..=[`MAX_IMAGE_SIDE`]), whose rays'
+    /// directions are off by at most `aim_error(corner)`, an angle, with `corner` the distance
+    /// of the plane's corner.
     #[must_use]
     pub(crate) fn new(
-        half_width: f64,
         half_height: f64,
         width: u32,
         height: u32,
@@ -282,65 +379,55 @@ impl ImagePlane {
     ) -> Self {
         // A direction off by an angle θ meets the plane up to θ·|s|² away, |s| at most the
         // image's corner.
+        let half_width = half_height * f64::from(width) / f64::from(height);
         let corner_squared = 1.0 + half_width * half_width + half_height * half_height;
         let slack = REACH_ERRORS * aim_error(libm::sqrt(corner_squared)) * corner_squared;
         Self {
-            top: half_height,
-            pixel: 2.0 * half_height / f64::from(height),
-            left: -half_width,
-            per_unit: f64::from(width) / (2.0 * half_width),
-            last: width.saturating_sub(1),
-            slack,
+            width,
+            height,
+            slack: coordinate(slack / half_height, libm::ceil).saturating_add(1),
         }
     }
 
-    /// The pixels (from the left edge) at coordinate `a`.
-    fn pixels(&self, a: f64) -> f64 {
-        (a - self.left) * self.per_unit
-    }
-
-    /// The pixels of row `y` whose rays may meet within `bound`.
+    /// The pixels of row `y` whose rays may meet within `bound`, by integers alone: every
+    /// term below is at most a side (2¹³) times a few [`COORDINATE_LIMIT`]s (2⁴⁸), well within an
+    /// `i64`.
     fn row_range(&self, bound: &Bound, y: u32) -> (u32, u32) {
-        // The row covers b from its bottom edge to its top.
-        let top = self.top - f64::from(y) * self.pixel;
-        let bottom = top - self.pixel;
-        // The stretch of a the row's rays may meet the bound in.
-        let (from, to) = match *bound {
+        let (w, h, slack) = (i64::from(self.width), i64::from(self.height), self.slack);
+        // H·b at the row's top and bottom edges, in units.
+        let unit = 1_i64 << 32;
+        let top = (h - 2 * i64::from(y)) * unit;
+        let bottom = top - 2 * unit;
+        // The pixels whose span of a reaches [from, to], each H·a in units: pixel x spans H·a
+        // from (2x − W) to (2x + 2 − W) units.
+        let (first, last) = match *bound {
             Bound::Everywhere => return ALL,
             Bound::Nowhere => return NONE,
             Bound::Rectangle { right, up } => {
-                if bottom > up[1] + self.slack || top < up[0] - self.slack {
+                if bottom > h * (up[1] + slack) || top < h * (up[0] - slack) {
                     return NONE;
                 }
-                (right[0] - self.slack, right[1] + self.slack)
+                let (from, to) = (h * (right[0] - slack), h * (right[1] + slack));
+                (
+                    ceil_div(from + (w - 2) * unit, 2 * unit),
+                    floor_div(to + w * unit, 2 * unit),
+                )
             }
             Bound::Side { forward, right, up } => {
-                // Where forward + a·right + b·up ≥ −slack for the row's most favourable b.
-                let b = if up > 0.0 { top } else { bottom };
-                let constant = forward + b * up + self.slack;
-                if right > 0.0 {
-                    (-constant / right, f64::INFINITY)
-                } else if right < 0.0 {
-                    (f64::NEG_INFINITY, -constant / right)
-                } else if constant >= 0.0 {
-                    return ALL;
-                } else {
-                    return NONE;
+                // H·(forward + slack + b·up) for the row's most favourable b; then the pixels
+                // where adding a·right, at the pixel's most favourable edge, keeps it ≥ 0.
+                let edge = if up > 0 { top } else { bottom };
+                let constant = h * (forward + slack) + (edge / unit) * up;
+                match right.signum() {
+                    1 => (ceil_div((w - 2) * right - constant, 2 * right), w - 1),
+                    -1 => (0, floor_div(constant + w * -right, 2 * -right)),
+                    _ if constant >= 0 => return ALL,
+                    _ => return NONE,
                 }
             }
         };
-        // Pixel i covers [i, i + 1] of the row: the first that reaches `from` is ⌈from⌉ − 1,
-        // the last ⌊to⌋, each clamped to the row (from −1 to the last pixel plus one, so
-        // that ⌊x⌋ is the truncation of x + 2, less 2).
-        let last = f64::from(self.last);
-        let clamp = |pixels: f64| pixels.max(-1.0).min(last + 1.0);
-        let floor = |pixels: f64| (pixels + 2.0) as i64 - 2;
-        let first = -floor(-clamp(self.pixels(from))) - 1;
-        let end = floor(clamp(self.pixels(to)));
-        match (u32::try_from(first.max(0)), u32::try_from(end)) {
-            (Ok(first), Ok(end)) if first <= end && first <= self.last => {
-                (first, end.min(self.last))
-            }
+        match (u32::try_from(first.max(0)), u32::try_from(last.min(w - 1))) {
+            (Ok(first), Ok(last)) if first <= last => (first, last),
             _ => NONE,
         }
     }
@@ -443,8 +530,12 @@ mod tests {
         else {
             panic!("no rectangle");
         };
+        // In half heights (h = 1 at 90°), rounded outwards by at most two units.
+        let half_heights = |c: Coordinate| c as f64 / UNITS;
         for [low, high] in [right, up] {
-            assert!((low + edge).abs() < 1e-12 && (high - edge).abs() < 1e-12);
+            let (low, high) = (half_heights(low), half_heights(high));
+            assert!(low <= -edge && low > -edge - 1e-9, "{low}");
+            assert!(high >= edge && high < edge + 1e-9, "{high}");
         }
         // Two units to the left (right = −x), its disc is offset along a by about −0.2.
         let Bound::Rectangle { right, .. } =
@@ -452,10 +543,8 @@ mod tests {
         else {
             panic!("no rectangle");
         };
-        assert!(
-            right[0] < -0.2 && right[1] > -0.2 && right[1] < 0.0,
-            "{right:?}"
-        );
+        let [low, high] = right.map(half_heights);
+        assert!(low < -0.2 && high > -0.2 && high < 0.0, "{right:?}");
     }
 
     #[test]
@@ -480,7 +569,7 @@ mod tests {
     fn a_floor_is_reached_below_its_horizon() {
         // The floor y = −1: rays meet it where they point down (b < 0).
         let floor = Bound::plane(Vec3::new(0.0, 1.0, 0.0), -1.0, &frame());
-        let plane = ImagePlane::new(1.0, 1.0, 4, 4, |_| 0.0);
+        let plane = ImagePlane::new(1.0, 4, 4, |_| 0.0);
         // Rows 0 and 1 lie above the horizon (b from 1 down to 0), rows 2 and 3 below; row 1's
         // bottom edge touches it.
         let rows = [0, 1, 2, 3].map(|y| plane.row_range(&floor, y));

@@ -49,6 +49,7 @@ pub mod scenes;
 pub mod shade;
 pub mod shape;
 pub mod vec3;
+pub mod words;
 
 #[cfg(test)]
 mod test_util;
@@ -70,7 +71,8 @@ pub use render::{
     Presentation, RenderError, RowOrder, render_frame, render_rows, send_row, trace_row,
 };
 pub use scalar::names as formats;
-pub use scalar::{F32Approx, Fx, I16F16, I20F12, I32F32, Scalar};
+pub use scalar::{Bits, F32Approx, Fx, I16F16, I20F12, I32F32, Scalar};
 pub use scene::{Item, Remedy, Scene, SceneError};
 pub use shade::Sample;
 pub use vec3::Vec3;
+pub use words::WordsError;

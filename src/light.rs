@@ -22,6 +22,14 @@ pub struct Light<S> {
     pub(crate) index: u16,
 }
 
+crate::words::words_of_struct!(Light<S> {
+    position,
+    colour,
+    radius,
+    shadow_rays,
+    index
+});
+
 /// The colour of rays that hit nothing.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Background<S> {
@@ -36,6 +44,36 @@ pub enum Background<S> {
         /// The unit vector straight up.
         up: Vec3<S>,
     },
+}
+
+impl<S: crate::scalar::Bits> crate::words::Words for Background<S> {
+    fn put(&self, out: &mut crate::words::Writer<'_>) {
+        match self {
+            Self::Solid(colour) => {
+                out.word(0);
+                colour.put(out);
+            }
+            Self::Gradient { horizon, rise, up } => {
+                out.word(1);
+                horizon.put(out);
+                rise.put(out);
+                up.put(out);
+            }
+        }
+    }
+
+    fn take(input: &mut crate::words::Reader<'_>) -> Option<Self> {
+        use crate::words::Words;
+        match input.word()? {
+            0 => Some(Self::Solid(Words::take(input)?)),
+            1 => Some(Self::Gradient {
+                horizon: Words::take(input)?,
+                rise: Words::take(input)?,
+                up: Words::take(input)?,
+            }),
+            _ => None,
+        }
+    }
 }
 
 impl<S: Scalar> Background<S> {

@@ -23,3 +23,14 @@ pub struct Material<S> {
     /// 1 / index of refraction: the ratio η for a ray entering the material.
     pub inv_ior: S,
 }
+
+crate::words::words_of_struct!(Material<S> {
+    colour,
+    diffuse,
+    specular,
+    shininess,
+    reflection,
+    transmission,
+    ior,
+    inv_ior
+});

@@ -83,6 +83,21 @@ pub struct Methods {
     pub bias: BiasMethod,
 }
 
+crate::words::words_of_struct!(Methods {
+    sphere,
+    triangle,
+    roots,
+    rays,
+    bias
+});
+crate::words::words_of_choice!(
+    SphereMethod,
+    TriangleMethod,
+    RootMethod,
+    RayMethod,
+    BiasMethod
+);
+
 impl Methods {
     /// The lecture's methods: the quadratic, Cramer's rule, exact roots, a ray per pixel, an
     /// epsilon offset. What [`crate::Scene::build`] uses.

@@ -15,6 +15,8 @@ pub struct Vec3<S> {
     pub z: S,
 }
 
+crate::words::words_of_struct!(Vec3<S> { x, y, z });
+
 impl<S: Scalar> Vec3<S> {
     /// The origin.
     pub const ZERO: Self = Self::new(S::ZERO, S::ZERO, S::ZERO);

@@ -513,7 +513,7 @@ fn every_message_says_what_to_do() {
 }
 
 #[test]
-fn messages_without_figures_keep_the_words_and_drop_the_numbers() {
+fn messages_carry_their_figures() {
     let cases = [
         (
             SceneError::OutOfBounds {
@@ -567,16 +567,8 @@ fn messages_without_figures_keep_the_words_and_drop_the_numbers() {
         ),
     ];
     for (error, figure) in cases {
-        let full = error.to_string();
-        let brief = error.without_figures().to_string();
-        assert!(full.contains(figure), "{figure} not in: {full}");
-        assert!(!brief.contains(figure), "{figure} still in: {brief}");
-        // The same sentence, less the figures: it starts and ends as the full one does.
-        let (head, tail) = (&full[..12], &full[full.len() - 12..]);
-        assert!(
-            brief.starts_with(head) && brief.ends_with(tail),
-            "{brief} / {full}"
-        );
+        let message = error.to_string();
+        assert!(message.contains(figure), "{figure} not in: {message}");
     }
 }
 

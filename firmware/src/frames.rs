@@ -1,7 +1,9 @@
 //! What the firmware renders: each configured scene in each configured format, by the
 //! configured methods (or by each variant of them), with the scene's storage (objects, lights,
 //! ray stack) sized by const generics to exactly what it needs. The build script writes the
-//! list ([`render_all`]) from the configuration, having proven each scene in each format.
+//! list ([`render_all`]) from the configuration, having proven each scene in each format on the
+//! host: each frame's scene and camera as words ([`obscura::words`]), or the reason a chart's
+//! variant is refused.
 
 use crate::clock::Clock;
 use crate::stack;
@@ -9,8 +11,7 @@ use core::fmt;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use obscura::{
-    Camera, Corner, Methods, Presentation, RenderError, Scalar, Scene, SceneDesc, SceneError,
-    render_frame,
+    Bits, Camera, Corner, Methods, Presentation, RenderError, Scalar, Scene, render_frame,
 };
 
 /// What goes wrong drawing a frame on `B`'s display.
@@ -96,54 +97,26 @@ mod configured {
     include!(concat!(env!("OUT_DIR"), "/frames.rs"));
 }
 
-/// Renders a scene in format `S` by each of `methods` that tells it apart from the first
-/// ([`Methods::matter`]): the first is the configured methods, the others its variants.
-pub(crate) fn variants<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
-    backend: &mut impl Backend,
-    clock: &Clock,
-    name: &str,
-    desc: &SceneDesc<'_>,
-    methods: &[Methods],
-    presentation: Presentation,
-) {
-    let Some(base) = methods.first() else {
-        return;
-    };
-    let variants = methods.len() > 1;
-    for &m in methods {
-        if m.matter::<S>(base, desc.has_triangles()) {
-            let job = Job {
-                scene: name,
-                format: S::NAME,
-                methods: m,
-                presentation,
-            };
-            render::<S, OBJECTS, LIGHTS, RAYS>(backend, clock, &job, desc, variants);
-        }
-    }
-}
-
-/// Builds the scene in format `S`, renders it top to bottom and reports the frame.
-fn render<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
+/// Draws the frame of `job`: the scene whose words are `scene` (written by the build from the
+/// scene it proved in format `S`), as the camera whose words are `camera` sees it; then reports
+/// the frame. The chip builds and proves nothing: it reads the scene back from its words.
+pub(crate) fn draw<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
     backend: &mut impl Backend,
     clock: &Clock,
     job: &Job<'_>,
-    desc: &SceneDesc<'_>,
-    variants: bool,
+    scene: &[u32],
+    camera: &[u32],
 ) {
     // Hidden from the optimiser, so that no build folds a constant scene into the tracer: every
     // frame measures the same general code, whichever scenes and formats share the firmware.
-    let desc = core::hint::black_box(desc);
-    // The stack is measured over the whole job: building the scene proves its range in f64
-    // and takes more stack than many a frame.
+    let scene = core::hint::black_box(scene);
     stack::paint();
-    let scene = match Scene::<S, OBJECTS, LIGHTS, RAYS>::build_with(desc, job.methods) {
-        Ok(scene) => scene,
-        Err(error) => return refuse(backend, job, &error, variants),
-    };
-    let camera = match scene.camera(SIDE, SIDE) {
-        Ok(camera) => camera,
-        Err(error) => return refuse(backend, job, &error, variants),
+    let (scene, camera) = match (
+        Scene::<S, OBJECTS, LIGHTS, RAYS>::from_words(scene),
+        Camera::<S>::from_words(camera),
+    ) {
+        (Ok(scene), Ok(camera)) => (scene, camera),
+        (Err(error), _) | (_, Err(error)) => return backend.failed(job, &error),
     };
     backend.begin(job);
     let (drawn, ticks) = clock.measure(|| backend.draw_frame(&scene, &camera, job.presentation));
@@ -158,16 +131,5 @@ fn render<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usiz
             fixed_storage_bytes: Scene::<S, MAX_OBJECTS, MAX_LIGHTS, RAY_STACK>::storage_bytes(),
         }),
         Err(error) => backend.failed(job, &error),
-    }
-}
-
-/// Reports a scene the firmware cannot build: without its figures, as formatting floats would
-/// cost a quarter of the flash, and the host's build of the same scene and format says the same
-/// with them. Among `variants` (what the chart compares) some are expected to be refused.
-fn refuse(backend: &mut impl Backend, job: &Job<'_>, error: &SceneError, variants: bool) {
-    if variants {
-        backend.refused(job, &error.without_figures());
-    } else {
-        backend.failed(job, &error.without_figures());
     }
 }

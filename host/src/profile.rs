@@ -24,7 +24,7 @@ struct Phase {
 }
 
 /// The phases, in the order the table lists them.
-const PHASES: [Phase; 9] = [
+const PHASES: [Phase; 10] = [
     Phase {
         name: "primary rays (camera)",
         marks: &["obscura::camera::"],
@@ -73,6 +73,10 @@ const PHASES: [Phase; 9] = [
             "embedded_graphics",
             "cortex_m_semihosting::",
         ],
+    },
+    Phase {
+        name: "scene and camera read from their words",
+        marks: &["obscura::words::", "::from_words"],
     },
     Phase {
         name: "scene build and range proof",
@@ -348,7 +352,7 @@ mod tests {
                     "obscura::shade::Tracer<S>::nearest",
                     "obscura::shade::Tracer<S>::transmittance",
                     "obscura::shade::Tracer<S>::trace",
-                    "obscura_firmware::frames::render",
+                    "obscura_firmware::frames::draw",
                 ],
                 "intersection tests",
             ),
@@ -377,13 +381,20 @@ mod tests {
             (
                 &[
                     "obscura::color::Rgb<S>::quantize_at",
-                    "obscura_firmware::frames::render",
+                    "obscura_firmware::frames::draw",
                 ],
                 "colour, quantisation and output",
             ),
             (
                 &["obscura::scene::range::check"],
                 "scene build and range proof",
+            ),
+            (
+                &[
+                    "<obscura::scene::Scene<S,_,_,_> as obscura::words::Words>::take",
+                    "obscura::scene::Scene<S,_,_,_>::from_words",
+                ],
+                "scene and camera read from their words",
             ),
             (&["Reset"], OTHER),
             (

@@ -3,7 +3,7 @@
 //! ([`Proven`]) where a firmware's build proves its scenes, a checked one in the harness.
 
 use obscura::scalar::{Fx, Overflow, Proven};
-use obscura::{Methods, Scalar};
+use obscura::{Bits, Methods, Scalar};
 use std::fmt;
 
 /// Builds [`Format`] from the core's one list of formats ([`obscura::for_each_format!`]).
@@ -53,7 +53,7 @@ pub trait FormatJob {
     /// What the work produces.
     type Output;
     /// Does the work in format `S`.
-    fn run<S: Scalar>(self) -> Self::Output;
+    fn run<S: Bits>(self) -> Self::Output;
 }
 
 impl Format {

@@ -167,12 +167,33 @@ pub trait WideBits: Copy + Ord {
     /// self/b for b > 0, in raw units with `frac` fraction bits ≤ 28, from the fast reciprocal
     /// square root as a mantissa and an exponent: about 14 correct bits whatever the size of b.
     fn div_raw_fast(self, b: Self, frac: u32) -> Self;
+    /// The 32-bit words the integer takes ([`super::Bits::WORDS`]).
+    const WORDS: usize;
+    /// The integer's bits, sign-extended to 64.
+    fn to_u64(self) -> u64;
+    /// The integer whose bits are the low bits of `bits`.
+    fn from_u64(bits: u64) -> Self;
 }
 
 macro_rules! wide_bits {
     ($($bits:ident => $wide:ident, mul: $mul:path, div: $div:path, fast: $fast:literal, root_error: $root_error:expr, roots: $sqrt:path, $rsqrt:path, $normalize:path);*) => {$(
         impl WideBits for $bits {
             type Wide = $wide;
+            const WORDS: usize = <$bits>::BITS as usize / 32;
+            #[inline]
+            #[allow(clippy::cast_sign_loss, reason = "the bits, sign-extended")]
+            fn to_u64(self) -> u64 {
+                i64::from(self) as u64
+            }
+            #[inline]
+            #[allow(
+                clippy::cast_possible_truncation,
+                clippy::cast_possible_wrap,
+                reason = "the low bits are the integer's"
+            )]
+            fn from_u64(bits: u64) -> Self {
+                bits as Self
+            }
             const FAST_ROOTS: bool = $fast;
             const ROOT_ERROR: f64 = $root_error;
             #[inline]

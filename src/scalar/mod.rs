@@ -15,6 +15,7 @@
 //! - Every tolerance is derived from the format through [`Scalar::resolution`], never typed in.
 
 mod approx;
+mod bits;
 mod fixed_point;
 mod float;
 mod formats;
@@ -22,6 +23,7 @@ mod isqrt;
 mod kernels;
 
 pub use approx::F32Approx;
+pub use bits::Bits;
 pub use fixed_point::{Fx, I16F16, I20F12, I32F32, Operation, Overflow, Proven, WideBits};
 
 use core::cmp::Ordering;

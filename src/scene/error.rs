@@ -235,12 +235,6 @@ pub enum SceneError {
     },
 }
 
-impl fmt::Display for SceneError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        Message::<true>(self).fmt(f)
-    }
-}
-
 impl SceneError {
     /// The part of the description the error is about, if it is about one.
     pub fn item(&self) -> Option<Item> {
@@ -280,18 +274,7 @@ impl SceneError {
             | Self::ImageSize { .. } => None,
         }
     }
-
-    /// The message without its figures (the values, bounds and ranges), for a firmware:
-    /// formatting floating-point numbers would take a quarter of its flash. The host's message
-    /// for the same scene and format (the [`fmt::Display`] of the error) has them.
-    pub fn without_figures(&self) -> impl fmt::Display + '_ {
-        Message::<false>(self)
-    }
 }
-
-/// The message of a [`SceneError`], with its figures or without (then no floating-point
-/// formatting is linked).
-struct Message<'a, const FIGURES: bool>(&'a SceneError);
 
 /// "; formats that hold it: a b c", when there are any.
 fn formats(f: &mut fmt::Formatter<'_>, holds: FormatSet, verb: &str) -> fmt::Result {
@@ -304,9 +287,9 @@ fn formats(f: &mut fmt::Formatter<'_>, holds: FormatSet, verb: &str) -> fmt::Res
     Ok(())
 }
 
-impl<const FIGURES: bool> fmt::Display for Message<'_, FIGURES> {
+impl fmt::Display for SceneError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match *self.0 {
+        match *self {
             SceneError::NotFinite { item, field } => {
                 write!(
                     f,
@@ -361,28 +344,18 @@ impl<const FIGURES: bool> fmt::Display for Message<'_, FIGURES> {
                 value,
                 expected,
             } => {
-                write!(f, "{item}: {field} ")?;
-                if FIGURES {
-                    write!(f, "is {value}, but it ")?;
-                }
-                write!(f, "must be {expected}")
+                write!(f, "{item}: {field} is {value}, but it must be {expected}")
             }
             SceneError::LensTouches {
                 object,
                 clearance,
                 aperture,
             } => {
-                f.write_str("the camera: the lens ")?;
-                if FIGURES {
-                    write!(f, "of aperture {aperture} ")?;
-                }
-                write!(f, "reaches the surface of object {object}")?;
-                if FIGURES {
-                    write!(f, ", {clearance:.4} from the eye")?;
-                }
-                f.write_str(
-                    "; make the aperture smaller than the surface's distance from the eye, or \
-                     move the eye away from it",
+                write!(
+                    f,
+                    "the camera: the lens of aperture {aperture} reaches the surface of object \
+                     {object}, {clearance:.4} from the eye; make the aperture smaller than the \
+                     surface's distance from the eye, or move the eye away from it"
                 )
             }
             SceneError::OutsideWorld {
@@ -390,15 +363,11 @@ impl<const FIGURES: bool> fmt::Display for Message<'_, FIGURES> {
                 distance,
                 far,
             } => {
-                write!(f, "{item} reaches ")?;
-                if FIGURES {
-                    write!(f, "{distance:.4} from the eye, ")?;
-                }
-                f.write_str("beyond the world radius far")?;
-                if FIGURES {
-                    write!(f, " = {far}")?;
-                }
-                f.write_str("; raise far or move it closer")
+                write!(
+                    f,
+                    "{item} reaches {distance:.4} from the eye, beyond the world radius far = \
+                     {far}; raise far or move it closer"
+                )
             }
             SceneError::OutOfRange {
                 item,
@@ -409,12 +378,11 @@ impl<const FIGURES: bool> fmt::Display for Message<'_, FIGURES> {
                 remedy,
                 holds,
             } => {
-                write!(f, "{item}: {quantity} reaches ")?;
-                if FIGURES {
-                    write!(f, "{value:.6e}, beyond {format}'s range of ±{range:.6e}")?;
-                } else {
-                    write!(f, "beyond {format}'s range")?;
-                }
+                write!(
+                    f,
+                    "{item}: {quantity} reaches {value:.6e}, beyond {format}'s range of \
+                     ±{range:.6e}"
+                )?;
                 formats(f, holds, "hold")?;
                 write!(f, "; or {remedy}")
             }
@@ -428,15 +396,11 @@ impl<const FIGURES: bool> fmt::Display for Message<'_, FIGURES> {
                 holds,
                 method,
             } => {
-                write!(f, "{item}: {quantity} is ")?;
-                if FIGURES {
-                    write!(
-                        f,
-                        "{value:.3e}, below the {minimum:.3e} that {format} resolves"
-                    )?;
-                } else {
-                    write!(f, "below what {format} resolves")?;
-                }
+                write!(
+                    f,
+                    "{item}: {quantity} is {value:.3e}, below the {minimum:.3e} that {format} \
+                     resolves"
+                )?;
                 formats(f, holds, "resolve")?;
                 if let Some((question, name)) = method {
                     write!(f, "; {question}={name} resolves it in {format}")?;

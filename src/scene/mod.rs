@@ -15,9 +15,10 @@ use crate::light::{Background, Light};
 use crate::material::Material;
 use crate::methods::{Methods, RootMethod};
 use crate::occlusion::Cone;
-use crate::scalar::{FormatInfo, FormatSet, Scalar};
+use crate::scalar::{Bits, FormatInfo, FormatSet, Scalar};
 use crate::shape::{Checker, Plane, Shape, Sphere, Triangle};
 use crate::vec3::Vec3;
+use crate::words::{self, Reader, Words, WordsError, Writer};
 use core::marker::PhantomData;
 use heapless::Vec;
 
@@ -50,13 +51,20 @@ pub struct Object<S> {
     pub bound: Bound,
 }
 
+crate::words::words_of_struct!(Object<S> {
+    shape,
+    material,
+    tolerance,
+    bound
+});
+
 /// A scene ready to trace in format `S`, holding up to `OBJECTS` objects and `LIGHTS` lights
 /// and tracing ray trees with a stack of `RAYS` rays (at least `max_depth + 1`).
 ///
 /// Positions are stored relative to the eye, which keeps the numbers small. Only the storage
 /// depends on the capacities: the tracer itself ([`crate::shade`]) sees slices, so a firmware
 /// with several scenes carries one copy of it per number format.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Scene<S, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize> {
     pub(crate) objects: Vec<Object<S>, OBJECTS>,
     pub(crate) lights: Vec<Light<S>, LIGHTS>,
@@ -67,7 +75,7 @@ pub struct Scene<S, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize
 }
 
 /// What the tracer needs of a scene besides its objects and lights.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Settings<S> {
     pub(crate) ambient: Rgb<S>,
     pub(crate) background: Background<S>,
@@ -88,6 +96,20 @@ pub(crate) struct Settings<S> {
     pub(crate) adaptive_shadows: bool,
     pub(crate) methods: Methods,
 }
+
+crate::words::words_of_struct!(Settings<S> {
+    ambient,
+    background,
+    ray_length,
+    tolerance_base,
+    tolerance_per_unit,
+    min_weight,
+    max_depth,
+    samples,
+    adaptive_samples,
+    adaptive_shadows,
+    methods
+});
 
 impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
     Scene<S, OBJECTS, LIGHTS, RAYS>
@@ -159,6 +181,77 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
     #[must_use]
     pub fn lights(&self) -> &[Light<S>] {
         &self.lights
+    }
+}
+
+impl<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
+    Scene<S, OBJECTS, LIGHTS, RAYS>
+{
+    /// Writes the scene as words ([`crate::words`]) to `sink`: what a firmware's build keeps as
+    /// constants of a scene it has built, and so proven, on the host. Only the objects and
+    /// lights the scene has are written, not its capacities.
+    pub fn write_words(&self, sink: &mut dyn FnMut(u32)) {
+        words::write::<S>("scene", self, sink);
+    }
+
+    /// The scene [`Self::write_words`] wrote in format `S`, in storage of these capacities:
+    /// what a firmware traces without building the scene or proving its range again.
+    ///
+    /// # Errors
+    /// When `words` are not such a scene's, or it has more objects or lights than the
+    /// capacities or a deeper ray tree than the ray stack holds.
+    pub fn from_words(words: &[u32]) -> Result<Self, WordsError> {
+        words::read::<S, _>("scene", words)
+    }
+}
+
+impl<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize> Words
+    for Scene<S, OBJECTS, LIGHTS, RAYS>
+{
+    fn put(&self, out: &mut Writer<'_>) {
+        let count = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
+        out.word(count(self.objects.len()));
+        for object in &self.objects {
+            object.put(out);
+        }
+        out.word(count(self.lights.len()));
+        for light in &self.lights {
+            light.put(out);
+        }
+        for cones in &self.cones {
+            for cone in cones.iter().take(self.objects.len()) {
+                cone.put(out);
+            }
+        }
+        self.settings.put(out);
+        self.frame.put(out);
+    }
+
+    fn take(input: &mut Reader<'_>) -> Option<Self> {
+        let mut objects = Vec::new();
+        for _ in 0..input.count(OBJECTS)? {
+            objects.push(Object::take(input)?).ok()?;
+        }
+        let mut lights = Vec::new();
+        for _ in 0..input.count(LIGHTS)? {
+            lights.push(Light::take(input)?).ok()?;
+        }
+        let mut cones = Vec::new();
+        for _ in 0..lights.len() {
+            let mut of_light = [Cone::Everywhere; OBJECTS];
+            for cone in of_light.iter_mut().take(objects.len()) {
+                *cone = Cone::take(input)?;
+            }
+            cones.push(of_light).ok()?;
+        }
+        let settings = Settings::take(input)?;
+        (usize::from(settings.max_depth) < RAYS).then_some(Self {
+            objects,
+            lights,
+            cones,
+            settings,
+            frame: Frame::take(input)?,
+        })
     }
 }
 

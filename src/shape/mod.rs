@@ -51,6 +51,35 @@ pub enum Shape<S> {
     Triangle(Triangle<S>),
 }
 
+impl<S: crate::scalar::Bits> crate::words::Words for Shape<S> {
+    fn put(&self, out: &mut crate::words::Writer<'_>) {
+        match self {
+            Self::Sphere(sphere) => {
+                out.word(0);
+                sphere.put(out);
+            }
+            Self::Plane(plane) => {
+                out.word(1);
+                plane.put(out);
+            }
+            Self::Triangle(triangle) => {
+                out.word(2);
+                triangle.put(out);
+            }
+        }
+    }
+
+    fn take(input: &mut crate::words::Reader<'_>) -> Option<Self> {
+        use crate::words::Words;
+        match input.word()? {
+            0 => Some(Self::Sphere(Words::take(input)?)),
+            1 => Some(Self::Plane(Words::take(input)?)),
+            2 => Some(Self::Triangle(Words::take(input)?)),
+            _ => None,
+        }
+    }
+}
+
 impl<S: Scalar> Shape<S> {
     /// The nearest point in `span` at which `ray` meets the shape; `per_ray` carries what the
     /// tests of this ray against several shapes share.

@@ -21,6 +21,15 @@ pub struct Plane<S> {
     checker: Option<Checker<S>>,
 }
 
+crate::words::words_of_struct!(Plane<S> {
+    normal,
+    offset,
+    world_radius,
+    world_scale,
+    scaled_radius_squared,
+    checker
+});
+
 /// A checkerboard on a plane: the two in-plane axes, pre-divided by the square size, so that
 /// (p − origin)·axis counts squares from the origin, where the count starts at `start`; and the
 /// colour of every other square.
@@ -37,6 +46,14 @@ pub struct Checker<S> {
     /// The origin's coordinates on the grid of squares, each in [0, 1).
     pub start: [S; 2],
 }
+
+crate::words::words_of_struct!(Checker<S> {
+    colour,
+    origin,
+    u,
+    v,
+    start
+});
 
 impl<S: Scalar> Plane<S> {
     /// The plane through `point` with the unit normal `normal`, seen only within

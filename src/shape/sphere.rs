@@ -13,6 +13,12 @@ pub struct Sphere<S> {
     radius_squared: S,
 }
 
+crate::words::words_of_struct!(Sphere<S> {
+    center,
+    radius,
+    radius_squared
+});
+
 impl<S: Scalar> Sphere<S> {
     /// A sphere; `radius` must be positive (the scene build checks it).
     #[must_use]

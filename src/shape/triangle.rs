@@ -26,6 +26,16 @@ pub struct Triangle<S> {
     min_det: S,
 }
 
+crate::words::words_of_struct!(Triangle<S> {
+    vertices,
+    e1,
+    e2,
+    e1_cross_e2,
+    normal,
+    offset,
+    min_det
+});
+
 /// det[a b c] = a · (b × c), the scalar triple product.
 #[inline]
 fn det3<S: Scalar>(a: Vec3<S>, b: Vec3<S>, c: Vec3<S>) -> S {

@@ -88,9 +88,9 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
         variants: false,
         presentation,
     };
-    // What the firmware would refuse (by the same code), the host refuses here, with the
-    // figures, before a build and a QEMU run; the firmware's build proves it again.
-    configuration.check()?;
+    // What the firmware's build would refuse (by the same code), the host refuses here, before
+    // a build and a QEMU run.
+    configuration.frames()?;
     let Configuration {
         scenes, formats, ..
     } = configuration;
