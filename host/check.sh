@@ -108,6 +108,14 @@ for target in m4f m0; do
         --scene host/scenes/pyramid.toml --format auto --budget --profile
 done
 
+step "one scene in one format, under QEMU: within 32 KiB of flash, bit for bit against the host"
+cargo run --release --locked -p obscura-host -- firmware --target m0 --scene whitted \
+    --format i16f16 --max-flash 32768
+for scene in whitted host/scenes/marbles.toml; do
+    cargo run --release --locked -p obscura-host -- firmware --target m4f --scene "$scene" \
+        --format f32 --max-flash 32768
+done
+
 step "firmware under QEMU (m4f), the other formats, methods, row order and dither, bit for bit against the host"
 cargo run --release --locked -p obscura-host -- firmware --target m4f --scene whitted,shapes \
     --format i16f16,i20f12 --sphere stable --triangle watertight --sqrt approx --rays stepped --bias exclude \

@@ -96,8 +96,14 @@ pub(crate) const fn depth(samples: u16) -> u32 {
 
 /// Traces corner row `cy` (0 to the image's height) of the image `camera` sees of `scene` into
 /// `corners`, one corner per pixel column and one for the right edge.
-pub(crate) fn trace_corner_row<S, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
+pub(crate) fn trace_corner_row<
+    S,
+    const OBJECTS: usize,
+    const LIGHTS: usize,
+    const RAYS: usize,
+    const USES: u32,
+>(
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES>,
     camera: &Camera<S>,
     cy: u32,
     corners: &mut [Corner],
@@ -135,8 +141,15 @@ fn edge<S: Scalar>(line: u32, pixels: u32) -> (u32, S) {
 
 /// One pixel of a row, split where its corners differ: its cells' corners on a grid of
 /// `2^depth` steps across the pixel.
-pub(crate) struct Pixel<'a, S, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize> {
-    pub(crate) scene: &'a Scene<S, OBJECTS, LIGHTS, RAYS>,
+pub(crate) struct Pixel<
+    'a,
+    S,
+    const OBJECTS: usize,
+    const LIGHTS: usize,
+    const RAYS: usize,
+    const USES: u32,
+> {
+    pub(crate) scene: &'a Scene<S, OBJECTS, LIGHTS, RAYS, USES>,
     pub(crate) row: &'a Row<S>,
     pub(crate) centre: Vec3<S>,
     pub(crate) x: u32,
@@ -144,8 +157,8 @@ pub(crate) struct Pixel<'a, S, const OBJECTS: usize, const LIGHTS: usize, const 
     pub(crate) depth: u32,
 }
 
-impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
-    Pixel<'_, S, OBJECTS, LIGHTS, RAYS>
+impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, const USES: u32>
+    Pixel<'_, S, OBJECTS, LIGHTS, RAYS, USES>
 {
     /// The pixel's colour from its four corners (top left, top right, bottom left, bottom
     /// right): the mean of its cells weighted by area, in 16-bit fractions.

@@ -9,6 +9,7 @@ use crate::methods::{Methods, RayMethod, RootMethod};
 use crate::ray::Ray;
 use crate::scalar::{Bits, Scalar};
 use crate::scene::range::FAST_ROOT_ERROR;
+use crate::uses::Uses;
 use crate::vec3::Vec3;
 use crate::words::{self, WordsError};
 
@@ -236,6 +237,38 @@ impl<S: Scalar> Camera<S> {
         self.plane.as_ref()
     }
 
+    /// What of the tracer the camera uses ([`Uses`]): its methods for rays and roots, and its
+    /// lens.
+    #[must_use]
+    pub fn uses(&self) -> Uses {
+        let lens = if self.lens.is_some() {
+            Uses::LENS
+        } else {
+            Uses::NOTHING
+        };
+        Uses::method(self.rays)
+            .union(Uses::method(self.roots))
+            .union(lens)
+    }
+
+    /// The camera as a tracer of the parts `uses` takes it, which has checked that the camera
+    /// needs no other ([`Self::uses`]): each method of which `uses` holds one is that method, a
+    /// constant, and without [`Uses::LENS`] it has no lens.
+    #[inline(always)]
+    #[must_use]
+    pub(crate) fn narrowed(&self, uses: Uses) -> Self {
+        Self {
+            rays: uses.only().unwrap_or(self.rays),
+            roots: uses.only().unwrap_or(self.roots),
+            lens: if uses.contains(Uses::LENS) {
+                self.lens
+            } else {
+                None
+            },
+            ..*self
+        }
+    }
+
     /// The lens, or `None` for a pinhole.
     #[must_use]
     pub const fn lens(&self) -> Option<&Lens<S>> {
@@ -344,6 +377,16 @@ impl<S: Scalar> Row<S> {
         centre
             .add_scaled(self.camera.pixel_across, across)
             .add_scaled(self.camera.pixel_down, down)
+    }
+
+    /// The row of the camera [`Camera::narrowed`] to `uses`.
+    #[inline(always)]
+    #[must_use]
+    pub(crate) fn narrowed(&self, uses: Uses) -> Self {
+        Self {
+            camera: self.camera.narrowed(uses),
+            ..*self
+        }
     }
 
     /// The camera the row is of.

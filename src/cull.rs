@@ -23,6 +23,7 @@ use crate::ray::{Ray, Span};
 use crate::scalar::Scalar;
 use crate::scene::{Object, Scene};
 use crate::shape::PerRay;
+use crate::uses::Uses;
 use crate::vec3::Vec3;
 
 /// A ball is widened by this many of the errors with which a ray finds its object, and a ray's
@@ -92,43 +93,12 @@ pub enum Bound {
     },
 }
 
-impl crate::words::Words for Bound {
-    fn put(&self, out: &mut crate::words::Writer<'_>) {
-        match self {
-            Self::Everywhere => out.word(0),
-            Self::Nowhere => out.word(1),
-            Self::Rectangle { right, up } => {
-                out.word(2);
-                right.put(out);
-                up.put(out);
-            }
-            Self::Side { forward, right, up } => {
-                out.word(3);
-                forward.put(out);
-                right.put(out);
-                up.put(out);
-            }
-        }
-    }
-
-    fn take(input: &mut crate::words::Reader<'_>) -> Option<Self> {
-        use crate::words::Words;
-        match input.word()? {
-            0 => Some(Self::Everywhere),
-            1 => Some(Self::Nowhere),
-            2 => Some(Self::Rectangle {
-                right: Words::take(input)?,
-                up: Words::take(input)?,
-            }),
-            3 => Some(Self::Side {
-                forward: Words::take(input)?,
-                right: Words::take(input)?,
-                up: Words::take(input)?,
-            }),
-            _ => None,
-        }
-    }
-}
+crate::words::words_of_enum!(Bound {
+    Everywhere,
+    Nowhere,
+    Rectangle { right, up },
+    Side { forward, right, up }
+});
 
 impl Bound {
     /// The bound of `shape` for a camera at `eye` of `frame`, a sphere or a triangle widened by
@@ -462,7 +432,7 @@ pub fn first_skipped_hit<
         let mut per_ray = PerRay::new();
         object
             .shape
-            .intersect(ray, span, &settings.methods, &mut per_ray)
+            .intersect(ray, span, &settings.methods, Uses::EVERYTHING, &mut per_ray)
             .is_some()
     };
     for (x, centre) in (0..).zip(row.rays()) {

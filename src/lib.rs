@@ -48,6 +48,7 @@ pub mod scene;
 pub mod scenes;
 pub mod shade;
 pub mod shape;
+pub mod uses;
 pub mod vec3;
 pub mod words;
 
@@ -74,5 +75,6 @@ pub use scalar::names as formats;
 pub use scalar::{Bits, F32Approx, Fx, I16F16, I20F12, I32F32, Scalar};
 pub use scene::{Item, Remedy, Scene, SceneError};
 pub use shade::Sample;
+pub use uses::Uses;
 pub use vec3::Vec3;
 pub use words::WordsError;

@@ -46,35 +46,10 @@ pub enum Background<S> {
     },
 }
 
-impl<S: crate::scalar::Bits> crate::words::Words for Background<S> {
-    fn put(&self, out: &mut crate::words::Writer<'_>) {
-        match self {
-            Self::Solid(colour) => {
-                out.word(0);
-                colour.put(out);
-            }
-            Self::Gradient { horizon, rise, up } => {
-                out.word(1);
-                horizon.put(out);
-                rise.put(out);
-                up.put(out);
-            }
-        }
-    }
-
-    fn take(input: &mut crate::words::Reader<'_>) -> Option<Self> {
-        use crate::words::Words;
-        match input.word()? {
-            0 => Some(Self::Solid(Words::take(input)?)),
-            1 => Some(Self::Gradient {
-                horizon: Words::take(input)?,
-                rise: Words::take(input)?,
-                up: Words::take(input)?,
-            }),
-            _ => None,
-        }
-    }
-}
+crate::words::words_of_enum!(Background<S> {
+    Solid(colour),
+    Gradient { horizon, rise, up }
+});
 
 impl<S: Scalar> Background<S> {
     /// The colour seen along the unit direction `dir`.

@@ -39,30 +39,10 @@ pub enum Cone<S> {
     },
 }
 
-impl<S: crate::scalar::Bits> crate::words::Words for Cone<S> {
-    fn put(&self, out: &mut crate::words::Writer<'_>) {
-        match self {
-            Self::Everywhere => out.word(0),
-            Self::Within { axis, cos } => {
-                out.word(1);
-                axis.put(out);
-                cos.put(out);
-            }
-        }
-    }
-
-    fn take(input: &mut crate::words::Reader<'_>) -> Option<Self> {
-        use crate::words::Words;
-        match input.word()? {
-            0 => Some(Self::Everywhere),
-            1 => Some(Self::Within {
-                axis: Words::take(input)?,
-                cos: Words::take(input)?,
-            }),
-            _ => None,
-        }
-    }
-}
+crate::words::words_of_enum!(Cone<S> {
+    Everywhere,
+    Within { axis, cos }
+});
 
 impl<S: Scalar> Cone<S> {
     /// The cone of `ball` (its centre and radius relative to the eye, widened as the module

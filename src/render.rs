@@ -12,6 +12,7 @@ use crate::ray::Ray;
 use crate::scalar::Scalar;
 use crate::scene::Scene;
 use crate::shade::{Task, Tracer};
+use crate::uses::Uses;
 use crate::vec3::Vec3;
 use core::fmt;
 use core::ops::Range;
@@ -46,6 +47,13 @@ pub enum RenderError<E> {
         /// The image height.
         height: u32,
     },
+    /// The camera uses a part that the scene's tracer leaves out ([`Uses`]): a lens, or
+    /// another method for its rays. Make the camera with the scene's own
+    /// [`Scene::camera`](crate::Scene::camera).
+    TracerLacks {
+        /// The parts the tracer lacks.
+        missing: Uses,
+    },
     /// The draw target failed.
     Target(E),
 }
@@ -72,6 +80,12 @@ impl<E: fmt::Debug> fmt::Display for RenderError<E> {
                     "rows up to {end} were asked for, but the image has {height}"
                 )
             }
+            // Without the parts' names, which a firmware would otherwise link for a camera
+            // it made from its own scene.
+            Self::TracerLacks { .. } => f.write_str(
+                "the camera uses a part the scene's tracer leaves out (a lens, or another method \
+                 for its rays); make the camera with the scene's own Scene::camera",
+            ),
             Self::Target(e) => write!(f, "the display failed: {e:?}"),
         }
     }
@@ -92,6 +106,7 @@ impl RenderError<core::convert::Infallible> {
                 RenderError::CornerRowsTooSmall { needed, got }
             }
             Self::RowsOutOfRange { end, height } => RenderError::RowsOutOfRange { end, height },
+            Self::TracerLacks { missing } => RenderError::TracerLacks { missing },
             Self::Target(never) => match never {},
         }
     }
@@ -105,8 +120,17 @@ impl RenderError<core::convert::Infallible> {
 /// # Errors
 /// [`RenderError`] for a short line buffer or corner rows, rows beyond the image, or a failing
 /// target.
-pub fn render_rows<S, C, D, K, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
+pub fn render_rows<
+    S,
+    C,
+    D,
+    K,
+    const OBJECTS: usize,
+    const LIGHTS: usize,
+    const RAYS: usize,
+    const USES: u32,
+>(
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES>,
     camera: &Camera<S>,
     rows: Range<u32>,
     line: &mut [C],
@@ -121,6 +145,7 @@ where
 {
     let (line, mut window) =
         buffers(scene, camera, line, corners.rows()).map_err(RenderError::for_target)?;
+    let camera = camera.narrowed(Uses::from_bits(USES));
     if rows.end > camera.height() {
         return Err(RenderError::RowsOutOfRange {
             end: rows.end,
@@ -132,7 +157,7 @@ where
         let row = camera
             .row(y)
             .ok_or(RenderError::RowsOutOfRange { end, height })?;
-        trace_pixels::<K, _, _, OBJECTS, LIGHTS, RAYS>(
+        trace_pixels::<K, _, _, OBJECTS, LIGHTS, RAYS, USES>(
             scene,
             &row,
             y,
@@ -160,8 +185,8 @@ const _SAMPLE_SUMS_FIT: () = assert!(
 /// Over the tracer's slices and a ray stack rather than a scene of given capacities, and out of
 /// line: a firmware holds one copy per format however many scenes it draws.
 #[inline(never)]
-fn trace_into<S, C>(
-    tracer: &Tracer<'_, S>,
+fn trace_into<S, C, const USES: u32>(
+    tracer: &Tracer<'_, S, USES>,
     stack: &mut VecView<Task<S>>,
     row: &Row<S>,
     y: u32,
@@ -171,6 +196,7 @@ fn trace_into<S, C>(
     S: Scalar,
     C: DisplayColor,
 {
+    let row = &row.narrowed(Tracer::<S, USES>::USES);
     let samples = tracer.samples();
     let n = u32::from(samples);
     let sampled = samples > 1 || row.has_lens();
@@ -209,8 +235,16 @@ fn trace_into<S, C>(
 /// through `window`. Corner rows of a type that holds none ([`CornerRows::NONE`]) leave the
 /// adaptive code out of the build.
 #[inline(always)]
-fn trace_pixels<K, S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
+fn trace_pixels<
+    K,
+    S,
+    C,
+    const OBJECTS: usize,
+    const LIGHTS: usize,
+    const RAYS: usize,
+    const USES: u32,
+>(
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES>,
     row: &Row<S>,
     y: u32,
     dither: Dither,
@@ -235,8 +269,16 @@ fn trace_pixels<K, S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: 
 /// for a scene with adaptive samples the corner rows ([`Window`]). Inline, so that a caller
 /// whose corner rows are an empty array leaves the adaptive code out.
 #[inline(always)]
-fn buffers<'a, S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
+fn buffers<
+    'a,
+    S,
+    C,
+    const OBJECTS: usize,
+    const LIGHTS: usize,
+    const RAYS: usize,
+    const USES: u32,
+>(
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES>,
     camera: &'a Camera<S>,
     line: &'a mut [C],
     corners: &'a mut [Corner],
@@ -244,6 +286,10 @@ fn buffers<'a, S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usiz
 where
     S: Scalar,
 {
+    let missing = Uses::from_bits(USES).missing(camera.uses());
+    if missing != Uses::NOTHING {
+        return Err(RenderError::TracerLacks { missing });
+    }
     let width = camera.width();
     let got = line.len();
     let line = usize::try_from(width)
@@ -290,8 +336,15 @@ struct Window<'a, S> {
 /// [`trace_into`] for a scene with adaptive samples: traces the corner rows above (unless the
 /// row before left it) and below row `y`, then each pixel from its four corners.
 #[inline(never)]
-fn adaptive_row<S, C, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
+fn adaptive_row<
+    S,
+    C,
+    const OBJECTS: usize,
+    const LIGHTS: usize,
+    const RAYS: usize,
+    const USES: u32,
+>(
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES>,
     row: &Row<S>,
     y: u32,
     dither: Dither,
@@ -397,8 +450,16 @@ pub fn send_row<C: DisplayColor, D: DrawTarget<Color = C>>(
 ///
 /// # Errors
 /// [`RenderError`] for a short line buffer or corner rows, or a row beyond the image.
-pub fn trace_row<S, C, K, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
+pub fn trace_row<
+    S,
+    C,
+    K,
+    const OBJECTS: usize,
+    const LIGHTS: usize,
+    const RAYS: usize,
+    const USES: u32,
+>(
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES>,
     camera: &Camera<S>,
     y: u32,
     dither: Dither,
@@ -411,11 +472,12 @@ where
     K: CornerRows + ?Sized,
 {
     let (line, mut window) = buffers(scene, camera, line, corners.rows())?;
+    let camera = camera.narrowed(Uses::from_bits(USES));
     let row = camera.row(y).ok_or(RenderError::RowsOutOfRange {
         end: y.saturating_add(1),
         height: camera.height(),
     })?;
-    trace_pixels::<K, _, _, OBJECTS, LIGHTS, RAYS>(scene, &row, y, dither, line, &mut window);
+    trace_pixels::<K, _, _, OBJECTS, LIGHTS, RAYS, USES>(scene, &row, y, dither, line, &mut window);
     Ok(())
 }
 
@@ -473,8 +535,17 @@ impl RowOrder {
 ///
 /// # Errors
 /// [`RenderError`] for a short line buffer or corner rows, or a failing target.
-pub fn render_frame<S, C, D, K, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
+pub fn render_frame<
+    S,
+    C,
+    D,
+    K,
+    const OBJECTS: usize,
+    const LIGHTS: usize,
+    const RAYS: usize,
+    const USES: u32,
+>(
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES>,
     camera: &Camera<S>,
     presentation: Presentation,
     line: &mut [C],
@@ -490,11 +561,12 @@ where
     let height = camera.height();
     let (line, mut window) =
         buffers(scene, camera, line, corners.rows()).map_err(RenderError::for_target)?;
+    let camera = camera.narrowed(Uses::from_bits(USES));
     for (y, rows) in presentation.order.rows(height) {
         let row = camera
             .row(y)
             .ok_or(RenderError::RowsOutOfRange { end: y + 1, height })?;
-        trace_pixels::<K, _, _, OBJECTS, LIGHTS, RAYS>(
+        trace_pixels::<K, _, _, OBJECTS, LIGHTS, RAYS, USES>(
             scene,
             &row,
             y,

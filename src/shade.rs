@@ -6,13 +6,14 @@
 
 use crate::color::Rgb;
 use crate::light::Light;
-use crate::methods::{BiasMethod, RootMethod};
+use crate::methods::{BiasMethod, Methods, RootMethod};
 use crate::occlusion::Cone;
 use crate::pattern::{Pattern, SHADOW_PROBES, SampleId};
 use crate::ray::{Ray, Span};
 use crate::scalar::{RayKind, Scalar, Work};
 use crate::scene::{Object, Scene, Settings};
 use crate::shape::{Intersection, PerRay};
+use crate::uses::Uses;
 use crate::vec3::Vec3;
 use heapless::{Vec, VecView};
 
@@ -57,8 +58,8 @@ struct Hit<'a, S> {
     at: Intersection<S>,
 }
 
-impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
-    Scene<S, OBJECTS, LIGHTS, RAYS>
+impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, const USES: u32>
+    Scene<S, OBJECTS, LIGHTS, RAYS, USES>
 {
     /// Bytes of RAM the scene and the ray stack of one trace take: what the capacities cost.
     #[must_use]
@@ -86,7 +87,7 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
 
     /// The scene as the tracer sees it, over slices: what the renderer's pixel loop takes, so
     /// that a firmware holds one copy of it per format however many scenes it draws.
-    pub(crate) fn tracer(&self, id: SampleId) -> Tracer<'_, S> {
+    pub(crate) fn tracer(&self, id: SampleId) -> Tracer<'_, S, USES> {
         Tracer {
             objects: &self.objects,
             lights: &self.lights,
@@ -98,9 +99,10 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
     }
 }
 
-/// The tracer proper, over slices: one copy per number format, whatever the capacities.
+/// The tracer proper, over slices: one copy per number format and set of parts ([`Uses`]),
+/// whatever the capacities.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Tracer<'a, S> {
+pub(crate) struct Tracer<'a, S, const USES: u32> {
     objects: &'a [Object<S>],
     lights: &'a [Light<S>],
     /// Each light's cones ([`crate::occlusion`]), one per object: a run of
@@ -112,7 +114,23 @@ pub(crate) struct Tracer<'a, S> {
     id: SampleId,
 }
 
-impl<S: Scalar> Tracer<'_, S> {
+impl<S: Scalar, const USES: u32> Tracer<'_, S, USES> {
+    /// The parts the tracer has.
+    pub(crate) const USES: Uses = Uses::from_bits(USES);
+
+    /// Whether the tracer has `part`: a constant, which leaves what it guards out of a build
+    /// whose scenes do not use it.
+    #[inline(always)]
+    const fn has(part: Uses) -> bool {
+        Self::USES.contains(part)
+    }
+
+    /// The scene's methods, as a constant wherever the tracer has only one of a kind.
+    #[inline(always)]
+    pub(crate) fn methods(&self) -> Methods {
+        Self::USES.narrow(&self.settings.methods)
+    }
+
     /// The objects.
     pub(crate) const fn objects(&self) -> &[Object<S>] {
         self.objects
@@ -130,9 +148,14 @@ impl<S: Scalar> Tracer<'_, S> {
         self.cones.get(start..).unwrap_or(&[])
     }
 
-    /// Rays per pixel.
+    /// Rays per pixel: 1 for a tracer without several ([`Uses::SAMPLES`]).
+    #[inline(always)]
     pub(crate) const fn samples(&self) -> u16 {
-        self.settings.samples
+        if Self::has(Uses::SAMPLES) {
+            self.settings.samples
+        } else {
+            1
+        }
     }
 
     /// [`Scene::trace`] of ray `id` of the image, its primary ray testing only the objects in
@@ -201,7 +224,7 @@ impl<S: Scalar> Tracer<'_, S> {
     /// The span a ray leaving `from` searches: beyond the surface's tolerance for the epsilon
     /// method, beyond zero when the surface left is handled by exclusion.
     fn span(&self, from: Option<Leaving<S>>, max: S) -> Span<S> {
-        let min = match (self.settings.methods.bias, from) {
+        let min = match (self.methods().bias, from) {
             (BiasMethod::Exclude, Some(_)) => S::ZERO,
             (BiasMethod::Epsilon, Some(leaving)) => leaving.tolerance,
             (_, None) => self.settings.tolerance_base,
@@ -231,15 +254,15 @@ impl<S: Scalar> Tracer<'_, S> {
     ) -> Option<Intersection<S>> {
         match from {
             Some(leaving)
-                if leaving.object == index && self.settings.methods.bias == BiasMethod::Exclude =>
+                if leaving.object == index && self.methods().bias == BiasMethod::Exclude =>
             {
                 object
                     .shape
-                    .intersect_again(ray, span, &self.settings.methods, leaving.into)
+                    .intersect_again(ray, span, &self.methods(), Self::USES, leaving.into)
             }
             _ => object
                 .shape
-                .intersect(ray, span, &self.settings.methods, per_ray),
+                .intersect(ray, span, &self.methods(), Self::USES, per_ray),
         }
     }
 
@@ -284,7 +307,7 @@ impl<S: Scalar> Tracer<'_, S> {
     ) -> Rgb<S> {
         let material = &hit.object.material;
         let shape = &hit.object.shape;
-        let roots = self.settings.methods.roots;
+        let roots = self.methods().roots;
         let d = task.ray.dir;
         let (point, normal) = shape.surface(&task.ray, &hit.at, roots);
         // Shade the side the ray arrived on: for a sphere hit from inside, that is the inside.
@@ -308,7 +331,7 @@ impl<S: Scalar> Tracer<'_, S> {
             tolerance,
         };
         let (this_side, other_side) = (leaving(solid && !entering), leaving(solid && entering));
-        let offset = match self.settings.methods.bias {
+        let offset = match self.methods().bias {
             BiasMethod::Epsilon => tolerance,
             BiasMethod::Exclude => S::ZERO,
         };
@@ -323,7 +346,7 @@ impl<S: Scalar> Tracer<'_, S> {
             if lambert <= S::ZERO {
                 continue;
             }
-            let shadow = if light.shadow_rays > 1 {
+            let shadow = if Self::has(Uses::AREA_LIGHTS) && light.shadow_rays > 1 {
                 self.visible_share(light, above, facing, this_side, met)
             } else {
                 let cones = self.cones_of(light);
@@ -475,7 +498,7 @@ impl<S: Scalar> Tracer<'_, S> {
         from: Leaving<S>,
         met: &mut u64,
     ) -> S {
-        let roots = self.settings.methods.roots;
+        let roots = self.methods().roots;
         let pattern = Pattern::light(self.id, light.index);
         let l = (light.position - origin).normalized(roots);
         // Every ray to the disc is in the cone of an object it can meet ([`crate::occlusion`]).

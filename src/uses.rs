@@ -18,7 +18,7 @@ pub struct Uses(u32);
 
 /// A family of methods and the first of its bits: its variants' bits follow in the order of
 /// [`MethodName::ALL`].
-trait Family: MethodName + PartialEq {
+pub(crate) trait Family: MethodName + PartialEq {
     const FIRST: u32;
 }
 
@@ -84,6 +84,12 @@ impl Uses {
         Self(self.0 | other.0)
     }
 
+    /// The parts of `other` that are not in the set.
+    #[must_use]
+    pub const fn missing(self, other: Self) -> Self {
+        Self(other.0 & !self.0)
+    }
+
     /// Whether every part of `other` is in the set.
     #[must_use]
     pub const fn contains(self, other: Self) -> bool {
@@ -108,7 +114,7 @@ impl Uses {
     }
 
     /// The bit of one method.
-    fn method<M: Family>(method: M) -> Self {
+    pub(crate) fn method<M: Family>(method: M) -> Self {
         let place = M::ALL.iter().position(|(m, _)| *m == method);
         // Every variant is in its ALL, and no family has more than 3.
         place.map_or(Self::NOTHING, |p| Self(1 << (M::FIRST + p as u32)))
@@ -116,7 +122,7 @@ impl Uses {
 
     /// The one method of family `M` the set holds, if it holds just one.
     #[inline(always)]
-    fn only<M: Family>(self) -> Option<M> {
+    pub(crate) fn only<M: Family>(self) -> Option<M> {
         let held = (self.0 >> M::FIRST) & ((1 << M::ALL.len()) - 1);
         if held.count_ones() == 1 {
             M::ALL.get(held.trailing_zeros() as usize).map(|(m, _)| *m)

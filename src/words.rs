@@ -16,7 +16,7 @@ use crate::scalar::Bits;
 use core::fmt;
 
 /// Words that are not a scene's or a camera's as [`crate::words`] writes them, in the format and
-/// within the capacities asked for.
+/// within the capacities and parts ([`crate::Uses`]) asked for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct WordsError {
     /// What the words were to hold: `"scene"` or `"camera"`.
@@ -27,18 +27,23 @@ pub struct WordsError {
 
 impl fmt::Display for WordsError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "the words are not a {} proven in {} within these capacities: build them again \
-             from the scene ({}::write_words)",
+        // Piece by piece: a `str`'s `Display` pads, and a firmware would link the padding.
+        for piece in [
+            "the words are not a ",
             self.what,
+            " proven in ",
             self.format,
+            " within these capacities and parts: build them again from the scene (",
             if self.what == "camera" {
                 "Camera"
             } else {
                 "Scene"
-            }
-        )
+            },
+            "::write_words)",
+        ] {
+            f.write_str(piece)?;
+        }
+        Ok(())
     }
 }
 
@@ -46,8 +51,10 @@ impl fmt::Display for WordsError {
 pub(crate) trait Words: Sized {
     /// Writes the value's words.
     fn put(&self, out: &mut Writer<'_>);
-    /// Reads a value, or `None` where the words are not one.
-    fn take(input: &mut Reader<'_>) -> Option<Self>;
+    /// Reads a value; where the words are not one, the reader is refused ([`Reader::refuse`])
+    /// and the value is whatever they gave. No read fails on its own, so that reading costs
+    /// a firmware little code: the whole is refused at the end.
+    fn take(input: &mut Reader<'_>) -> Self;
 }
 
 /// Where words go, summed on their way.
@@ -64,39 +71,56 @@ impl Writer<'_> {
     }
 }
 
-/// Where words come from.
+/// Where words come from, and whether they have been found not to be what was read.
 pub(crate) struct Reader<'a> {
     words: &'a [u32],
+    refused: bool,
 }
 
 impl Reader<'_> {
-    /// The next word, if there is one.
-    pub(crate) fn word(&mut self) -> Option<u32> {
-        let (&first, rest) = self.words.split_first()?;
-        self.words = rest;
-        Some(first)
+    /// The next word; past the end, 0 and the reader refused. Out of line: reading a scene is
+    /// mostly calls of it, one per word, and a firmware's image is smaller so.
+    #[inline(never)]
+    pub(crate) fn word(&mut self) -> u32 {
+        if let Some((&first, rest)) = self.words.split_first() {
+            self.words = rest;
+            first
+        } else {
+            self.refuse();
+            0
+        }
     }
 
-    /// The next word as a count of at most `capacity`.
-    pub(crate) fn count(&mut self, capacity: usize) -> Option<usize> {
-        usize::try_from(self.word()?)
-            .ok()
-            .filter(|&n| n <= capacity)
+    /// The next word as a count of at most `capacity`; beyond it, 0 and the reader refused.
+    pub(crate) fn count(&mut self, capacity: usize) -> usize {
+        match usize::try_from(self.word()) {
+            Ok(n) if n <= capacity => n,
+            _ => {
+                self.refuse();
+                0
+            }
+        }
+    }
+
+    /// The words are not what is being read.
+    pub(crate) fn refuse(&mut self) {
+        self.refused = true;
     }
 }
 
-/// FNV-1a over the word's bytes, low byte first, from `sum`.
+/// FNV-1a over 32-bit words: `word` added to `sum`. Each step maps the sum one to one for a
+/// given word, and a changed word changes the sum, so a changed word always changes the checksum.
 const fn checksum(sum: u32, word: u32) -> u32 {
-    let mut sum = sum;
-    let mut shift = 0;
-    while shift < u32::BITS {
-        sum = (sum ^ ((word >> shift) & 0xff)).wrapping_mul(0x0100_0193);
-        shift += 8;
-    }
-    sum
+    (sum ^ word).wrapping_mul(0x0100_0193)
 }
 
-/// The tag of words holding `what` in format `S`: the checksum of their names.
+/// The checksum of `words`. Out of line, and one copy for every read.
+#[inline(never)]
+fn checksum_of(words: &[u32]) -> u32 {
+    words.iter().fold(0, |sum, &word| checksum(sum, word))
+}
+
+/// The tag of words holding `what` in format `S`: the checksum of their names, a byte a word.
 fn tag<S: Bits>(what: &str) -> u32 {
     what.bytes()
         .chain(*b"/")
@@ -113,22 +137,27 @@ pub(crate) fn write<S: Bits>(what: &str, value: &impl Words, sink: &mut dyn FnMu
     (out.sink)(sum);
 }
 
-/// Reads what [`write`] wrote of `what` in format `S`.
+/// Reads what [`write`] wrote of `what` in format `S`. Out of line: with it inlined, a
+/// firmware's image is larger.
+#[inline(never)]
 pub(crate) fn read<S: Bits, T: Words>(what: &'static str, words: &[u32]) -> Result<T, WordsError> {
     let refused = WordsError {
         what,
         format: S::NAME,
     };
     let (&sum, body) = words.split_last().ok_or(refused)?;
-    if body.first() != Some(&tag::<S>(what)) || body.iter().fold(0, |s, &w| checksum(s, w)) != sum {
+    if body.first() != Some(&tag::<S>(what)) || checksum_of(body) != sum {
         return Err(refused);
     }
     let mut input = Reader {
         words: body.get(1..).unwrap_or_default(),
+        refused: false,
     };
-    match T::take(&mut input) {
-        Some(value) if input.words.is_empty() => Ok(value),
-        _ => Err(refused),
+    let value = T::take(&mut input);
+    if input.refused || !input.words.is_empty() {
+        Err(refused)
+    } else {
+        Ok(value)
     }
 }
 
@@ -142,18 +171,18 @@ impl<S: Bits> Words for S {
         }
     }
 
-    fn take(input: &mut Reader<'_>) -> Option<Self> {
-        let low = u64::from(input.word()?);
+    fn take(input: &mut Reader<'_>) -> Self {
+        let low = u64::from(input.word());
         let high = if S::WORDS == 2 {
-            u64::from(input.word()?)
+            u64::from(input.word())
         } else {
             0
         };
-        Some(S::from_bits(low | high << 32))
+        S::from_bits(low | high << 32)
     }
 }
 
-/// Words for small unsigned integers and `bool`: one word each.
+/// Words for small unsigned integers: one word each.
 macro_rules! words_of_integer {
     ($($t:ty),*) => {$(
         impl Words for $t {
@@ -161,8 +190,11 @@ macro_rules! words_of_integer {
                 out.word(u32::from(*self));
             }
 
-            fn take(input: &mut Reader<'_>) -> Option<Self> {
-                Self::try_from(input.word()?).ok()
+            fn take(input: &mut Reader<'_>) -> Self {
+                Self::try_from(input.word()).unwrap_or_else(|_| {
+                    input.refuse();
+                    0
+                })
             }
         }
     )*};
@@ -182,9 +214,9 @@ impl Words for i64 {
     }
 
     #[allow(clippy::cast_possible_wrap, reason = "the two words are the bits")]
-    fn take(input: &mut Reader<'_>) -> Option<Self> {
-        let low = u64::from(input.word()?);
-        Some((u64::from(input.word()?) << 32 | low) as Self)
+    fn take(input: &mut Reader<'_>) -> Self {
+        let low = u64::from(input.word());
+        (u64::from(input.word()) << 32 | low) as Self
     }
 }
 
@@ -193,11 +225,14 @@ impl Words for bool {
         out.word(u32::from(*self));
     }
 
-    fn take(input: &mut Reader<'_>) -> Option<Self> {
-        match input.word()? {
-            0 => Some(false),
-            1 => Some(true),
-            _ => None,
+    fn take(input: &mut Reader<'_>) -> Self {
+        match input.word() {
+            0 => false,
+            1 => true,
+            _ => {
+                input.refuse();
+                false
+            }
         }
     }
 }
@@ -210,28 +245,20 @@ impl<T: Words> Words for Option<T> {
         }
     }
 
-    fn take(input: &mut Reader<'_>) -> Option<Self> {
-        if bool::take(input)? {
-            Some(Some(T::take(input)?))
-        } else {
-            Some(None)
-        }
+    fn take(input: &mut Reader<'_>) -> Self {
+        bool::take(input).then(|| T::take(input))
     }
 }
 
-impl<T: Words + Copy + Default, const N: usize> Words for [T; N] {
+impl<T: Words, const N: usize> Words for [T; N] {
     fn put(&self, out: &mut Writer<'_>) {
         for value in self {
             value.put(out);
         }
     }
 
-    fn take(input: &mut Reader<'_>) -> Option<Self> {
-        let mut values = [T::default(); N];
-        for value in &mut values {
-            *value = T::take(input)?;
-        }
-        Some(values)
+    fn take(input: &mut Reader<'_>) -> Self {
+        core::array::from_fn(|_| T::take(input))
     }
 }
 
@@ -246,9 +273,15 @@ pub(crate) fn put_choice<M: MethodName + PartialEq>(choice: M, out: &mut Writer<
 }
 
 /// The choice at the place the next word gives.
-pub(crate) fn take_choice<M: MethodName>(input: &mut Reader<'_>) -> Option<M> {
-    let place = usize::try_from(input.word()?).ok()?;
-    M::ALL.get(place).map(|(m, _)| *m)
+pub(crate) fn take_choice<M: MethodName + Default>(input: &mut Reader<'_>) -> M {
+    let place = usize::try_from(input.word()).unwrap_or(usize::MAX);
+    M::ALL.get(place).map_or_else(
+        || {
+            input.refuse();
+            M::default()
+        },
+        |&(m, _)| m,
+    )
 }
 
 /// Words for a struct, field by field: `words_of_struct!(Sphere<S> { center, radius })`. Every
@@ -260,15 +293,68 @@ macro_rules! words_of_struct {
                 $($crate::words::Words::put(&self.$field, out);)*
             }
 
-            fn take(input: &mut $crate::words::Reader<'_>) -> Option<Self> {
-                Some(Self {
-                    $($field: $crate::words::Words::take(input)?,)*
-                })
+            fn take(input: &mut $crate::words::Reader<'_>) -> Self {
+                Self {
+                    $($field: $crate::words::Words::take(input),)*
+                }
             }
         }
     };
 }
 pub(crate) use words_of_struct;
+
+/// Words for an enum: its variant's place among those listed (every one, in order), then its
+/// fields: `words_of_enum!(Cone<S> { Everywhere, Within { axis, cos } })`, a variant with one
+/// unnamed field as `Solid(colour)`. A place beyond the list refuses the reader.
+macro_rules! words_of_enum {
+    ($ty:ident $(<$t:ident>)? {
+        $first:ident $(($first_inner:ident))? $({ $($first_field:ident),* })?
+        $(, $variant:ident $(($inner:ident))? $({ $($field:ident),* })?)* $(,)?
+    }) => {
+        impl$(<$t: $crate::scalar::Bits>)? $crate::words::Words for $ty$(<$t>)? {
+            #[allow(unused_assignments, reason = "the place after the last variant")]
+            fn put(&self, out: &mut $crate::words::Writer<'_>) {
+                let mut place = 0_u32;
+                if let Self::$first $(($first_inner))? $({ $($first_field),* })? = self {
+                    out.word(place);
+                    $($crate::words::Words::put($first_inner, out);)?
+                    $($($crate::words::Words::put($first_field, out);)*)?
+                    return;
+                }
+                $(
+                    place += 1;
+                    if let Self::$variant $(($inner))? $({ $($field),* })? = self {
+                        out.word(place);
+                        $($crate::words::Words::put($inner, out);)?
+                        $($($crate::words::Words::put($field, out);)*)?
+                        return;
+                    }
+                )*
+            }
+
+            #[allow(unused_assignments, reason = "the place after the last variant")]
+            fn take(input: &mut $crate::words::Reader<'_>) -> Self {
+                let tag = input.word();
+                let mut place = 0_u32;
+                $(
+                    place += 1;
+                    if tag == place {
+                        return Self::$variant
+                            $(({ let $inner = $crate::words::Words::take(input); $inner }))?
+                            $({ $($field: $crate::words::Words::take(input)),* })?;
+                    }
+                )*
+                if tag != 0 {
+                    input.refuse();
+                }
+                Self::$first
+                    $(({ let $first_inner = $crate::words::Words::take(input); $first_inner }))?
+                    $({ $($first_field: $crate::words::Words::take(input)),* })?
+            }
+        }
+    };
+}
+pub(crate) use words_of_enum;
 
 /// Words for choices ([`MethodName`]): `words_of_choice!(SphereMethod, RayMethod)`.
 macro_rules! words_of_choice {
@@ -278,7 +364,7 @@ macro_rules! words_of_choice {
                 $crate::words::put_choice(*self, out);
             }
 
-            fn take(input: &mut $crate::words::Reader<'_>) -> Option<Self> {
+            fn take(input: &mut $crate::words::Reader<'_>) -> Self {
                 $crate::words::take_choice(input)
             }
         }
@@ -321,6 +407,58 @@ mod tests {
             };
         }
         crate::for_each_format!(each);
+    }
+
+    /// What a tracer of spheres and planes by the lecture's methods has (the methods' bits, which
+    /// the test below checks, written out: a const argument cannot call `Uses::methods`).
+    const SPHERES_AND_PLANES: u32 = crate::Uses::SPHERES
+        .union(crate::Uses::PLANES)
+        .union(crate::Uses::from_bits(0x2_a500))
+        .bits();
+
+    #[test]
+    fn a_scene_reads_back_only_into_a_tracer_with_every_part_it_uses() {
+        let parts = crate::Uses::from_bits(SPHERES_AND_PLANES);
+        assert_eq!(
+            parts,
+            crate::Uses::SPHERES
+                .union(crate::Uses::PLANES)
+                .union(crate::Uses::methods(&crate::Methods::LECTURE))
+        );
+        let whitted = Scene::<f32, 8, 4, 8>::build(&crate::scenes::WHITTED).unwrap();
+        let shapes = Scene::<f32, 8, 4, 8>::build(&crate::scenes::SHAPES).unwrap();
+        assert!(parts.contains(whitted.uses()) && !parts.contains(shapes.uses()));
+        let whitted_words = words_of(|sink| whitted.write_words(sink));
+        let shapes_words = words_of(|sink| shapes.write_words(sink));
+        let read = Scene::<f32, 8, 4, 8, SPHERES_AND_PLANES>::from_words(&whitted_words);
+        assert_eq!(read.map(|scene| scene.uses()), Ok(whitted.uses()));
+        // Triangles, which the tracer leaves out.
+        assert!(Scene::<f32, 8, 4, 8, SPHERES_AND_PLANES>::from_words(&shapes_words).is_err());
+    }
+
+    #[test]
+    fn a_camera_that_uses_what_the_tracer_lacks_is_refused_by_the_render() {
+        use embedded_graphics::mock_display::MockDisplay;
+        use embedded_graphics::pixelcolor::Rgb565;
+        let whitted = Scene::<f32, 8, 4, 8>::build(&crate::scenes::WHITTED).unwrap();
+        let words = words_of(|sink| whitted.write_words(sink));
+        let scene = Scene::<f32, 8, 4, 8, SPHERES_AND_PLANES>::from_words(&words).unwrap();
+        // A lens, from another scene.
+        let focus = Scene::<f32, 8, 4, 8>::build(&crate::scenes::FOCUS).unwrap();
+        let camera = focus.camera(8, 8).unwrap();
+        let mut line = [Rgb565::default(); 8];
+        let mut display = MockDisplay::<Rgb565>::new();
+        let refused = crate::render_rows(&scene, &camera, 0..8, &mut line, &mut [], &mut display);
+        assert_eq!(
+            refused,
+            Err(crate::RenderError::TracerLacks {
+                missing: crate::Uses::LENS
+            })
+        );
+        // Its own camera draws.
+        let camera = scene.camera(8, 8).unwrap();
+        let mut display = MockDisplay::<Rgb565>::new();
+        crate::render_rows(&scene, &camera, 0..8, &mut line, &mut [], &mut display).unwrap();
     }
 
     #[test]

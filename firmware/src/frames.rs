@@ -10,9 +10,7 @@ use crate::stack;
 use core::fmt;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use obscura::{
-    Bits, Camera, Corner, Methods, Presentation, RenderError, Scalar, Scene, render_frame,
-};
+use obscura::{Bits, Camera, Corner, Presentation, RenderError, Scalar, Scene, render_frame};
 
 /// What goes wrong drawing a frame on `B`'s display.
 pub type FrameError<B> = RenderError<<<B as Backend>::Display as DrawTarget>::Error>;
@@ -35,9 +33,15 @@ pub trait Backend {
     ///
     /// # Errors
     /// When the display fails.
-    fn draw_frame<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
+    fn draw_frame<
+        S: Scalar,
+        const OBJECTS: usize,
+        const LIGHTS: usize,
+        const RAYS: usize,
+        const USES: u32,
+    >(
         &mut self,
-        scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
+        scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES>,
         camera: &Camera<S>,
         presentation: Presentation,
     ) -> Result<(), FrameError<Self>> {
@@ -68,8 +72,9 @@ pub struct Job<'a> {
     pub scene: &'a str,
     /// The format's name.
     pub format: &'a str,
-    /// The methods.
-    pub methods: Methods,
+    /// The methods, as they are spelled everywhere ([`obscura::Methods`]'s `Display`: the
+    /// build's, so that the chip links no formatting of them).
+    pub methods: &'a str,
     /// The order of its rows and its dither.
     pub presentation: Presentation,
 }
@@ -99,8 +104,16 @@ mod configured {
 
 /// Draws the frame of `job`: the scene whose words are `scene` (written by the build from the
 /// scene it proved in format `S`), as the camera whose words are `camera` sees it; then reports
-/// the frame. The chip builds and proves nothing: it reads the scene back from its words.
-pub(crate) fn draw<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
+/// the frame. The chip builds and proves nothing: it reads the scene back from its words. Out of
+/// line, so that each frame's scene lives on the stack only while it is drawn.
+#[inline(never)]
+pub(crate) fn draw<
+    S: Bits,
+    const OBJECTS: usize,
+    const LIGHTS: usize,
+    const RAYS: usize,
+    const USES: u32,
+>(
     backend: &mut impl Backend,
     clock: &Clock,
     job: &Job<'_>,
@@ -109,10 +122,10 @@ pub(crate) fn draw<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAY
 ) {
     // Hidden from the optimiser, so that no build folds a constant scene into the tracer: every
     // frame measures the same general code, whichever scenes and formats share the firmware.
-    let scene = core::hint::black_box(scene);
+    let (scene, camera) = core::hint::black_box((scene, camera));
     stack::paint();
     let (scene, camera) = match (
-        Scene::<S, OBJECTS, LIGHTS, RAYS>::from_words(scene),
+        Scene::<S, OBJECTS, LIGHTS, RAYS, USES>::from_words(scene),
         Camera::<S>::from_words(camera),
     ) {
         (Ok(scene), Ok(camera)) => (scene, camera),
@@ -127,7 +140,7 @@ pub(crate) fn draw<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAY
             job,
             ticks,
             stack_bytes,
-            storage_bytes: Scene::<S, OBJECTS, LIGHTS, RAYS>::storage_bytes(),
+            storage_bytes: Scene::<S, OBJECTS, LIGHTS, RAYS, USES>::storage_bytes(),
             fixed_storage_bytes: Scene::<S, MAX_OBJECTS, MAX_LIGHTS, RAY_STACK>::storage_bytes(),
         }),
         Err(error) => backend.failed(job, &error),

@@ -297,6 +297,10 @@ pub struct FirmwareArgs {
     /// the M0), RAM with the measured stack ≤ 16 KiB on both.
     #[arg(long)]
     pub budget: bool,
+    /// Fail when the image takes more than this many bytes of flash (a one-scene, one-format
+    /// image of spheres and a plane is to fit 32768).
+    #[arg(long, value_name = "BYTES")]
+    pub max_flash: Option<u64>,
     /// Also count the run's instructions by function under QEMU (a TCG plugin, built from
     /// host/qemu/profile.c by the system's C compiler) and print where they go per pixel
     /// drawn: by phase of the tracer, and the functions that take most.

@@ -21,7 +21,7 @@ use crate::{Format, FormatJob, MAX_LIGHTS, MAX_OBJECTS, NamedScene, RAY_STACK, S
 use anyhow::{Context, Result, bail};
 use obscura::methods::MethodName;
 use obscura::scalar::Proven;
-use obscura::{Bits, Methods, Presentation, Scene, SceneDesc, SceneError};
+use obscura::{Bits, Methods, Presentation, Scene, SceneDesc, SceneError, Uses};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -333,23 +333,28 @@ impl Configuration {
         );
         for frame in &frames {
             let job = format!(
-                "&crate::frames::Job {{ scene: {:?}, format: {:?}, methods: {}, presentation: \
+                "&crate::frames::Job {{ scene: {:?}, format: {:?}, methods: {:?}, presentation: \
                  PRESENTATION }}",
                 frame.scene.name,
                 frame.format.name(),
-                methods_source(&frame.methods)
+                frame.methods.to_string()
             );
             match &frame.proven {
                 Ok(words) => {
                     let desc = frame.scene.scene.desc();
+                    // One tracer per format: of the parts its frames use between them.
+                    let uses = tracer_uses(&frames, frame.format);
                     let _ = writeln!(
                         out,
-                        "    crate::frames::draw::<{}, {}, {}, {}>(\n        backend,\n        \
+                        "    // The tracer's parts in {}: {uses}.\n    \
+                         crate::frames::draw::<{}, {}, {}, {}, {:#010x}>(\n        backend,\n        \
                          clock,\n        {job},\n        {},\n        {},\n    );",
+                        frame.format,
                         frame.format.rust_type(),
                         desc.objects.len(),
                         desc.lights.len(),
                         usize::from(desc.max_depth) + 1,
+                        uses.bits(),
                         words_source(&words.scene),
                         words_source(&words.camera),
                     );
@@ -401,13 +406,25 @@ fn refused(named: &NamedScene, format: Format, refusal: SceneError) -> anyhow::E
 }
 
 /// A frame's scene and camera, proven on the host, as the words the firmware reads them from
-/// ([`obscura::words`]).
+/// ([`obscura::words`]), and the tracer's parts they use.
 #[derive(Debug)]
 pub struct Words {
     /// The scene's words.
     pub scene: Vec<u32>,
     /// The camera's words, at the display's size.
     pub camera: Vec<u32>,
+    /// What of the tracer the scene and the camera use ([`Uses`]).
+    pub uses: Uses,
+}
+
+/// The parts of the tracer that the proven frames in `format` use between them: the tracer the
+/// firmware holds for the format.
+fn tracer_uses(frames: &[Frame<'_>], format: Format) -> Uses {
+    frames
+        .iter()
+        .filter(|frame| frame.format == format)
+        .filter_map(|frame| frame.proven.as_ref().ok())
+        .fold(Uses::NOTHING, |uses, words| uses.union(words.uses))
 }
 
 /// One frame a firmware draws: a scene in a format by some methods, proven, or refused (a
@@ -436,27 +453,12 @@ impl FormatJob for Prove<'_> {
         let mut words = Words {
             scene: Vec::new(),
             camera: Vec::new(),
+            uses: scene.uses().union(camera.uses()),
         };
         scene.write_words(&mut |word| words.scene.push(word));
         camera.write_words(&mut |word| words.camera.push(word));
         Ok(words)
     }
-}
-
-/// `methods` as a Rust expression.
-fn methods_source(methods: &Methods) -> String {
-    let Methods {
-        sphere,
-        triangle,
-        roots,
-        rays,
-        bias,
-    } = methods;
-    format!(
-        "obscura::Methods {{ sphere: obscura::SphereMethod::{sphere:?}, triangle: \
-         obscura::TriangleMethod::{triangle:?}, roots: obscura::RootMethod::{roots:?}, rays: \
-         obscura::RayMethod::{rays:?}, bias: obscura::BiasMethod::{bias:?} }}"
-    )
 }
 
 /// `words` as a Rust expression of type `&[u32]`, eight to a line.
@@ -516,8 +518,15 @@ mod tests {
         assert_eq!(configuration.inputs().len(), 1);
         let source = configuration.source().unwrap();
         assert!(
-            source.contains("crate::frames::draw::<obscura::formats::F32, 5, 2, 5>(")
+            source.contains("crate::frames::draw::<obscura::formats::F32, 5, 2, 5, 0x")
                 && source.contains("scene: \"marbles\", format: \"f32\""),
+            "{source}"
+        );
+        // The tracer of each format has the parts its scenes use: no triangles in f32's.
+        assert!(
+            source.contains(
+                "// The tracer's parts in f32: spheres, planes; stable, cramer, exact, per-pixel, epsilon."
+            ),
             "{source}"
         );
     }

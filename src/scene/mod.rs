@@ -17,6 +17,7 @@ use crate::methods::{Methods, RootMethod};
 use crate::occlusion::Cone;
 use crate::scalar::{Bits, FormatInfo, FormatSet, Scalar};
 use crate::shape::{Checker, Plane, Shape, Sphere, Triangle};
+use crate::uses::Uses;
 use crate::vec3::Vec3;
 use crate::words::{self, Reader, Words, WordsError, Writer};
 use core::marker::PhantomData;
@@ -59,13 +60,22 @@ crate::words::words_of_struct!(Object<S> {
 });
 
 /// A scene ready to trace in format `S`, holding up to `OBJECTS` objects and `LIGHTS` lights
-/// and tracing ray trees with a stack of `RAYS` rays (at least `max_depth + 1`).
+/// and tracing ray trees with a stack of `RAYS` rays (at least `max_depth + 1`), by a tracer
+/// of the parts `USES` ([`Uses::bits`]; every part unless given).
 ///
 /// Positions are stored relative to the eye, which keeps the numbers small. Only the storage
 /// depends on the capacities: the tracer itself ([`crate::shade`]) sees slices, so a firmware
-/// with several scenes carries one copy of it per number format.
+/// with several scenes carries one copy of it per number format (and set of parts). A scene
+/// whose `USES` leaves parts out comes only from words ([`Self::from_words`]) whose scene needs
+/// none of them: its tracer, built without them, lacks nothing the scene needs.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Scene<S, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize> {
+pub struct Scene<
+    S,
+    const OBJECTS: usize,
+    const LIGHTS: usize,
+    const RAYS: usize,
+    const USES: u32 = { Uses::EVERYTHING.bits() },
+> {
     pub(crate) objects: Vec<Object<S>, OBJECTS>,
     pub(crate) lights: Vec<Light<S>, LIGHTS>,
     /// For each light, each object's cone ([`crate::occlusion`]).
@@ -160,7 +170,11 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
         }
         Converter::<S>::proven(desc, methods, tolerances, frame)?.scene(desc)
     }
+}
 
+impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, const USES: u32>
+    Scene<S, OBJECTS, LIGHTS, RAYS, USES>
+{
     /// The camera for an image of `width × height` pixels.
     ///
     /// # Errors
@@ -182,10 +196,29 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
     pub fn lights(&self) -> &[Light<S>] {
         &self.lights
     }
+
+    /// What of the tracer the scene uses: its kinds of shape, its methods, area lights and
+    /// several rays per pixel. Its camera's parts are the camera's ([`Camera::uses`]).
+    #[must_use]
+    pub fn uses(&self) -> Uses {
+        let shapes = self.objects.iter().fold(Uses::NOTHING, |uses, object| {
+            uses.union(match object.shape {
+                Shape::Sphere(_) => Uses::SPHERES,
+                Shape::Plane(_) => Uses::PLANES,
+                Shape::Triangle(_) => Uses::TRIANGLES,
+            })
+        });
+        let area_lights = self.lights.iter().any(|light| light.shadow_rays > 1);
+        let part = |used: bool, part: Uses| if used { part } else { Uses::NOTHING };
+        Uses::methods(&self.settings.methods)
+            .union(shapes)
+            .union(part(area_lights, Uses::AREA_LIGHTS))
+            .union(part(self.settings.samples > 1, Uses::SAMPLES))
+    }
 }
 
-impl<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
-    Scene<S, OBJECTS, LIGHTS, RAYS>
+impl<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, const USES: u32>
+    Scene<S, OBJECTS, LIGHTS, RAYS, USES>
 {
     /// Writes the scene as words ([`crate::words`]) to `sink`: what a firmware's build keeps as
     /// constants of a scene it has built, and so proven, on the host. Only the objects and
@@ -194,19 +227,28 @@ impl<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
         words::write::<S>("scene", self, sink);
     }
 
-    /// The scene [`Self::write_words`] wrote in format `S`, in storage of these capacities:
-    /// what a firmware traces without building the scene or proving its range again.
+    /// The scene [`Self::write_words`] wrote in format `S`, in storage of these capacities and
+    /// for a tracer of the parts `USES`: what a firmware traces without building the scene or
+    /// proving its range again.
     ///
     /// # Errors
     /// When `words` are not such a scene's, or it has more objects or lights than the
-    /// capacities or a deeper ray tree than the ray stack holds.
+    /// capacities, a deeper ray tree than the ray stack holds, or uses a part `USES` leaves
+    /// out ([`Self::uses`]).
     pub fn from_words(words: &[u32]) -> Result<Self, WordsError> {
-        words::read::<S, _>("scene", words)
+        let scene: Self = words::read::<S, Self>("scene", words)?;
+        if !Uses::from_bits(USES).contains(scene.uses()) {
+            return Err(WordsError {
+                what: "scene",
+                format: S::NAME,
+            });
+        }
+        Ok(scene)
     }
 }
 
-impl<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize> Words
-    for Scene<S, OBJECTS, LIGHTS, RAYS>
+impl<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, const USES: u32> Words
+    for Scene<S, OBJECTS, LIGHTS, RAYS, USES>
 {
     fn put(&self, out: &mut Writer<'_>) {
         let count = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
@@ -227,31 +269,41 @@ impl<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize> Word
         self.frame.put(out);
     }
 
-    fn take(input: &mut Reader<'_>) -> Option<Self> {
+    fn take(input: &mut Reader<'_>) -> Self {
         let mut objects = Vec::new();
-        for _ in 0..input.count(OBJECTS)? {
-            objects.push(Object::take(input)?).ok()?;
+        for _ in 0..input.count(OBJECTS) {
+            // Within the capacity: count() says so.
+            if objects.push(Object::take(input)).is_err() {
+                input.refuse();
+            }
         }
         let mut lights = Vec::new();
-        for _ in 0..input.count(LIGHTS)? {
-            lights.push(Light::take(input)?).ok()?;
+        for _ in 0..input.count(LIGHTS) {
+            if lights.push(Light::take(input)).is_err() {
+                input.refuse();
+            }
         }
         let mut cones = Vec::new();
         for _ in 0..lights.len() {
             let mut of_light = [Cone::Everywhere; OBJECTS];
             for cone in of_light.iter_mut().take(objects.len()) {
-                *cone = Cone::take(input)?;
+                *cone = Cone::take(input);
             }
-            cones.push(of_light).ok()?;
+            if cones.push(of_light).is_err() {
+                input.refuse();
+            }
         }
-        let settings = Settings::take(input)?;
-        (usize::from(settings.max_depth) < RAYS).then_some(Self {
+        let settings = Settings::take(input);
+        if usize::from(settings.max_depth) >= RAYS {
+            input.refuse();
+        }
+        Self {
             objects,
             lights,
             cones,
             settings,
-            frame: Frame::take(input)?,
-        })
+            frame: Frame::take(input),
+        }
     }
 }
 

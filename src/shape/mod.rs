@@ -13,6 +13,7 @@ use crate::color::Rgb;
 use crate::methods::{Methods, RootMethod};
 use crate::ray::{Ray, Span};
 use crate::scalar::Scalar;
+use crate::uses::Uses;
 use crate::vec3::Vec3;
 
 /// Where a ray meets a shape: the distance along it, and on a triangle the barycentric
@@ -51,38 +52,16 @@ pub enum Shape<S> {
     Triangle(Triangle<S>),
 }
 
-impl<S: crate::scalar::Bits> crate::words::Words for Shape<S> {
-    fn put(&self, out: &mut crate::words::Writer<'_>) {
-        match self {
-            Self::Sphere(sphere) => {
-                out.word(0);
-                sphere.put(out);
-            }
-            Self::Plane(plane) => {
-                out.word(1);
-                plane.put(out);
-            }
-            Self::Triangle(triangle) => {
-                out.word(2);
-                triangle.put(out);
-            }
-        }
-    }
-
-    fn take(input: &mut crate::words::Reader<'_>) -> Option<Self> {
-        use crate::words::Words;
-        match input.word()? {
-            0 => Some(Self::Sphere(Words::take(input)?)),
-            1 => Some(Self::Plane(Words::take(input)?)),
-            2 => Some(Self::Triangle(Words::take(input)?)),
-            _ => None,
-        }
-    }
-}
+crate::words::words_of_enum!(Shape<S> {
+    Sphere(sphere),
+    Plane(plane),
+    Triangle(triangle)
+});
 
 impl<S: Scalar> Shape<S> {
     /// The nearest point in `span` at which `ray` meets the shape; `per_ray` carries what the
-    /// tests of this ray against several shapes share.
+    /// tests of this ray against several shapes share. A kind of shape `uses` leaves out is
+    /// met nowhere: no scene of a tracer without it has one ([`crate::Uses`]).
     #[inline(always)]
     #[must_use]
     pub fn intersect(
@@ -90,18 +69,20 @@ impl<S: Scalar> Shape<S> {
         ray: &Ray<S>,
         span: Span<S>,
         methods: &Methods,
+        uses: Uses,
         per_ray: &mut PerRay<S>,
     ) -> Option<Intersection<S>> {
         match self {
-            Self::Sphere(sphere) => sphere
+            Self::Sphere(sphere) if uses.contains(Uses::SPHERES) => sphere
                 .intersect(ray, span, methods.sphere, methods.roots)
                 .map(Intersection::at),
-            Self::Plane(plane) => plane
+            Self::Plane(plane) if uses.contains(Uses::PLANES) => plane
                 .intersect(ray, span, methods.roots)
                 .map(Intersection::at),
-            Self::Triangle(triangle) => {
+            Self::Triangle(triangle) if uses.contains(Uses::TRIANGLES) => {
                 triangle.intersect_sharing(ray, span, methods.triangle, methods.roots, per_ray)
             }
+            Self::Sphere(_) | Self::Plane(_) | Self::Triangle(_) => None,
         }
     }
 
@@ -115,10 +96,11 @@ impl<S: Scalar> Shape<S> {
         ray: &Ray<S>,
         span: Span<S>,
         methods: &Methods,
+        uses: Uses,
         into: bool,
     ) -> Option<Intersection<S>> {
         match self {
-            Self::Sphere(sphere) if into => sphere
+            Self::Sphere(sphere) if into && uses.contains(Uses::SPHERES) => sphere
                 .exit(ray, span, methods.sphere, methods.roots)
                 .map(Intersection::at),
             Self::Sphere(_) | Self::Plane(_) | Self::Triangle(_) => None,

@@ -212,9 +212,15 @@ impl<D: DrawTarget<Color = Rgb565, Error: fmt::Debug>> Backend for Pico<D> {
 
     /// Shares the rows with core 1: of each pair in the frame's order, core 1 traces the second
     /// while this core traces and sends the first; then this core sends core 1's.
-    fn draw_frame<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>(
+    fn draw_frame<
+        S: Scalar,
+        const OBJECTS: usize,
+        const LIGHTS: usize,
+        const RAYS: usize,
+        const USES: u32,
+    >(
         &mut self,
-        scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
+        scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES>,
         camera: &Camera<S>,
         presentation: Presentation,
     ) -> Result<(), FrameError<Self>> {

@@ -11,7 +11,10 @@
 //! message=…`, and one that fails `error …` likewise.
 //!
 //! The firmware then exits through semihosting: 0 when every frame was drawn, 1 otherwise, and
-//! 1 on a panic (panic-semihosting) or a hard fault.
+//! 1 on a panic (a line `error panic at FILE:LINE: MESSAGE`) or a hard fault.
+//!
+//! Text goes out through [`Text`], not as a `str`'s `Display`: that pads to a width, which no
+//! line here asks for, and would add its padding code to every image.
 #![no_std]
 #![no_main]
 #![allow(
@@ -22,7 +25,7 @@
 use core::fmt::{self, Write as _};
 use cortex_m_rt::{ExceptionFrame, exception};
 use cortex_m_semihosting::debug::{self, EXIT_FAILURE, EXIT_SUCCESS};
-use cortex_m_semihosting::{hprintln, nr, syscall};
+use cortex_m_semihosting::{hio, nr, syscall};
 use embedded_graphics_core::pixelcolor::{IntoStorage, Rgb565};
 use embedded_graphics_core::prelude::*;
 use embedded_graphics_core::primitives::Rectangle;
@@ -30,7 +33,6 @@ use obscura::methods::MethodName;
 use obscura_firmware::SIDE;
 use obscura_firmware::clock::Clock;
 use obscura_firmware::frames::{self, Backend, Job, Report};
-use panic_semihosting as _;
 
 /// Renders every configured frame, then exits QEMU with the outcome.
 #[cortex_m_rt::entry]
@@ -55,9 +57,53 @@ fn exit(success: bool) -> ! {
     }
 }
 
+/// Writes a line to the host's standard output, opened for it: without a shared handle, a panic
+/// or a fault can say so at any time (and no `RefCell` adds its panic's message to the image).
+fn say(line: fmt::Arguments<'_>) {
+    if let Ok(mut out) = hio::hstdout() {
+        let _ = out.write_fmt(line);
+        let _ = out.write_str("\n");
+    }
+}
+
+/// [`say`] with `format!`'s arguments.
+macro_rules! say {
+    ($($argument:tt)*) => {
+        say(format_args!($($argument)*))
+    };
+}
+
+/// Says where the firmware panicked, and exits with a failure.
+#[panic_handler]
+fn panic(info: &core::panic::PanicInfo<'_>) -> ! {
+    let message = info
+        .message()
+        .as_str()
+        .unwrap_or("(a message with arguments)");
+    match info.location() {
+        Some(at) => say!(
+            "error panic at {}:{}: {}",
+            Text(at.file()),
+            at.line(),
+            Text(message)
+        ),
+        None => say!("error panic: {}", Text(message)),
+    }
+    exit(false);
+}
+
+/// Text, written as it is: a `str`'s own `Display` pads to a width.
+struct Text<'a>(&'a str);
+
+impl fmt::Display for Text<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.0)
+    }
+}
+
 #[exception]
 unsafe fn HardFault(frame: &ExceptionFrame) -> ! {
-    hprintln!("error hard fault at pc={:#010x}", frame.pc());
+    say!("error hard fault at pc={:#010x}", frame.pc());
     exit(false);
 }
 
@@ -85,13 +131,13 @@ impl Backend for Host {
 
     fn report(&mut self, r: &Report<'_>) {
         let job = r.job;
-        hprintln!(
+        say!(
             "frame scene={} format={} methods={} dither={} order={} width={SIDE} height={SIDE} ticks={} stack_bytes={} storage_bytes={} fixed_storage_bytes={} file={}",
-            job.scene,
-            job.format,
-            job.methods,
-            job.presentation.dither.name(),
-            job.presentation.order.name(),
+            Text(job.scene),
+            Text(job.format),
+            Text(job.methods),
+            Text(job.presentation.dither.name()),
+            Text(job.presentation.order.name()),
             r.ticks,
             r.stack_bytes,
             r.storage_bytes,
@@ -102,20 +148,20 @@ impl Backend for Host {
 
     fn failed(&mut self, job: &Job<'_>, why: &dyn fmt::Display) {
         self.all_drawn = false;
-        hprintln!(
+        say!(
             "error scene={} format={} methods={} message={why}",
-            job.scene,
-            job.format,
-            job.methods
+            Text(job.scene),
+            Text(job.format),
+            Text(job.methods)
         );
     }
 
     fn refused(&mut self, job: &Job<'_>, why: &dyn fmt::Display) {
-        hprintln!(
+        say!(
             "refused scene={} format={} methods={} message={why}",
-            job.scene,
-            job.format,
-            job.methods
+            Text(job.scene),
+            Text(job.format),
+            Text(job.methods)
         );
     }
 }
@@ -127,7 +173,13 @@ struct FileName<'a>(&'a Job<'a>);
 impl fmt::Display for FileName<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let job = self.0;
-        write!(f, "{}-{}-{}.rgb565", job.scene, job.format, job.methods)
+        write!(
+            f,
+            "{}-{}-{}.rgb565",
+            Text(job.scene),
+            Text(job.format),
+            Text(job.methods)
+        )
     }
 }
 

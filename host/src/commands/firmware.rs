@@ -244,6 +244,13 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
             mismatched.join(", ")
         );
     }
+    if let Some(max) = args.max_flash.filter(|&max| size.flash > max) {
+        bail!(
+            "the firmware image takes {} bytes of flash, over the {max} of --max-flash; build \
+             fewer scenes or formats into one image, or see where the flash goes with --profile",
+            size.flash
+        );
+    }
     if let (true, Some(why)) = (args.budget, over) {
         bail!(
             "the firmware image takes {why}; build fewer scenes or formats into one image \
