@@ -3,16 +3,12 @@
 use crate::analysis::TARGET_PSNR;
 use crate::cost::Machine;
 use crate::firmware::Target;
-use clap::builder::{PossibleValuesParser, TypedValueParser};
-use clap::{Args, Parser, Subcommand, ValueEnum};
-use obscura::methods::MethodName;
+use clap::{Args, Parser, Subcommand};
 use obscura::pattern::MAX_SAMPLES;
-use obscura::{
-    BiasMethod, Dither, Methods, RayMethod, RootMethod, RowOrder, SphereMethod, TriangleMethod,
+use obscura_scene::{
+    FirmwareSettings, Format, FormatChoice, MethodSettings, PresentationSettings, Sampling,
 };
-use obscura_scene::{Format, Sampling};
 use std::path::PathBuf;
-use std::sync::LazyLock;
 
 /// Ray traces in fixed point the way a microcontroller would, and measures what that costs
 /// against a floating-point reference.
@@ -29,6 +25,9 @@ pub struct Cli {
 pub enum Command {
     /// List the built-in scenes (every command takes a scene file as well).
     Scenes,
+    /// List the settings every command's flags and the firmware's build take, each with its
+    /// environment variable and default (a Markdown table, as the README shows it).
+    Settings,
     /// Range analysis of a scene: its extents and finest features, the bits each method needs,
     /// which formats hold it, the PSNR each is predicted to reach, and the cheapest that meets
     /// the target.
@@ -54,95 +53,12 @@ pub enum Command {
     Fuzz(FuzzArgs),
 }
 
-/// The numerical methods, one choice each (see `obscura::methods` and the README).
-#[derive(Clone, Copy, Debug, Args)]
-pub struct MethodArgs {
-    /// Ray–sphere: the lecture's quadratic, or the stable form (Haines et al.).
-    #[arg(long, value_parser = method::<SphereMethod>(), default_value = "quadratic")]
-    pub sphere: SphereMethod,
-    /// Ray–triangle: Cramer's rule (the lecture's), Möller–Trumbore, or watertight.
-    #[arg(long, value_parser = method::<TriangleMethod>(), default_value = "cramer")]
-    pub triangle: TriangleMethod,
-    /// Square roots and reciprocals: exact, or the 32-bit fixed formats' fast approximations.
-    #[arg(long = "sqrt", value_parser = method::<RootMethod>(), default_value = "exact")]
-    pub roots: RootMethod,
-    /// Primary rays: computed per pixel, or stepped along the scanline.
-    #[arg(long, value_parser = method::<RayMethod>(), default_value = "per-pixel")]
-    pub rays: RayMethod,
-    /// Self-intersection: an epsilon offset, or excluding the primitive just left.
-    #[arg(long, value_parser = method::<BiasMethod>(), default_value = "epsilon")]
-    pub bias: BiasMethod,
-}
-
-impl MethodArgs {
-    /// The methods chosen.
-    pub fn methods(&self) -> Methods {
-        Methods {
-            sphere: self.sphere,
-            triangle: self.triangle,
-            roots: self.roots,
-            rays: self.rays,
-            bias: self.bias,
-        }
-    }
-}
-
-/// The command-line flags that choose `methods`.
-pub fn method_flags(methods: &Methods) -> String {
-    format!(
-        "--sphere {} --triangle {} --sqrt {} --rays {} --bias {}",
-        methods.sphere.name(),
-        methods.triangle.name(),
-        methods.roots.name(),
-        methods.rays.name(),
-        methods.bias.name()
-    )
-}
-
 /// Serializes a value by its `Display`.
 pub fn serialize_display<T: std::fmt::Display, S: serde::Serializer>(
     value: &T,
     serializer: S,
 ) -> Result<S::Ok, S::Error> {
     serializer.collect_str(value)
-}
-
-/// A parser for one method's names.
-fn method<M: MethodName + Clone + Send + Sync>() -> impl TypedValueParser<Value = M> {
-    let names: Vec<&'static str> = M::ALL.iter().map(|(_, name)| *name).collect();
-    PossibleValuesParser::new(names).map(|name: String| {
-        M::from_name(&name).expect("the parser accepts only the methods' names")
-    })
-}
-
-/// A number format, or `auto`: the cheapest predicted to meet a target.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FormatChoice {
-    /// The cheapest format that holds the scene and is predicted to reach `--target-psnr`
-    /// (see `obscura analyze`).
-    Auto,
-    /// This format.
-    Given(Format),
-}
-
-impl ValueEnum for FormatChoice {
-    fn value_variants<'a>() -> &'a [Self] {
-        static CHOICES: LazyLock<Vec<FormatChoice>> = LazyLock::new(|| {
-            let given = Format::ALL.iter().copied().map(FormatChoice::Given);
-            given.chain([FormatChoice::Auto]).collect()
-        });
-        &CHOICES
-    }
-
-    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
-        match self {
-            Self::Given(format) => format.to_possible_value(),
-            Self::Auto => Some(clap::builder::PossibleValue::new("auto").help(
-                "The cheapest format that holds the scene and is predicted to reach \
-                 --target-psnr on --cost-on (see `obscura analyze`)",
-            )),
-        }
-    }
 }
 
 /// How `--format auto` chooses.
@@ -169,7 +85,7 @@ pub struct SceneArgs {
     #[arg(long, value_parser = parse_size, default_value = "512x512")]
     pub size: (u32, u32),
     #[command(flatten)]
-    pub methods: MethodArgs,
+    pub methods: MethodSettings,
     #[command(flatten)]
     pub sampling: Sampling,
     #[command(flatten)]
@@ -185,7 +101,7 @@ pub struct AnalyzeArgs {
     #[arg(long, value_parser = parse_size, default_value = "512x512")]
     pub size: (u32, u32),
     #[command(flatten)]
-    pub methods: MethodArgs,
+    pub methods: MethodSettings,
     #[command(flatten)]
     pub sampling: Sampling,
     #[command(flatten)]
@@ -251,7 +167,7 @@ pub struct BenchArgs {
     #[arg(long)]
     pub json: Option<PathBuf>,
     #[command(flatten)]
-    pub methods: MethodArgs,
+    pub methods: MethodSettings,
     #[command(flatten)]
     pub sampling: Sampling,
 }
@@ -263,27 +179,13 @@ pub struct FirmwareArgs {
     /// microbit).
     #[arg(long, value_enum)]
     pub target: Target,
-    /// Built-in scenes or scene files to render, in one firmware run.
-    #[arg(long, value_delimiter = ',', default_value = "whitted")]
-    pub scene: Vec<String>,
-    /// Formats to render each scene in (all but f64, which stays on the host); `auto` is the
-    /// cheapest on the target that holds every scene and is predicted to reach --target-psnr.
-    #[arg(long, value_enum, value_delimiter = ',', default_value = "i16f16")]
-    pub format: Vec<FormatChoice>,
+    /// What the firmware draws: the scenes, formats, methods, sampling and presentation (see
+    /// `obscura settings`).
+    #[command(flatten)]
+    pub settings: FirmwareSettings,
     /// The PSNR against f64, in dB, that `--format auto` aims for.
     #[arg(long, default_value_t = TARGET_PSNR, value_parser = parse_psnr)]
     pub target_psnr: f64,
-    #[command(flatten)]
-    pub methods: MethodArgs,
-    #[command(flatten)]
-    pub sampling: Sampling,
-    /// The order of the rows on the display: top-down, or progressive (every 8th row first,
-    /// each as a block down to the next; the final frame is the same).
-    #[arg(long, value_parser = method::<RowOrder>(), default_value = "top-down")]
-    pub order: RowOrder,
-    /// The rounding to RGB565: none, or ordered (a 4×4 Bayer dither, the same on host and MCU).
-    #[arg(long, value_parser = method::<Dither>(), default_value = "none")]
-    pub dither: Dither,
     /// Also write the figures as JSON (an array, one object per frame) to this file.
     #[arg(long)]
     pub json: Option<PathBuf>,
@@ -324,15 +226,11 @@ pub struct PreviewArgs {
     #[arg(long, default_value_t = TARGET_PSNR, value_parser = parse_psnr)]
     pub target_psnr: f64,
     #[command(flatten)]
-    pub methods: MethodArgs,
+    pub methods: MethodSettings,
     #[command(flatten)]
     pub sampling: Sampling,
-    /// The order of the rows: top-down, or progressive (every 8th row first, as blocks).
-    #[arg(long, value_parser = method::<RowOrder>(), default_value = "progressive")]
-    pub order: RowOrder,
-    /// The rounding to RGB565: none, or ordered (a 4×4 Bayer dither).
-    #[arg(long, value_parser = method::<Dither>(), default_value = "ordered")]
-    pub dither: Dither,
+    #[command(flatten)]
+    pub presentation: PresentationSettings,
     /// No window: write the final frame as a PNG and exit (for CI, where there is no display).
     #[arg(long)]
     pub headless: bool,

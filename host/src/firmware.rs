@@ -7,8 +7,8 @@ use clap::ValueEnum;
 use object::{Object, ObjectSection, SectionFlags, SectionKind};
 use obscura::methods::MethodName;
 use obscura::{Methods, Presentation};
+use obscura_scene::FirmwareSettings;
 use obscura_scene::Format;
-use obscura_scene::firmware::Image;
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -176,10 +176,10 @@ pub fn check_prerequisites(target: Target) -> Result<()> {
     Ok(())
 }
 
-/// Builds the QEMU firmware for `target` to draw `image`, and returns the path of its ELF image.
-/// Its build script proves every scene in every format again (by the core's own scene build,
-/// as the host does).
-pub fn build(target: Target, image: &Image<'_>) -> Result<PathBuf> {
+/// Builds the QEMU firmware for `target` to draw what `settings` say (every format given, none
+/// `auto`), and returns the path of its ELF image. Its build script proves every scene in
+/// every format (by the core's own scene build, as the host does) and writes them as words.
+pub fn build(target: Target, settings: &FirmwareSettings) -> Result<PathBuf> {
     let workspace = workspace();
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
     let mut command = Command::new(cargo);
@@ -187,7 +187,7 @@ pub fn build(target: Target, image: &Image<'_>) -> Result<PathBuf> {
         .current_dir(&workspace)
         .args(["build", "--release", "-p", "obscura-qemu"])
         .args(["--target", target.triple()]);
-    for (name, value) in image.environment() {
+    for (name, value) in settings.environment() {
         match value {
             Some(value) => command.env(name, value),
             None => command.env_remove(name),

@@ -1,25 +1,19 @@
 //! What a firmware draws, as its build script (`firmware/build.rs`) reads it from the
-//! environment: the scenes (built-in names or scene files), the formats, the methods, the
-//! sampling and the presentation. It builds and so proves each scene in each format by the
-//! chosen methods, with the core's own scene build (a refusal placed at the scene file's line
-//! and column), and writes the Rust source of what the firmware draws: each frame's proven scene
-//! and camera as constant words ([`obscura::words`]), read back on the chip in storage sized
-//! exactly to the scene, which runs no scene build and no range proof. The harness (`obscura firmware`, `obscura chart`)
-//! asks for an image through the same variables ([`Image::environment`]).
-//!
-//! | variable | what | default |
-//! |---|---|---|
-//! | `OBSCURA_SCENES` | built-in scenes or scene files (relative to the workspace, or absolute), comma-separated | `whitted` |
-//! | `OBSCURA_FORMATS` | formats, comma-separated (`auto` is the harness's: `obscura firmware --format auto` prints the one it takes) | `i16f16` |
-//! | `OBSCURA_SAMPLES`, `OBSCURA_ADAPTIVE_SAMPLES`, `OBSCURA_SHADOW_SAMPLES`, `OBSCURA_ADAPTIVE_SHADOWS` | the [`Sampling`] of every scene | unset: each scene's own |
-//! | `OBSCURA_METHODS` | the methods that differ from the lecture's, e.g. `sphere=stable,bias=exclude` | the lecture's |
-//! | `OBSCURA_VARIANTS` | `each`: also draw each variant that changes one method (what `obscura chart` measures) | none |
-//! | `OBSCURA_ORDER` | the order of the rows: `top-down`, or `progressive` (every 8th row first, as blocks) | `top-down` |
-//! | `OBSCURA_DITHER` | the rounding to RGB565: `none`, or `ordered` (a 4×4 Bayer dither) | `none` |
+//! environment ([`FirmwareSettings`]: the scenes, built-in names or scene files, the formats,
+//! the methods, the sampling and the presentation). It builds and so proves each scene in each
+//! format by the chosen methods, with the core's own scene build (a refusal placed at the scene
+//! file's line and column), and writes the Rust source of what the firmware draws: each frame's
+//! proven scene and camera as constant words ([`obscura::words`]), read back on the chip in
+//! storage sized exactly to the scene, by a tracer of only the parts the scenes use
+//! ([`obscura::Uses`]); the chip runs no scene build and no range proof. The harness
+//! (`obscura firmware`, `obscura chart`) asks for an image through the same variables
+//! ([`FirmwareSettings::environment`]).
 
-use crate::{Format, FormatJob, MAX_LIGHTS, MAX_OBJECTS, NamedScene, RAY_STACK, Sampling};
+use crate::{
+    FirmwareSettings, Format, FormatChoice, FormatJob, MAX_LIGHTS, MAX_OBJECTS, NamedScene,
+    RAY_STACK, Variants,
+};
 use anyhow::{Context, Result, bail};
-use obscura::methods::MethodName;
 use obscura::scalar::Proven;
 use obscura::{Bits, Methods, Presentation, Scene, SceneDesc, SceneError, Uses};
 use std::fmt::Write as _;
@@ -28,31 +22,10 @@ use std::path::{Path, PathBuf};
 /// The side of the firmware's square display, in pixels.
 pub const SIDE: u32 = 240;
 
-/// The firmware's own environment variables, as (name, default); the sampling's are
-/// [`Sampling::VARIABLES`] (unset: each scene's own).
-pub const VARIABLES: [(&str, &str); 6] = [
-    (SCENES, "whitted"),
-    (FORMATS, "i16f16"),
-    (METHODS, "lecture"),
-    (VARIANTS, "none"),
-    (ORDER, "top-down"),
-    (DITHER, "none"),
-];
-
-/// Every variable a firmware's build reads: its own and the sampling's.
+/// Every variable a firmware's build reads ([`FirmwareSettings`]).
 pub fn variables() -> impl Iterator<Item = &'static str> {
-    VARIABLES
-        .iter()
-        .map(|(name, _)| *name)
-        .chain(Sampling::VARIABLES)
+    FirmwareSettings::settings().map(|setting| setting.variable)
 }
-
-const SCENES: &str = "OBSCURA_SCENES";
-const FORMATS: &str = "OBSCURA_FORMATS";
-const METHODS: &str = "OBSCURA_METHODS";
-const VARIANTS: &str = "OBSCURA_VARIANTS";
-const ORDER: &str = "OBSCURA_ORDER";
-const DITHER: &str = "OBSCURA_DITHER";
 
 /// What a firmware draws: each scene in each format, by the methods (and with `variants`, by
 /// each variant that changes one of them).
@@ -70,53 +43,6 @@ pub struct Configuration {
     pub presentation: Presentation,
 }
 
-/// What one firmware image is to draw, as the host asks its build for it.
-#[derive(Debug)]
-pub struct Image<'a> {
-    /// Built-in scenes' names, or scene files' paths.
-    pub scenes: Vec<String>,
-    /// Rays per pixel and per area light for every scene, where not each scene's own.
-    pub sampling: Sampling,
-    /// The formats.
-    pub formats: &'a [Format],
-    /// The methods.
-    pub methods: Methods,
-    /// Whether each variant that changes one method is drawn too.
-    pub variants: bool,
-    /// The order of the rows and the dither.
-    pub presentation: Presentation,
-}
-
-impl Image<'_> {
-    /// The build script's environment for this image: every variable, so that none is
-    /// inherited from the caller's (`None`: to be unset).
-    #[must_use]
-    pub fn environment(&self) -> Vec<(&'static str, Option<String>)> {
-        let own = [
-            (SCENES, self.scenes.join(",")),
-            (
-                FORMATS,
-                self.formats
-                    .iter()
-                    .map(|f| f.name())
-                    .collect::<Vec<_>>()
-                    .join(","),
-            ),
-            (METHODS, self.methods.to_string()),
-            (
-                VARIANTS,
-                if self.variants { "each" } else { "none" }.to_owned(),
-            ),
-            (ORDER, self.presentation.order.name().to_owned()),
-            (DITHER, self.presentation.dither.name().to_owned()),
-        ];
-        own.into_iter()
-            .map(|(name, value)| (name, Some(value)))
-            .chain(self.sampling.environment())
-            .collect()
-    }
-}
-
 /// The firmware's Rust source, and the files it was made from (for the build script to watch).
 #[derive(Debug)]
 pub struct Generated {
@@ -130,89 +56,61 @@ pub struct Generated {
 /// `workspace`.
 ///
 /// # Errors
-/// When a variable is malformed, a scene cannot be read, or a format cannot hold a scene (said
-/// as the harness says it, at the scene file's line and column).
+/// When a variable is malformed or a scene cannot be read.
 pub fn configure(workspace: &Path, var: impl Fn(&str) -> Option<String>) -> Result<Configuration> {
-    let value = |name: &str| {
-        var(name)
-            .filter(|v| !v.trim().is_empty())
-            .unwrap_or_else(|| {
-                VARIABLES
-                    .iter()
-                    .find(|(n, _)| *n == name)
-                    .map_or_else(String::new, |(_, default)| (*default).to_owned())
-            })
-    };
-    let methods: Methods = value(METHODS)
-        .parse()
-        .map_err(|e| anyhow::anyhow!("{METHODS}: {e}"))?;
-    let variants = match value(VARIANTS).trim() {
-        "none" => false,
-        "each" => true,
-        other => bail!("{VARIANTS} is `none` or `each`, not `{other}`"),
-    };
-    let presentation = Presentation {
-        order: choice(ORDER, &value(ORDER))?,
-        dither: choice(DITHER, &value(DITHER))?,
-    };
-    let mut scenes = value(SCENES)
-        .split(',')
-        .map(str::trim)
-        .map(|name| {
-            let path = workspace.join(name);
-            let name = if obscura::scenes::find(name).is_none() && path.is_file() {
-                path.to_string_lossy().into_owned()
-            } else {
-                name.to_owned()
-            };
-            crate::load(&name).context(SCENES)
-        })
-        .collect::<Result<Vec<_>>>()?;
-    let sampling = Sampling::from_env(&var)?;
-    for scene in &mut scenes {
-        sampling.apply(&mut scene.scene);
-    }
-    let mut formats = Vec::new();
-    for name in value(FORMATS).split(',').map(str::trim) {
-        let format = match Format::from_name(name) {
-            None if name == "auto" => bail!(
-                "{FORMATS}: `auto` is the harness's choice, made by rendering the scenes on the \
-                 host: `obscura firmware --target <m4f or m0> --scene <scenes> --format auto` \
-                 prints the format it takes; give that here"
-            ),
-            Some(Format::F64) | None => bail!(
-                "{FORMATS}: `{name}` is not a firmware format: {}",
-                Format::firmware_names()
-            ),
-            Some(format) => format,
-        };
-        if !formats.contains(&format) {
-            formats.push(format);
-        }
-    }
-    let configuration = Configuration {
-        scenes,
-        formats,
-        methods,
-        variants,
-        presentation,
-    };
-    Ok(configuration)
-}
-
-/// The choice `text` names for `variable`, or an error listing the choices.
-fn choice<M: MethodName + PartialEq>(variable: &str, text: &str) -> Result<M> {
-    M::from_name(text.trim()).with_context(|| {
-        let names: Vec<_> = M::ALL.iter().map(|(_, name)| *name).collect();
-        format!(
-            "{variable} is {}, not `{}`",
-            names.join(" or "),
-            text.trim()
-        )
-    })
+    Configuration::of(workspace, &FirmwareSettings::from_env(var)?)
 }
 
 impl Configuration {
+    /// What `settings` ask a firmware to draw, scene files found from `workspace`.
+    ///
+    /// # Errors
+    /// When a scene cannot be read, or a format is `auto` (the harness's choice) or `f64`.
+    pub fn of(workspace: &Path, settings: &FirmwareSettings) -> Result<Self> {
+        let mut scenes = settings
+            .frames
+            .scene
+            .iter()
+            .map(|name| {
+                let path = workspace.join(name);
+                let name = if obscura::scenes::find(name).is_none() && path.is_file() {
+                    path.to_string_lossy().into_owned()
+                } else {
+                    name.clone()
+                };
+                crate::load(&name).context("OBSCURA_SCENES")
+            })
+            .collect::<Result<Vec<_>>>()?;
+        for scene in &mut scenes {
+            settings.sampling.apply(&mut scene.scene);
+        }
+        let mut formats = Vec::new();
+        for &choice in &settings.frames.format {
+            let format = match choice {
+                FormatChoice::Auto => bail!(
+                    "OBSCURA_FORMATS: `auto` is the harness's choice, made by rendering the \
+                     scenes on the host: `obscura firmware --target <m4f or m0> --scene \
+                     <scenes> --format auto` prints the format it takes; give that here"
+                ),
+                FormatChoice::Given(Format::F64) => bail!(
+                    "OBSCURA_FORMATS: `f64` is not a firmware format: {}",
+                    Format::firmware_names()
+                ),
+                FormatChoice::Given(format) => format,
+            };
+            if !formats.contains(&format) {
+                formats.push(format);
+            }
+        }
+        Ok(Self {
+            scenes,
+            formats,
+            methods: settings.methods.methods(),
+            variants: settings.frames.variants == Variants::Each,
+            presentation: settings.presentation.presentation(),
+        })
+    }
+
     /// Every frame the firmware draws, each scene built and proven in each format by the
     /// methods (and with `variants`, by each variant that changes one of them and tells it
     /// apart in that format), as the firmware's tracer will take it: what the core refuses,
@@ -477,6 +375,10 @@ fn words_source(words: &[u32]) -> String {
 mod tests {
     use super::*;
 
+    const SCENES: &str = "OBSCURA_SCENES";
+    const FORMATS: &str = "OBSCURA_FORMATS";
+    const VARIANTS: &str = "OBSCURA_VARIANTS";
+
     fn env<'a>(pairs: &'a [(&'a str, &'a str)]) -> impl Fn(&str) -> Option<String> + 'a {
         |name| {
             pairs
@@ -500,7 +402,7 @@ mod tests {
             env(&[
                 (SCENES, "whitted, host/scenes/marbles.toml"),
                 (FORMATS, "f32,i32f32,f32"),
-                (METHODS, "sphere=stable"),
+                ("OBSCURA_SPHERE", "stable"),
             ]),
         )
         .unwrap();
@@ -642,18 +544,21 @@ mod tests {
     fn malformed_variables_say_what_they_take() {
         for (pairs, expected) in [
             (&[(FORMATS, "f64")][..], "not a firmware format"),
-            (&[(FORMATS, "i17f15")][..], "not a firmware format"),
+            (&[(FORMATS, "i17f15")][..], "OBSCURA_FORMATS: a format"),
             (
-                &[(METHODS, "sphere=round")][..],
-                "the sphere method is quadratic or stable",
+                &[("OBSCURA_SPHERE", "round")][..],
+                "OBSCURA_SPHERE: `quadratic` or `stable`, not `round`",
             ),
             (&[(VARIANTS, "all")][..], "`none` or `each`"),
             (&[(FORMATS, "auto")][..], "obscura firmware --target"),
             (
-                &[(DITHER, "floyd")][..],
-                "OBSCURA_DITHER is none or ordered, not `floyd`",
+                &[("OBSCURA_DITHER", "floyd")][..],
+                "OBSCURA_DITHER: `none` or `ordered`, not `floyd`",
             ),
-            (&[(ORDER, "bottom-up")][..], "top-down or progressive"),
+            (
+                &[("OBSCURA_ORDER", "bottom-up")][..],
+                "`top-down` or `progressive`",
+            ),
             (&[(SCENES, "no-such-scene")][..], "there is no scene"),
         ] {
             let error = configure(&workspace(), env(pairs)).unwrap_err();

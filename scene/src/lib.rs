@@ -20,12 +20,15 @@ mod file;
 pub mod firmware;
 mod format;
 mod owned;
-mod sampling;
+mod settings;
 
 pub use file::{Located, MAX_FILE_BYTES, NamedScene, load, parse};
 pub use format::{Format, FormatJob};
 pub use owned::OwnedScene;
-pub use sampling::Sampling;
+pub use settings::{
+    FirmwareSettings, FormatChoice, FrameSettings, MethodSettings, PresentationSettings, Sampling,
+    Setting, Spelled, Variants, table as settings_table,
+};
 
 /// Objects a scene built at run time may have (the harness's scenes, and the proof of a
 /// firmware's; a firmware's own capacities are exactly its scene's).

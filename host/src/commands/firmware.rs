@@ -10,10 +10,10 @@ use crate::output::{self, say};
 use crate::profile::{self, Profile};
 use crate::render::{Request, rgb565_image};
 use anyhow::{Context, Result, bail};
+use obscura::Methods;
 use obscura::methods::MethodName;
-use obscura::{Methods, Presentation};
-use obscura_scene::firmware::{Configuration, Image, SIDE};
-use obscura_scene::{Format, NamedScene};
+use obscura_scene::firmware::{Configuration, SIDE};
+use obscura_scene::{FirmwareSettings, Format, FormatChoice, Variants};
 use serde::Serialize;
 use std::io;
 use std::path::Path;
@@ -43,195 +43,87 @@ struct Report {
     corner_rows_bytes: u64,
 }
 
-/// The formats `args` ask for, `auto` resolved for the target ([`super::firmware_format`]),
-/// each once.
-fn formats(args: &FirmwareArgs, scenes: &[NamedScene], methods: Methods) -> Result<Vec<Format>> {
+/// The firmware `args` ask for, as its build is to take it — `auto` resolved for the target
+/// ([`super::firmware_format`]), each format once, scene files by their absolute paths (the
+/// build finds them from the workspace) — and what it draws, every frame proven as the build
+/// will prove it, so that what the build would refuse is refused before it.
+fn configure(args: &FirmwareArgs) -> Result<(FirmwareSettings, Configuration)> {
+    let mut settings = args.settings.clone();
+    let methods = settings.methods.methods();
+    let scenes = settings
+        .frames
+        .scene
+        .iter()
+        .map(|name| {
+            let mut named = obscura_scene::load(name)?;
+            settings.sampling.apply(&mut named.scene);
+            Ok(named)
+        })
+        .collect::<Result<Vec<_>>>()?;
     let mut formats = Vec::new();
-    for &choice in &args.format {
+    for &choice in &settings.frames.format {
         let machine = Machine::from(args.target);
-        let format = super::firmware_format(choice, scenes, methods, machine, args.target_psnr)?;
+        let format = super::firmware_format(choice, &scenes, methods, machine, args.target_psnr)?;
         if !formats.contains(&format) {
             formats.push(format);
         }
     }
-    Ok(formats)
+    settings.frames.scene = scenes
+        .iter()
+        .map(|named| match named.path() {
+            Some(path) => std::path::absolute(path)
+                .map(|path| path.display().to_string())
+                .with_context(|| format!("cannot find {}", path.display())),
+            None => Ok(named.name.clone()),
+        })
+        .collect::<Result<_>>()?;
+    settings.frames.format = formats.iter().copied().map(FormatChoice::Given).collect();
+    let configuration = Configuration {
+        scenes,
+        formats,
+        methods,
+        variants: settings.frames.variants == Variants::Each,
+        presentation: settings.presentation.presentation(),
+    };
+    configuration.frames()?;
+    Ok((settings, configuration))
 }
 
 /// How many differing pixels are listed when a frame does not match.
 const LISTED: usize = 10;
 
 pub fn run(args: &FirmwareArgs) -> Result<()> {
-    output::check_dir(&args.out_dir.join(args.target.name()))?;
+    let dir = args.out_dir.join(args.target.name());
+    output::check_dir(&dir)?;
     if let Some(path) = &args.json {
         output::check_file(path)?;
     }
-    let target = args.target;
-    let methods = args.methods.methods();
-    let presentation = Presentation {
-        order: args.order,
-        dither: args.dither,
-    };
-    let scenes = args
-        .scene
-        .iter()
-        .map(|name| {
-            let mut named = obscura_scene::load(name)?;
-            args.sampling.apply(&mut named.scene);
-            Ok(named)
-        })
-        .collect::<Result<Vec<_>>>()?;
-    let formats = formats(args, &scenes, methods)?;
-    let configuration = Configuration {
-        scenes,
-        formats,
-        methods,
-        variants: false,
-        presentation,
-    };
-    // What the firmware's build would refuse (by the same code), the host refuses here, before
-    // a build and a QEMU run.
-    configuration.frames()?;
-    let Configuration {
-        scenes, formats, ..
-    } = configuration;
-    firmware::check_prerequisites(target)?;
-    let image = Image {
-        scenes: scenes
-            .iter()
-            .map(|s| {
-                s.path()
-                    .map_or_else(|| s.name.clone(), |p| p.display().to_string())
-            })
-            .collect(),
-        sampling: args.sampling,
-        formats: &formats,
-        methods,
-        variants: false,
-        presentation,
-    };
-    let elf = firmware::build(target, &image)?;
+    let (settings, configuration) = configure(args)?;
+    firmware::check_prerequisites(args.target)?;
+    let elf = firmware::build(args.target, &settings)?;
     let size = firmware::image_size(&elf)?;
-    let dir = args.out_dir.join(target.name());
-    eprintln!("running {} under QEMU in {}", elf.display(), dir.display());
-    // QEMU runs in `dir`: the plugin names its file from there (a name only: QEMU's options
-    // split at commas, which a path may hold).
-    const COUNTS: &str = "profile-counts.txt";
-    let counts = dir.join(COUNTS);
-    let library = if args.profile {
-        Some(profile::plugin()?)
-    } else {
-        None
-    };
-    let argument = format!("out={COUNTS}");
-    let plugin = library.as_deref().map(|library| firmware::Plugin {
-        library,
-        argument: &argument,
-    });
-    let frames = firmware::run(
-        target,
-        &elf,
-        &dir,
-        Duration::from_secs(args.timeout),
-        plugin,
-    )?;
-
-    let corner_rows_bytes = if scenes.iter().any(|s| s.scene.adaptive_samples) {
-        (obscura::corner_rows(SIDE) * size_of::<obscura::Corner>()) as u64
-    } else {
-        0
-    };
-    let mut reports = Vec::new();
-    let mut mismatched = Vec::new();
-    for scene in &scenes {
-        for &format in &formats {
-            let frame = frames
-                .iter()
-                .find(|f| {
-                    f.scene == scene.name
-                        && f.format == format.name()
-                        && f.methods == methods
-                        && f.presentation == presentation
-                })
-                .with_context(|| {
-                    format!(
-                        "the firmware reported no frame of {} in {format}",
-                        scene.name
-                    )
-                })?;
-            let (device, host, differing) =
-                firmware::compare_frame(&scene.scene.desc(), format, frame, &dir)?;
-            let stem = dir.join(&frame.file);
-            crate::commands::save(
-                &rgb565_image(&device, frame.width),
-                &stem.with_extension("png"),
-            )?;
-            if !differing.is_empty() {
-                let diff = heatmap(
-                    &rgb565_image(&device, frame.width),
-                    &rgb565_image(&host, frame.width),
-                );
-                let path = stem.with_extension("diff.png");
-                crate::commands::save(&diff, &path)?;
-                list_differences(
-                    &scene.name,
-                    format,
-                    frame.width,
-                    &differing,
-                    &device,
-                    &host,
-                    &path,
-                )?;
-                if format.is_fixed_point() {
-                    mismatched.push(format!("{} in {format}", scene.name));
-                }
-            }
-            let pixels = u64::from(frame.width) * u64::from(frame.height);
-            let instructions = target.instructions(frame.ticks);
-            reports.push(Report {
-                target: target.name(),
-                scene: frame.scene.clone(),
-                format: frame.format.clone(),
-                methods: methods.to_string(),
-                order: presentation.order.name(),
-                dither: presentation.dither.name(),
-                width: frame.width,
-                height: frame.height,
-                identical: differing.is_empty(),
-                differing_pixels: differing.len(),
-                instructions_per_frame: instructions,
-                instructions_per_pixel: instructions / pixels.max(1),
-                stack_bytes: frame.stack_bytes,
-                flash_bytes: size.flash,
-                ram_bytes: size.ram,
-                storage_bytes: frame.storage_bytes,
-                fixed_storage_bytes: frame.fixed_storage_bytes,
-                corner_rows_bytes,
-            });
-        }
-    }
-    print_table(target, &reports)?;
-    if args.profile {
-        print_profile(target, &Profile::read(&elf, &counts)?, &reports, size.flash)?;
-        for scene in &scenes {
-            for &format in &formats {
-                print_operations(&scene.scene.desc(), &scene.name, format, methods, &reports)?;
-            }
-        }
-    }
-    let budget = target.budget();
-    let stack = reports.iter().map(|r| r.stack_bytes).max().unwrap_or(0);
-    let over = size.exceeds(stack, budget);
-    match &over {
-        None => say!(
-            "within the {} budget: {} of {} KiB flash, {} of {} KiB RAM with the stack",
-            target.name(),
+    let (frames, counts) = run_qemu(args, &elf, &dir)?;
+    let (reports, mismatched) = compare(args.target, &configuration, &frames, size, &dir)?;
+    print_table(args.target, &reports)?;
+    if let Some(counts) = counts {
+        print_profile(
+            args.target,
+            &Profile::read(&elf, &counts)?,
+            &reports,
             size.flash,
-            budget.flash / 1024,
-            size.ram + stack,
-            budget.ram / 1024
-        )?,
-        Some(why) => say!("over the {} budget: {why}", target.name())?,
+        )?;
+        for frame in configuration.frames()?.iter().filter(|f| f.proven.is_ok()) {
+            let desc = frame.scene.scene.desc();
+            print_operations(
+                &desc,
+                &frame.scene.name,
+                frame.format,
+                frame.methods,
+                &reports,
+            )?;
+        }
     }
+    let over = print_budget(args.target, &reports, size)?;
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&reports)?;
         std::fs::write(path, text + "\n")
@@ -258,6 +150,151 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// Runs the firmware `elf` under QEMU in `dir` (with the profiling plugin, for `--profile`):
+/// the frames it reported, and the file of the plugin's counts.
+fn run_qemu(
+    args: &FirmwareArgs,
+    elf: &Path,
+    dir: &Path,
+) -> Result<(Vec<firmware::Frame>, Option<std::path::PathBuf>)> {
+    eprintln!("running {} under QEMU in {}", elf.display(), dir.display());
+    // QEMU runs in `dir`: the plugin names its file from there (a name only: QEMU's options
+    // split at commas, which a path may hold).
+    const COUNTS: &str = "profile-counts.txt";
+    let library = if args.profile {
+        Some(profile::plugin()?)
+    } else {
+        None
+    };
+    let argument = format!("out={COUNTS}");
+    let plugin = library.as_deref().map(|library| firmware::Plugin {
+        library,
+        argument: &argument,
+    });
+    let frames = firmware::run(
+        args.target,
+        elf,
+        dir,
+        Duration::from_secs(args.timeout),
+        plugin,
+    )?;
+    Ok((frames, args.profile.then(|| dir.join(COUNTS))))
+}
+
+/// Each frame the firmware drew against the host's, its figures, and the fixed-point frames
+/// that differ (its PNG and, where it differs, its difference image written to `dir`).
+fn compare(
+    target: Target,
+    configuration: &Configuration,
+    frames: &[firmware::Frame],
+    size: firmware::ImageSize,
+    dir: &Path,
+) -> Result<(Vec<Report>, Vec<String>)> {
+    let presentation = configuration.presentation;
+    let corner_rows_bytes = if configuration
+        .scenes
+        .iter()
+        .any(|s| s.scene.adaptive_samples)
+    {
+        (obscura::corner_rows(SIDE) * size_of::<obscura::Corner>()) as u64
+    } else {
+        0
+    };
+    let mut reports = Vec::new();
+    let mut mismatched = Vec::new();
+    for planned in configuration.frames()?.iter().filter(|f| f.proven.is_ok()) {
+        let (scene, format, methods) = (planned.scene, planned.format, planned.methods);
+        let frame = frames
+            .iter()
+            .find(|f| {
+                f.scene == scene.name
+                    && f.format == format.name()
+                    && f.methods == methods
+                    && f.presentation == presentation
+            })
+            .with_context(|| {
+                format!(
+                    "the firmware reported no frame of {} in {format} by {methods}",
+                    scene.name
+                )
+            })?;
+        let (device, host, differing) =
+            firmware::compare_frame(&scene.scene.desc(), format, frame, dir)?;
+        let stem = dir.join(&frame.file);
+        crate::commands::save(
+            &rgb565_image(&device, frame.width),
+            &stem.with_extension("png"),
+        )?;
+        if !differing.is_empty() {
+            let diff = heatmap(
+                &rgb565_image(&device, frame.width),
+                &rgb565_image(&host, frame.width),
+            );
+            let path = stem.with_extension("diff.png");
+            crate::commands::save(&diff, &path)?;
+            list_differences(
+                &scene.name,
+                format,
+                frame.width,
+                &differing,
+                &device,
+                &host,
+                &path,
+            )?;
+            if format.is_fixed_point() {
+                mismatched.push(format!("{} in {format} by {methods}", scene.name));
+            }
+        }
+        let pixels = u64::from(frame.width) * u64::from(frame.height);
+        let instructions = target.instructions(frame.ticks);
+        reports.push(Report {
+            target: target.name(),
+            scene: frame.scene.clone(),
+            format: frame.format.clone(),
+            methods: methods.to_string(),
+            order: presentation.order.name(),
+            dither: presentation.dither.name(),
+            width: frame.width,
+            height: frame.height,
+            identical: differing.is_empty(),
+            differing_pixels: differing.len(),
+            instructions_per_frame: instructions,
+            instructions_per_pixel: instructions / pixels.max(1),
+            stack_bytes: frame.stack_bytes,
+            flash_bytes: size.flash,
+            ram_bytes: size.ram,
+            storage_bytes: frame.storage_bytes,
+            fixed_storage_bytes: frame.fixed_storage_bytes,
+            corner_rows_bytes,
+        });
+    }
+    Ok((reports, mismatched))
+}
+
+/// Says whether the image fits the target's budget with the most stack a frame took; what is
+/// over it, if anything.
+fn print_budget(
+    target: Target,
+    reports: &[Report],
+    size: firmware::ImageSize,
+) -> Result<Option<String>> {
+    let budget = target.budget();
+    let stack = reports.iter().map(|r| r.stack_bytes).max().unwrap_or(0);
+    let over = size.exceeds(stack, budget);
+    match &over {
+        None => say!(
+            "within the {} budget: {} of {} KiB flash, {} of {} KiB RAM with the stack",
+            target.name(),
+            size.flash,
+            budget.flash / 1024,
+            size.ram + stack,
+            budget.ram / 1024
+        )?,
+        Some(why) => say!("over the {} budget: {why}", target.name())?,
+    }
+    Ok(over)
 }
 
 /// How many functions the profile lists.
@@ -405,12 +442,19 @@ fn print_table(target: Target, reports: &[Report]) -> io::Result<()> {
         "| target | scene | format | identical to host | differing pixels | instructions/frame | instructions/pixel | stack (bytes) | flash (bytes) | static RAM (bytes) | RAM + stack (bytes) | scene + ray stack (bytes): sized / fixed |"
     )?;
     say!("|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")?;
+    let base = reports.first().map(|r| r.methods.as_str());
     for r in reports {
+        // A variant's methods beside its scene (`--variants each`); the first row's below.
+        let scene = if Some(r.methods.as_str()) == base {
+            r.scene.clone()
+        } else {
+            format!("{} by {}", r.scene, r.methods)
+        };
         say!(
             "| {} ({}) | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} / {} |",
             r.target,
             target.triple(),
-            r.scene,
+            scene,
             r.format,
             if r.identical { "yes" } else { "no" },
             r.differing_pixels,

@@ -11,13 +11,13 @@ mod render;
 mod stress;
 
 use crate::analysis::{self, Analysis, Pick, pick};
-use crate::cli::{AutoArgs, Command, FormatChoice, SceneArgs};
+use crate::cli::{AutoArgs, Command, SceneArgs};
 use crate::cost::Machine;
 use crate::output::say;
 use anyhow::{Result, bail};
 use obscura::Methods;
 use obscura::scenes;
-use obscura_scene::{Format, NamedScene, OwnedScene, Sampling};
+use obscura_scene::{Format, FormatChoice, NamedScene, OwnedScene, Sampling};
 
 /// Runs a subcommand.
 pub fn run(command: Command) -> Result<()> {
@@ -29,6 +29,10 @@ pub fn run(command: Command) -> Result<()> {
             say!(
                 "(every command that takes a scene takes a TOML scene file as well; host/scenes/ has examples)"
             )?;
+            Ok(())
+        }
+        Command::Settings => {
+            say!("{}", obscura_scene::settings_table().trim_end())?;
             Ok(())
         }
         Command::Analyze(args) => analyze::run(&args),

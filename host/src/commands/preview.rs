@@ -9,7 +9,6 @@ use crate::cost::{self, Machine};
 use crate::output::say;
 use crate::render::{Request, prepare, rgb565_image};
 use anyhow::Result;
-use obscura::Presentation;
 use obscura::methods::MethodName;
 use obscura_scene::NamedScene;
 use obscura_scene::firmware::SIDE;
@@ -38,10 +37,7 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
         methods,
     };
     let prepared = prepare(format, &request)?;
-    let presentation = Presentation {
-        order: args.order,
-        dither: args.dither,
-    };
+    let presentation = args.presentation.presentation();
     // What the board takes for a frame, by the chart, if it measured the like.
     let frame_time = cost::cost(machine, format, &methods, desc.has_triangles()).map(|per_pixel| {
         Duration::from_secs_f64(per_pixel * f64::from(SIDE * SIDE) / args.target.core_hz() as f64)

@@ -491,7 +491,7 @@ fn write_reproducer(dir: &Path, scene: &OwnedScene, finding: &Finding) -> Result
         finding.format,
         finding.width,
         finding.height,
-        crate::cli::method_flags(&finding.methods),
+        obscura_scene::MethodSettings::of(&finding.methods).flags(),
     );
     std::fs::write(&path, header + &body)
         .with_context(|| format!("cannot write {}", path.display()))?;

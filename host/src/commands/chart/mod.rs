@@ -17,10 +17,10 @@ use crate::plot::{self, SpeedPoint};
 use crate::render::{AnyFormat, Request, all_cores, prepare, prepare_reference};
 use crate::timing::frame_ms;
 use anyhow::{Context, Result, bail};
+use obscura::Methods;
 use obscura::scenes::{self, BuiltIn};
-use obscura::{Methods, Presentation};
-use obscura_scene::firmware::Image;
-use obscura_scene::{Format, Sampling};
+use obscura_scene::Format;
+use obscura_scene::{FirmwareSettings, FormatChoice, FrameSettings, Variants};
 use std::collections::HashMap;
 use std::io;
 use std::path::Path;
@@ -70,15 +70,15 @@ pub fn run(args: &ChartArgs) -> Result<()> {
     for &target in targets {
         firmware::check_prerequisites(target)?;
         for (i, formats) in target.chart_images().iter().enumerate() {
-            let image = Image {
-                scenes: scenes::one_ray().map(|s| s.name.to_owned()).collect(),
-                sampling: Sampling::default(),
-                formats,
-                methods: Methods::LECTURE,
-                variants: true,
-                presentation: Presentation::default(),
+            let settings = FirmwareSettings {
+                frames: FrameSettings {
+                    scene: scenes::one_ray().map(|s| s.name.to_owned()).collect(),
+                    format: formats.iter().copied().map(FormatChoice::Given).collect(),
+                    variants: Variants::Each,
+                },
+                ..FirmwareSettings::default()
             };
-            let elf = firmware::build(target, &image)?;
+            let elf = firmware::build(target, &settings)?;
             let dir = args
                 .out_dir
                 .join("firmware")

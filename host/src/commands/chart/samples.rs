@@ -13,8 +13,8 @@ use crate::plot::{self, StabilitySeries};
 use crate::render::{AnyFormat, Request, all_cores, prepare, prepare_reference};
 use crate::timing::frame_ms;
 use anyhow::{Context, Result, bail};
-use obscura::{Methods, Presentation, scenes};
-use obscura_scene::firmware::Image;
+use obscura::{Methods, scenes};
+use obscura_scene::{FirmwareSettings, FormatChoice, FrameSettings, Variants};
 use obscura_scene::{Format, OwnedScene, Sampling};
 use std::path::Path;
 use std::time::Duration;
@@ -174,19 +174,20 @@ fn firmware_costs(args: &ChartArgs) -> Result<Vec<Cost>> {
         firmware::check_prerequisites(target)?;
         for sampling in SAMPLINGS {
             let (samples, adaptive) = sampling;
-            let image = Image {
-                scenes: vec![SCENE.to_owned()],
+            let settings = FirmwareSettings {
+                frames: FrameSettings {
+                    scene: vec![SCENE.to_owned()],
+                    format: formats.iter().copied().map(FormatChoice::Given).collect(),
+                    variants: Variants::None,
+                },
                 sampling: Sampling {
                     samples: Some(samples),
                     adaptive_samples: Some(adaptive),
                     ..Sampling::default()
                 },
-                formats,
-                methods: Methods::LECTURE,
-                variants: false,
-                presentation: Presentation::default(),
+                ..FirmwareSettings::default()
             };
-            let elf = firmware::build(target, &image)?;
+            let elf = firmware::build(target, &settings)?;
             let dir = args.out_dir.join("firmware").join(format!(
                 "{}-samples-{samples}{}",
                 target.name(),
