@@ -3,12 +3,11 @@
 //! thin lens about the eye that starts each of a pixel's rays from another point of it, aimed
 //! at the point the pinhole's ray meets on the focal plane (depth of field).
 
-use crate::cull::ImagePlane;
 use crate::desc::CameraDesc;
 use crate::methods::{Methods, RayMethod, RootMethod};
 use crate::ray::Ray;
 use crate::scalar::{Bits, Scalar};
-use crate::scene::range::FAST_ROOT_ERROR;
+use crate::scalar::{FAST_ROOT_ERROR, REACH_ERRORS};
 use crate::uses::Uses;
 use crate::vec3::Vec3;
 use crate::words::{self, WordsError};
@@ -75,6 +74,84 @@ crate::words::words_of_struct!(Lens<S> {
     tilt_across,
     tilt_up
 });
+
+/// A coordinate on the image plane in units of 2⁻³² of its half height h = tan(vfov / 2): a
+/// coordinate c as c / h · 2³², clamped to ±[`COORDINATE_LIMIT`]. In these units pixel x of an
+/// image W × H pixels spans a from (2x − W)/H to (2x + 2 − W)/H, and row y spans b from
+/// (H − 2y − 2)/H to (H − 2y)/H (the image is 2h high and 2h·W/H wide).
+pub type Coordinate = i64;
+
+/// 2³²: a [`Coordinate`]'s units per half height.
+pub(crate) const UNITS: f64 = 4_294_967_296.0;
+
+/// The largest [`Coordinate`], 2¹⁶ half heights: beyond the widest image (8 192 half heights
+/// across), and small enough that a coordinate times an image side (up to 2¹³) and a few of
+/// their sums fit an `i64`.
+pub const COORDINATE_LIMIT: Coordinate = 1 << 48;
+
+/// `x` half heights as a [`Coordinate`], rounded by `round` (`libm::floor`, `libm::ceil` or
+/// `libm::round`) and clamped to ±[`COORDINATE_LIMIT`].
+pub(crate) fn coordinate(x: f64, round: fn(f64) -> f64) -> Coordinate {
+    let limit = COORDINATE_LIMIT as f64;
+    #[allow(
+        clippy::cast_possible_truncation,
+        reason = "clamped to ±2⁴⁸, an integer"
+    )]
+    let units = round(x * UNITS).clamp(-limit, limit) as Coordinate;
+    units
+}
+
+/// The range `[low, high]` of half heights as [`Coordinate`]s, rounded outwards and one unit
+/// further, for the rounding of the quotient that gave them.
+pub(crate) fn outwards([low, high]: [f64; 2]) -> [Coordinate; 2] {
+    [
+        coordinate(low, libm::floor).saturating_sub(1),
+        coordinate(high, libm::ceil).saturating_add(1),
+    ]
+}
+
+/// A camera's image plane, for turning bounds into the pixel ranges of rows ([`crate::cull`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ImagePlane {
+    /// The image's width in pixels, W.
+    pub(crate) width: u32,
+    /// The image's height in pixels, H.
+    pub(crate) height: u32,
+    /// How far a primary ray may be from where its pixel says, on the image plane, in
+    /// [`Coordinate`] units, rounded up.
+    pub(crate) slack: Coordinate,
+}
+
+crate::words::words_of_struct!(ImagePlane {
+    width,
+    height,
+    slack
+});
+
+impl ImagePlane {
+    /// The image plane of half height `half_height` (a unit from the eye) of an image of
+    /// `width × height` pixels (each in 1..=[`MAX_IMAGE_SIDE`]), whose rays'
+    /// directions are off by at most `aim_error(corner)`, an angle, with `corner` the distance
+    /// of the plane's corner.
+    #[must_use]
+    pub(crate) fn new(
+        half_height: f64,
+        width: u32,
+        height: u32,
+        aim_error: impl FnOnce(f64) -> f64,
+    ) -> Self {
+        // A direction off by an angle θ meets the plane up to θ·|s|² away, |s| at most the
+        // image's corner.
+        let half_width = half_height * f64::from(width) / f64::from(height);
+        let corner_squared = 1.0 + half_width * half_width + half_height * half_height;
+        let slack = REACH_ERRORS * aim_error(libm::sqrt(corner_squared)) * corner_squared;
+        Self {
+            width,
+            height,
+            slack: coordinate(slack / half_height, libm::ceil).saturating_add(1),
+        }
+    }
+}
 
 /// The camera's frame in double precision: where it looks and how wide, per unit distance.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -17,54 +17,12 @@
 //! arithmetic alone, exact and the same on every machine, so that the host and a firmware skip
 //! the same tests and a firmware needs no floating point for them.
 
-use crate::camera::{Camera, Frame, MAX_IMAGE_SIDE};
+use crate::camera::{
+    COORDINATE_LIMIT, Coordinate, Frame, ImagePlane, MAX_IMAGE_SIDE, coordinate, outwards,
+};
 use crate::desc::ShapeDesc;
-use crate::ray::{Ray, Span};
-use crate::scalar::Scalar;
-use crate::scene::{Object, Scene};
-use crate::shape::PerRay;
-use crate::uses::Uses;
+use crate::scalar::REACH_ERRORS;
 use crate::vec3::Vec3;
-
-/// A ball is widened by this many of the errors with which a ray finds its object, and a ray's
-/// direction is taken to be off by this many of its errors: the error model's errors are
-/// estimates, and a test skipped wrongly would change the picture.
-pub const REACH_ERRORS: f64 = 4.0;
-
-/// A coordinate on the image plane in units of 2⁻³² of its half height h = tan(vfov / 2): a
-/// coordinate c as c / h · 2³², clamped to ±[`COORDINATE_LIMIT`]. In these units pixel x of an
-/// image W × H pixels spans a from (2x − W)/H to (2x + 2 − W)/H, and row y spans b from
-/// (H − 2y − 2)/H to (H − 2y)/H (the image is 2h high and 2h·W/H wide).
-pub type Coordinate = i64;
-
-/// 2³²: a [`Coordinate`]'s units per half height.
-const UNITS: f64 = 4_294_967_296.0;
-
-/// The largest [`Coordinate`], 2¹⁶ half heights: beyond the widest image (8 192 half heights
-/// across), and small enough that a coordinate times an image side (up to 2¹³) and a few of
-/// their sums fit an `i64`.
-pub const COORDINATE_LIMIT: Coordinate = 1 << 48;
-
-/// `x` half heights as a [`Coordinate`], rounded by `round` (`libm::floor`, `libm::ceil` or
-/// `libm::round`) and clamped to ±[`COORDINATE_LIMIT`].
-fn coordinate(x: f64, round: fn(f64) -> f64) -> Coordinate {
-    let limit = COORDINATE_LIMIT as f64;
-    #[allow(
-        clippy::cast_possible_truncation,
-        reason = "clamped to ±2⁴⁸, an integer"
-    )]
-    let units = round(x * UNITS).clamp(-limit, limit) as Coordinate;
-    units
-}
-
-/// The range `[low, high]` of half heights as [`Coordinate`]s, rounded outwards and one unit
-/// further, for the rounding of the quotient that gave them.
-fn outwards([low, high]: [f64; 2]) -> [Coordinate; 2] {
-    [
-        coordinate(low, libm::floor).saturating_sub(1),
-        coordinate(high, libm::ceil).saturating_add(1),
-    ]
-}
 
 /// Where on the camera's image plane (see [`crate::cull`]) primary rays can meet an object.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -225,28 +183,25 @@ pub struct RowRanges {
 }
 
 impl RowRanges {
-    /// The ranges of row `y` of the image `camera` takes of `objects`.
+    /// The ranges of row `y` of the image on `plane` (`None`: every pixel may meet every
+    /// object, as through a lens) for objects of `bounds`.
     #[must_use]
-    pub fn new<S: Scalar>(objects: &[Object<S>], camera: &Camera<S>, y: u32) -> Self {
+    pub fn new<'a>(
+        bounds: impl IntoIterator<Item = &'a Bound>,
+        plane: Option<&ImagePlane>,
+        y: u32,
+    ) -> Self {
         let mut ranges = [NONE; 32];
-        for (slot, object) in ranges.iter_mut().zip(objects) {
-            *slot = camera
-                .image_plane()
-                .map_or(ALL, |plane| plane.row_range(&object.bound, y));
-        }
-        // The objects from 31 on share the last range: the span of theirs.
-        for object in objects.iter().skip(32) {
-            let range = camera
-                .image_plane()
-                .map_or(ALL, |plane| plane.row_range(&object.bound, y));
-            if let Some(last) = ranges.last_mut() {
-                *last = hull(*last, range);
+        let mut len = 0;
+        for (i, bound) in bounds.into_iter().enumerate() {
+            let range = plane.map_or(ALL, |plane| plane.row_range(bound, y));
+            // The objects from 31 on share the last range: the span of theirs.
+            if let Some(slot) = ranges.get_mut(i.min(31)) {
+                *slot = if i < 32 { range } else { hull(*slot, range) };
             }
+            len = (i + 1).min(32);
         }
-        Self {
-            ranges,
-            len: objects.len().min(32),
-        }
+        Self { ranges, len }
     }
 
     /// The candidates of the row's pixels from left to right: see [`Candidates`].
@@ -307,24 +262,6 @@ impl Candidates<'_> {
     }
 }
 
-/// A camera's image plane, for turning bounds into the pixel ranges of rows.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ImagePlane {
-    /// The image's width in pixels, W.
-    width: u32,
-    /// The image's height in pixels, H.
-    height: u32,
-    /// How far a primary ray may be from where its pixel says, on the image plane, in
-    /// [`Coordinate`] units, rounded up.
-    slack: Coordinate,
-}
-
-crate::words::words_of_struct!(ImagePlane {
-    width,
-    height,
-    slack
-});
-
 /// ⌊n / d⌋ for d > 0.
 const fn floor_div(n: i64, d: i64) -> i64 {
     n.div_euclid(d)
@@ -336,33 +273,10 @@ const fn ceil_div(n: i64, d: i64) -> i64 {
 }
 
 impl ImagePlane {
-    /// The image plane of half height `half_height` (a unit from the eye) of an image of
-    /// `width × height` pixels (each in 1..=[`MAX_IMAGE_SIDE`]), whose rays'
-    /// directions are off by at most `aim_error(corner)`, an angle, with `corner` the distance
-    /// of the plane's corner.
-    #[must_use]
-    pub(crate) fn new(
-        half_height: f64,
-        width: u32,
-        height: u32,
-        aim_error: impl FnOnce(f64) -> f64,
-    ) -> Self {
-        // A direction off by an angle θ meets the plane up to θ·|s|² away, |s| at most the
-        // image's corner.
-        let half_width = half_height * f64::from(width) / f64::from(height);
-        let corner_squared = 1.0 + half_width * half_width + half_height * half_height;
-        let slack = REACH_ERRORS * aim_error(libm::sqrt(corner_squared)) * corner_squared;
-        Self {
-            width,
-            height,
-            slack: coordinate(slack / half_height, libm::ceil).saturating_add(1),
-        }
-    }
-
     /// The pixels of row `y` whose rays may meet within `bound`, by integers alone: every
     /// term below is at most a side (2¹³) times a few [`COORDINATE_LIMIT`]s (2⁴⁸), well within an
     /// `i64`.
-    fn row_range(&self, bound: &Bound, y: u32) -> (u32, u32) {
+    pub(crate) fn row_range(&self, bound: &Bound, y: u32) -> (u32, u32) {
         let (w, h, slack) = (i64::from(self.width), i64::from(self.height), self.slack);
         // H·b at the row's top and bottom edges, in units.
         let unit = 1_i64 << 32;
@@ -403,86 +317,11 @@ impl ImagePlane {
     }
 }
 
-/// The first pixel of row `y` one of whose rays meets an object its row's ranges leave out,
-/// with that object's index; `None` when the ranges keep every hit. The rays tried are the
-/// pixel's primary ray as the renderer makes it, and the rays through its four corners, the
-/// farthest a pixel's samples reach. What the tests and the fuzzer hold culling to.
-#[must_use]
-pub fn first_skipped_hit<
-    S: Scalar,
-    const OBJECTS: usize,
-    const LIGHTS: usize,
-    const RAYS: usize,
->(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
-    camera: &Camera<S>,
-    y: u32,
-) -> Option<(u32, usize)> {
-    let row = camera.row(y)?;
-    let ranges = RowRanges::new(&scene.objects, camera, y);
-    let mut candidates = ranges.candidates();
-    let half = S::ratio(1, 2);
-    let corners = [[-half, -half], [half, -half], [-half, half], [half, half]];
-    let settings = &scene.settings;
-    let span = Span {
-        min: settings.tolerance_base,
-        max: settings.ray_length,
-    };
-    let meets = |object: &Object<S>, ray: &Ray<S>| {
-        let mut per_ray = PerRay::new();
-        object
-            .shape
-            .intersect(ray, span, &settings.methods, Uses::EVERYTHING, &mut per_ray)
-            .is_some()
-    };
-    for (x, centre) in (0..).zip(row.rays()) {
-        let candidates = candidates.at(x);
-        let rays = corners
-            .iter()
-            .filter_map(|&offset| row.ray_offset(x, offset))
-            .chain([centre]);
-        for ray in rays {
-            for (i, object) in scene.objects.iter().enumerate() {
-                let candidate = candidates & (1 << i.min(31)) != 0;
-                if !candidate && meets(object, &ray) {
-                    return Some((x, i));
-                }
-            }
-        }
-    }
-    None
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::camera::UNITS;
     use crate::desc::CameraDesc;
-    use crate::test_util::{FormatCheck, each_built_in_scene, for_every_format};
-
-    /// Every built-in scene that the format holds, by the lecture's methods and each variant,
-    /// at a small size: no ray of any pixel meets an object its row leaves out.
-    struct CullingKeepsEveryHit;
-
-    impl FormatCheck for CullingKeepsEveryHit {
-        fn check<S: Scalar>(&self) {
-            const SIDE: u32 = 40;
-            each_built_in_scene::<S>(SIDE, |name, methods, scene, camera| {
-                for y in 0..SIDE {
-                    assert_eq!(
-                        first_skipped_hit(scene, camera, y),
-                        None,
-                        "{name} in {} by {methods:?}, row {y}",
-                        S::NAME
-                    );
-                }
-            });
-        }
-    }
-
-    #[test]
-    fn culling_keeps_every_hit_of_the_built_in_scenes_in_every_format() {
-        for_every_format(&CullingKeepsEveryHit);
-    }
 
     /// A camera at the origin looking down +z, x to the left (right = forward × up = −x).
     fn frame() -> Frame {

@@ -48,6 +48,7 @@ pub mod scene;
 pub mod scenes;
 pub mod shade;
 pub mod shape;
+pub mod skips;
 pub mod uses;
 pub mod vec3;
 pub mod words;

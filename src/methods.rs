@@ -2,6 +2,7 @@
 //! chosen per render: [`Methods`] holds one choice per question.
 
 use crate::scalar::Scalar;
+use crate::words::{Reader, Words, Writer};
 use core::fmt;
 
 /// How a ray meets a sphere.
@@ -90,7 +91,29 @@ crate::words::words_of_struct!(Methods {
     rays,
     bias
 });
-crate::words::words_of_choice!(
+/// Words ([`crate::words`]) for choices: each as its place in [`MethodName::ALL`].
+macro_rules! words_of_choice {
+    ($($ty:ty),*) => {$(
+        impl Words for $ty {
+            fn put(&self, out: &mut Writer<'_>) {
+                let place = Self::ALL.iter().position(|(m, _)| m == self);
+                out.word(place.and_then(|p| u32::try_from(p).ok()).unwrap_or(u32::MAX));
+            }
+
+            fn take(input: &mut Reader<'_>) -> Self {
+                let place = usize::try_from(input.word()).unwrap_or(usize::MAX);
+                Self::ALL.get(place).map_or_else(
+                    || {
+                        input.refuse();
+                        Self::default()
+                    },
+                    |&(m, _)| m,
+                )
+            }
+        }
+    )*};
+}
+words_of_choice!(
     SphereMethod,
     TriangleMethod,
     RootMethod,

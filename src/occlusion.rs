@@ -16,14 +16,9 @@
 //! be from the light (its direction's error over the longest shadow ray); its angle by
 //! [`REACH_ERRORS`] times that direction's error; its cosine by the dot product's rounding.
 
-use crate::camera::Camera;
-use crate::cull::REACH_ERRORS;
-use crate::pattern::SampleId;
+use crate::scalar::REACH_ERRORS;
 use crate::scalar::Scalar;
-use crate::scene::Scene;
-use crate::shade::Task;
 use crate::vec3::Vec3;
-use heapless::Vec;
 
 /// The directions from a light towards the points an object may shadow.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -65,7 +60,7 @@ impl<S: Scalar> Cone<S> {
         // coordinate.
         let aim = 3.0_f64.sqrt() * (S::UNIT_ERROR + 2.0 * S::resolution(1.0))
             + if S::FAST_ROOTS {
-                2.0 * crate::scene::range::FAST_ROOT_ERROR
+                2.0 * crate::scalar::FAST_ROOT_ERROR
             } else {
                 0.0
             };
@@ -107,72 +102,9 @@ impl<S: Scalar> Cone<S> {
     }
 }
 
-/// The first pixel whose centre's ray tree, traced with the shadow cones, differs from the one
-/// traced testing every object, as (x, y, object): the object whose shadow differs (the lowest
-/// in [`crate::Sample::met`] that does), or the one the primary ray meets. `None` when none differs.
-/// What the tests and the fuzzer hold the cones to.
-#[must_use]
-pub fn first_skipped_shadow<
-    S: Scalar,
-    const OBJECTS: usize,
-    const LIGHTS: usize,
-    const RAYS: usize,
->(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
-    camera: &Camera<S>,
-) -> Option<(u32, u32, usize)> {
-    let mut stack: Vec<Task<S>, RAYS> = Vec::new();
-    for y in 0..camera.height() {
-        let row = camera.row(y)?;
-        for (x, ray) in (0..).zip(row.rays()) {
-            let id = SampleId { x, y, sample: 0 };
-            let coned = scene.trace(ray, id);
-            let open =
-                scene
-                    .tracer(id)
-                    .without_cones()
-                    .trace_ray(ray, id, u32::MAX, stack.as_mut_view());
-            if coned != open {
-                let differing = coned.met ^ open.met;
-                let object = if differing == 0 {
-                    open.object.unwrap_or(0)
-                } else {
-                    differing.trailing_zeros() as usize
-                };
-                return Some((x, y, object));
-            }
-        }
-    }
-    None
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_util::{FormatCheck, each_built_in_scene, for_every_format};
-
-    /// Every built-in scene that the format holds, by the lecture's methods and each variant,
-    /// at a small size: no pixel's ray tree changes when its shadow rays skip what the cones
-    /// rule out.
-    struct ConesKeepEveryShadow;
-
-    impl FormatCheck for ConesKeepEveryShadow {
-        fn check<S: Scalar>(&self) {
-            each_built_in_scene::<S>(40, |name, methods, scene, camera| {
-                assert_eq!(
-                    first_skipped_shadow(scene, camera),
-                    None,
-                    "{name} in {} by {methods:?}",
-                    S::NAME
-                );
-            });
-        }
-    }
-
-    #[test]
-    fn cones_keep_every_shadow_of_the_built_in_scenes_in_every_format() {
-        for_every_format(&ConesKeepEveryShadow);
-    }
 
     #[test]
     fn a_ball_off_the_line_to_the_light_is_outside_its_cone() {

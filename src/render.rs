@@ -200,7 +200,8 @@ fn trace_into<S, C, const USES: u32>(
     let samples = tracer.samples();
     let n = u32::from(samples);
     let sampled = samples > 1 || row.has_lens();
-    let ranges = RowRanges::new(tracer.objects(), row.camera(), y);
+    let bounds = tracer.objects().iter().map(|object| &object.bound);
+    let ranges = RowRanges::new(bounds, row.camera().image_plane(), y);
     let mut candidates = ranges.candidates();
     let mut centres = row.rays();
     for (x, pixel) in (0..).zip(line.iter_mut()) {

@@ -137,7 +137,7 @@ impl<S: Scalar, const USES: u32> Tracer<'_, S, USES> {
     }
 
     /// This tracer with shadow rays that test every object, whatever their cones: what the
-    /// cones are checked against ([`crate::occlusion::first_skipped_shadow`]).
+    /// cones are checked against ([`crate::skips::first_skipped_shadow`]).
     pub(crate) fn without_cones(self) -> Self {
         Self { cones: &[], ..self }
     }

@@ -11,7 +11,6 @@
 //! too only a scene the range proof holds reaches the tracer: a [`crate::Scene`] comes only from
 //! a description the build has proven.
 
-use crate::methods::MethodName;
 use crate::scalar::Bits;
 use core::fmt;
 
@@ -262,28 +261,6 @@ impl<T: Words, const N: usize> Words for [T; N] {
     }
 }
 
-/// A choice ([`MethodName`]) as its place in the list of choices.
-pub(crate) fn put_choice<M: MethodName + PartialEq>(choice: M, out: &mut Writer<'_>) {
-    let place = M::ALL.iter().position(|(m, _)| *m == choice);
-    out.word(
-        place
-            .and_then(|p| u32::try_from(p).ok())
-            .unwrap_or(u32::MAX),
-    );
-}
-
-/// The choice at the place the next word gives.
-pub(crate) fn take_choice<M: MethodName + Default>(input: &mut Reader<'_>) -> M {
-    let place = usize::try_from(input.word()).unwrap_or(usize::MAX);
-    M::ALL.get(place).map_or_else(
-        || {
-            input.refuse();
-            M::default()
-        },
-        |&(m, _)| m,
-    )
-}
-
 /// Words for a struct, field by field: `words_of_struct!(Sphere<S> { center, radius })`. Every
 /// field must be listed (reading builds the struct from them).
 macro_rules! words_of_struct {
@@ -355,22 +332,6 @@ macro_rules! words_of_enum {
     };
 }
 pub(crate) use words_of_enum;
-
-/// Words for choices ([`MethodName`]): `words_of_choice!(SphereMethod, RayMethod)`.
-macro_rules! words_of_choice {
-    ($($ty:ty),*) => {$(
-        impl $crate::words::Words for $ty {
-            fn put(&self, out: &mut $crate::words::Writer<'_>) {
-                $crate::words::put_choice(*self, out);
-            }
-
-            fn take(input: &mut $crate::words::Reader<'_>) -> Self {
-                $crate::words::take_choice(input)
-            }
-        }
-    )*};
-}
-pub(crate) use words_of_choice;
 
 #[cfg(test)]
 mod tests {

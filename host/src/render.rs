@@ -9,9 +9,8 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use image::RgbImage;
 use indicatif::{ProgressBar, ProgressStyle};
-use obscura::cull::first_skipped_hit;
-use obscura::occlusion::first_skipped_shadow;
 use obscura::pattern::{Pattern, SampleId};
+use obscura::skips::{first_skipped_hit, first_skipped_shadow};
 use obscura::{
     Camera, Corner, Methods, Presentation, Ray, RootMethod, Scalar, Scene, SceneDesc, SceneError,
     corner_rows, render_frame, render_rows,
@@ -264,8 +263,8 @@ impl<S: Scalar> Prepared<S> {
     }
 
     /// The first pixel whose rays meet an object that culling leaves out of its row
-    /// ([`obscura::cull::first_skipped_hit`]), or whose ray tree changes when its shadow rays
-    /// skip what the shadow cones rule out ([`obscura::occlusion::first_skipped_shadow`]), as
+    /// ([`obscura::skips::first_skipped_hit`]), or whose ray tree changes when its shadow rays
+    /// skip what the shadow cones rule out ([`obscura::skips::first_skipped_shadow`]), as
     /// (x, y, object), or `None`.
     ///
     /// # Errors

@@ -26,6 +26,16 @@ pub use approx::F32Approx;
 pub use bits::Bits;
 pub use fixed_point::{Fx, I16F16, I20F12, I32F32, Operation, Overflow, Proven, WideBits};
 
+/// The relative error of the 32-bit fixed formats' fast roots and quotients (14 bits, and a
+/// bit to spare).
+pub const FAST_ROOT_ERROR: f64 = 1.0 / 8192.0;
+
+/// A ball is widened by this many of the errors with which a ray finds its object, and a ray's
+/// direction is taken to be off by this many of its errors, wherever a test is skipped because
+/// a ray cannot meet its object ([`crate::cull`], [`crate::occlusion`]): the error model's
+/// errors are estimates, and a test skipped wrongly would change the picture.
+pub const REACH_ERRORS: f64 = 4.0;
+
 use core::cmp::Ordering;
 use core::fmt::Debug;
 use core::ops::{Add, Div, Mul, Neg, Sub};
@@ -98,7 +108,7 @@ pub trait Scalar:
     /// How far each coordinate of a unit vector from [`Scalar::normalize3`] may be off, with
     /// exact roots: the resolution at 1 where the format's roots are correctly rounded, more
     /// where its roots keep fewer bits than the format has. The error model's unit for every
-    /// direction (the fast roots add [`crate::scene::range::FAST_ROOT_ERROR`]).
+    /// direction (the fast roots add [`crate::scalar::FAST_ROOT_ERROR`]).
     const UNIT_ERROR: f64;
 
     /// The square root; zero for zero and for negative inputs.

@@ -9,12 +9,13 @@ pub use error::{Item, Remedy, SceneError};
 
 use crate::camera::{Camera, Frame, MAX_IMAGE_SIDE};
 use crate::color::Rgb;
-use crate::cull::{self, Bound, REACH_ERRORS};
+use crate::cull::{self, Bound};
 use crate::desc::{BackgroundDesc, CheckerDesc, LightDesc, MaterialDesc, SceneDesc, ShapeDesc};
 use crate::light::{Background, Light};
 use crate::material::Material;
 use crate::methods::{Methods, RootMethod};
 use crate::occlusion::Cone;
+use crate::scalar::REACH_ERRORS;
 use crate::scalar::{Bits, FormatInfo, FormatSet, Scalar};
 use crate::shape::{Checker, Plane, Shape, Sphere, Triangle};
 use crate::uses::Uses;

@@ -52,9 +52,9 @@
 
 use super::SURFACE_TOLERANCE_STEPS;
 use super::error::{Item, Remedy, SceneError};
-use super::validate::distance;
 use crate::desc::{BackgroundDesc, ObjectDesc, SceneDesc, ShapeDesc};
 use crate::methods::{MethodName, Methods, RootMethod, SphereMethod, TriangleMethod};
+use crate::scalar::FAST_ROOT_ERROR;
 use crate::scalar::{FormatInfo, FormatSet, Scalar};
 use crate::vec3::Vec3;
 
@@ -64,10 +64,6 @@ pub const MIN_FEATURE_STEPS: f64 = 16.0;
 
 /// Extra room every magnitude must leave in the format's range, for rounding.
 pub const RANGE_HEADROOM: f64 = 1.01;
-
-/// The relative error of the 32-bit fixed formats' fast roots and quotients (14 bits, and a
-/// bit to spare).
-pub const FAST_ROOT_ERROR: f64 = 1.0 / 8192.0;
 
 /// The errors a light must be from a surface for its shadow rays to tell which side of it the
 /// light is on: a decision, not a shape, so fewer than [`MIN_FEATURE_STEPS`].
@@ -1099,6 +1095,11 @@ impl Methods {
         let first = changed.next()?;
         changed.next().is_none().then_some(first)
     }
+}
+
+/// The distance between two points of a description.
+pub(super) fn distance(a: [f32; 3], b: [f32; 3]) -> f64 {
+    (Vec3::from_f32(a) - Vec3::from_f32(b)).length()
 }
 
 #[cfg(test)]

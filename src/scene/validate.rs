@@ -2,7 +2,7 @@
 //! intervals, non-degenerate geometry, everything inside the world.
 
 use super::error::{Item, SceneError};
-use super::range;
+use super::range::{self, distance};
 use crate::camera::Frame;
 use crate::desc::{BackgroundDesc, CameraDesc, LightDesc, MaterialDesc, SceneDesc, ShapeDesc};
 use crate::pattern::MAX_SAMPLES;
@@ -298,9 +298,4 @@ fn out_of_bounds(
         value,
         expected,
     }
-}
-
-/// The distance between two points of a description.
-pub(super) fn distance(a: [f32; 3], b: [f32; 3]) -> f64 {
-    (Vec3::from_f32(a) - Vec3::from_f32(b)).length()
 }

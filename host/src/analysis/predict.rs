@@ -41,7 +41,8 @@ use crate::render::{Prepared, Request, all_cores, exact_roots};
 use anyhow::Result;
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use image::RgbImage;
-use obscura::scene::range::{self, FAST_ROOT_ERROR};
+use obscura::scalar::FAST_ROOT_ERROR;
+use obscura::scene::range;
 use obscura::{
     Item, Methods, RayMethod, RootMethod, Scalar, SceneDesc, ShapeDesc, TriangleMethod, Vec3,
 };
