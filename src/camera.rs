@@ -628,6 +628,7 @@ impl<S: Scalar> Centres<S> {
 
 #[cfg(test)]
 mod tests {
+    use crate::scalar::Precision;
     #[test]
     fn the_tangent_of_half_a_field_of_view_is_libms_to_a_few_ulps() {
         for degrees in [

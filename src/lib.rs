@@ -48,6 +48,8 @@ pub mod scene;
 pub mod scenes;
 pub mod shade;
 pub mod shape;
+// The checks the tests and the fuzzer hold culling and the shadow cones to.
+#[doc(hidden)]
 pub mod skips;
 pub mod uses;
 pub mod vec3;

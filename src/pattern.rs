@@ -272,6 +272,7 @@ const fn mix(mut x: u32) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scalar::Precision;
     use core::f64::consts::FRAC_PI_4;
 
     /// The (0, m, 2)-net property, in every pixel tried: the first 2ᵐ samples put exactly one
@@ -456,7 +457,7 @@ mod tests {
             let [u, v] = pattern.point(i);
             let want = [u, v].map(|w| f64::from(w >> 16) / 65536.0 - 0.5);
             assert_eq!(pattern.offset::<f64>(i), want);
-            let fixed = pattern.offset::<crate::I16F16>(i).map(Scalar::to_f64);
+            let fixed = pattern.offset::<crate::I16F16>(i).map(Precision::to_f64);
             assert_eq!(fixed, want);
             assert!(want.iter().all(|w| (-0.5..0.5).contains(w)));
         }

@@ -336,7 +336,7 @@ pub(crate) use words_of_enum;
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scalar::Scalar;
+    use crate::scalar::Precision;
     use crate::scene::Scene;
     use crate::test_util::each_built_in_scene;
     use crate::{Camera, scalar};

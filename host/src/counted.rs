@@ -20,6 +20,7 @@
 //! source forms an operation.
 
 use obscura::Scalar;
+use obscura::scalar::Precision;
 use obscura::scalar::{RayKind, Work};
 use std::cell::RefCell;
 use std::cmp::Ordering;
@@ -328,21 +329,11 @@ impl<S: Scalar> Neg for Counted<S> {
 }
 
 impl<S: Scalar> Scalar for Counted<S> {
-    const NAME: &'static str = S::NAME;
     const ZERO: Self = Self(S::ZERO);
     const ONE: Self = Self(S::ONE);
     const MAX: Self = Self(S::MAX);
-    const RANGE: f64 = S::RANGE;
-    const SPLIT: Option<(u32, u32)> = S::SPLIT;
-    const UNIT_ERROR: f64 = S::UNIT_ERROR;
     const FAST_ROOTS: bool = S::FAST_ROOTS;
 
-    fn from_f64(x: f64) -> Option<Self> {
-        S::from_f64(x).map(Self)
-    }
-    fn to_f64(self) -> f64 {
-        self.0.to_f64()
-    }
     fn from_int(n: i32) -> Self {
         Self(S::from_int(n))
     }
@@ -354,9 +345,6 @@ impl<S: Scalar> Scalar for Counted<S> {
     }
     fn floor_int(self) -> i32 {
         self.0.floor_int()
-    }
-    fn resolution(magnitude: f64) -> f64 {
-        S::resolution(magnitude)
     }
     #[track_caller]
     fn sqrt(self) -> Self {
@@ -434,5 +422,27 @@ impl<S: Scalar> Scalar for Counted<S> {
     fn powi(self, exponent: u16) -> Self {
         count(Operations::PRODUCT * power_products(exponent));
         Self(self.0.powi(exponent))
+    }
+}
+
+impl<S: Scalar> Precision for Counted<S> {
+    const NAME: &'static str = S::NAME;
+
+    const RANGE: f64 = S::RANGE;
+
+    const SPLIT: Option<(u32, u32)> = S::SPLIT;
+
+    const UNIT_ERROR: f64 = S::UNIT_ERROR;
+
+    fn from_f64(x: f64) -> Option<Self> {
+        S::from_f64(x).map(Self)
+    }
+
+    fn to_f64(self) -> f64 {
+        self.0.to_f64()
+    }
+
+    fn resolution(magnitude: f64) -> f64 {
+        S::resolution(magnitude)
     }
 }

@@ -6,6 +6,7 @@
 //! `scalar` module), and the tracer reads a saturated quotient as "beyond the world".
 
 use obscura::Scalar;
+use obscura::scalar::Precision;
 use std::cmp::Ordering;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 use std::sync::atomic::{AtomicU64, Ordering as Atomic};
@@ -69,19 +70,9 @@ impl Neg for Peak {
 }
 
 impl Scalar for Peak {
-    const NAME: &'static str = "peak";
     const ZERO: Self = Self(0.0);
     const ONE: Self = Self(1.0);
     const MAX: Self = Self(f64::MAX);
-    const RANGE: f64 = f64::MAX;
-
-    fn from_f64(x: f64) -> Option<Self> {
-        f64::from_f64(x).map(Self)
-    }
-
-    fn to_f64(self) -> f64 {
-        self.0
-    }
 
     fn from_int(n: i32) -> Self {
         Self(f64::from(n))
@@ -99,12 +90,6 @@ impl Scalar for Peak {
         self.0.floor_int()
     }
 
-    fn resolution(magnitude: f64) -> f64 {
-        f64::resolution(magnitude)
-    }
-
-    const UNIT_ERROR: f64 = f64::UNIT_ERROR;
-
     fn sqrt(self) -> Self {
         Self(self.0.sqrt())
     }
@@ -119,4 +104,24 @@ impl Scalar for Peak {
         let (value, sign) = f64::diff_of_products(a.0, b.0, c.0, d.0);
         (record(value), sign)
     }
+}
+
+impl Precision for Peak {
+    const NAME: &'static str = "peak";
+
+    const RANGE: f64 = f64::MAX;
+
+    fn from_f64(x: f64) -> Option<Self> {
+        f64::from_f64(x).map(Self)
+    }
+
+    fn to_f64(self) -> f64 {
+        self.0
+    }
+
+    fn resolution(magnitude: f64) -> f64 {
+        f64::resolution(magnitude)
+    }
+
+    const UNIT_ERROR: f64 = f64::UNIT_ERROR;
 }

@@ -12,6 +12,7 @@
 //! [`crate::analysis`] adds to its model of the rest of the rounding.
 
 use obscura::Scalar;
+use obscura::scalar::Precision;
 
 /// Steps of rounding in a cosine of two unit vectors: each vector's, and the dot product's.
 pub const COSINE_STEPS: f64 = 4.0;
@@ -103,19 +104,9 @@ impl<S: Scalar> Div for Quantized<S> {
 }
 
 impl<S: Scalar> Scalar for Quantized<S> {
-    const NAME: &'static str = S::NAME;
     const ZERO: Self = Self::new(0.0);
     const ONE: Self = Self::new(1.0);
     const MAX: Self = Self::new(S::RANGE);
-    const RANGE: f64 = S::RANGE;
-
-    fn from_f64(x: f64) -> Option<Self> {
-        S::from_f64(x).map(|stored| Self::new(stored.to_f64()))
-    }
-
-    fn to_f64(self) -> f64 {
-        self.0
-    }
 
     fn from_int(n: i32) -> Self {
         Self::new(S::from_int(n).to_f64())
@@ -132,12 +123,6 @@ impl<S: Scalar> Scalar for Quantized<S> {
     fn floor_int(self) -> i32 {
         self.0.floor_int()
     }
-
-    fn resolution(magnitude: f64) -> f64 {
-        S::resolution(magnitude)
-    }
-
-    const UNIT_ERROR: f64 = S::UNIT_ERROR;
 
     fn sqrt(self) -> Self {
         Self::new(self.0.sqrt())
@@ -160,6 +145,26 @@ impl<S: Scalar> Scalar for Quantized<S> {
         let (value, sign) = f64::diff_of_products(a.0, b.0, c.0, d.0);
         (Self::new(value), sign)
     }
+}
+
+impl<S: Scalar> Precision for Quantized<S> {
+    const NAME: &'static str = S::NAME;
+
+    const RANGE: f64 = S::RANGE;
+
+    fn from_f64(x: f64) -> Option<Self> {
+        S::from_f64(x).map(|stored| Self::new(stored.to_f64()))
+    }
+
+    fn to_f64(self) -> f64 {
+        self.0
+    }
+
+    fn resolution(magnitude: f64) -> f64 {
+        S::resolution(magnitude)
+    }
+
+    const UNIT_ERROR: f64 = S::UNIT_ERROR;
 }
 
 /// How far [`Scalar::powi`]'s products, each rounded by up to `rounding`, may move xⁿ for x in

@@ -9,7 +9,7 @@ use std::fmt;
 /// Builds [`Format`] from the core's one list of formats ([`obscura::for_each_format!`]).
 macro_rules! format_enum {
     (fixed { $($fixed:ident => $raw:ident,)* } float { $($float:ident => $ty:ty,)* }) => {
-        /// A number format of the core, by its command-line name ([`Scalar::NAME`]).
+        /// A number format of the core, by its command-line name ([`obscura::scalar::Precision::NAME`]).
         #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
         pub enum Format {
             $(
@@ -68,7 +68,7 @@ impl Format {
         names.join(", ")
     }
 
-    /// The format called `name` ([`Scalar::NAME`]), if there is one.
+    /// The format called `name` ([`obscura::scalar::Precision::NAME`]), if there is one.
     #[must_use]
     pub fn from_name(name: &str) -> Option<Self> {
         Self::ALL.iter().copied().find(|f| f.name() == name)

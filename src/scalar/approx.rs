@@ -3,8 +3,8 @@
 //! so that a host (where `std`'s exact `f32::sqrt` would otherwise shadow them) and a
 //! microcontroller compute the same bits.
 
-use super::Scalar;
 use super::float::diff_f32;
+use super::{Precision, Scalar};
 use core::cmp::Ordering;
 use core::ops::{Add, Div, Mul, Neg, Sub};
 use micromath::F32;
@@ -83,21 +83,9 @@ const NEWTON_STEPS: usize = 3;
 const ULPS: f64 = 4.0;
 
 impl Scalar for F32Approx {
-    const NAME: &'static str = "f32-approx";
     const ZERO: Self = Self(0.0);
     const ONE: Self = Self(1.0);
     const MAX: Self = Self(f32::MAX);
-    const RANGE: f64 = f32::RANGE;
-
-    #[inline]
-    fn from_f64(x: f64) -> Option<Self> {
-        f32::from_f64(x).map(Self)
-    }
-
-    #[inline]
-    fn to_f64(self) -> f64 {
-        f64::from(self.0)
-    }
 
     #[inline]
     fn from_int(n: i32) -> Self {
@@ -118,13 +106,6 @@ impl Scalar for F32Approx {
     fn floor_int(self) -> i32 {
         self.0.floor_int()
     }
-
-    /// A few of f32's steps: the refined approximations' error.
-    fn resolution(magnitude: f64) -> f64 {
-        ULPS * f32::resolution(magnitude)
-    }
-
-    const UNIT_ERROR: f64 = ULPS * f32::UNIT_ERROR;
 
     #[inline]
     fn sqrt(self) -> Self {
@@ -154,6 +135,29 @@ impl Scalar for F32Approx {
         let (value, sign) = diff_f32(a.0, b.0, c.0, d.0);
         (Self(value), sign)
     }
+}
+
+impl Precision for F32Approx {
+    const NAME: &'static str = "f32-approx";
+
+    const RANGE: f64 = f32::RANGE;
+
+    #[inline]
+    fn from_f64(x: f64) -> Option<Self> {
+        f32::from_f64(x).map(Self)
+    }
+
+    #[inline]
+    fn to_f64(self) -> f64 {
+        f64::from(self.0)
+    }
+
+    /// A few of f32's steps: the refined approximations' error.
+    fn resolution(magnitude: f64) -> f64 {
+        ULPS * f32::resolution(magnitude)
+    }
+
+    const UNIT_ERROR: f64 = ULPS * f32::UNIT_ERROR;
 }
 
 #[cfg(test)]

@@ -15,12 +15,12 @@
 //!   divisor shrinks (a ray grazing a plane), and a saturated value reads as "beyond the
 //!   world" in every comparison the tracer makes.
 
-use super::Scalar;
 use super::isqrt::{
     MANTISSA_BITS, MANTISSA_SCALE, ROOT_SCALE, RootPair, isqrt_u64, one_step_holds_unit, root_pair,
     rsqrt_fixed, rsqrt_mantissa,
 };
 use super::kernels::{div_i32_fixed, mul_i32_wide, mul_u32_wide, mul_u64_small};
+use super::{Precision, Scalar};
 use core::cmp::Ordering;
 use core::fmt;
 use core::hash::Hash;
@@ -476,30 +476,9 @@ where
     F::Bits: WideBits,
     O: Overflow,
 {
-    const NAME: &'static str = FixedName::<F>::NAME;
     const ZERO: Self = Self::new(F::ZERO);
     const ONE: Self = Self::ONE_VALUE;
     const MAX: Self = Self::new(F::MAX);
-    const SPLIT: Option<(u32, u32)> = Some((F::INT_NBITS, F::FRAC_NBITS));
-    const RANGE: f64 = {
-        // MAX = 2^(INT_NBITS − 1) − 2^−FRAC_NBITS, exact in f64 for the formats used here.
-        let int = (1_u64 << (F::INT_NBITS - 1)) as f64;
-        int - 1.0 / (1_u64 << F::FRAC_NBITS) as f64
-    };
-
-    #[inline]
-    fn from_f64(x: f64) -> Option<Self> {
-        if x.is_finite() {
-            F::checked_from_num(x).map(Self::new)
-        } else {
-            None
-        }
-    }
-
-    #[inline]
-    fn to_f64(self) -> f64 {
-        self.0.to_num::<f64>()
-    }
 
     #[inline]
     fn from_int(n: i32) -> Self {
@@ -522,21 +501,6 @@ where
     fn floor_int(self) -> i32 {
         self.0.floor().saturating_to_num::<i32>()
     }
-
-    fn resolution(_magnitude: f64) -> f64 {
-        F::DELTA.to_num::<f64>()
-    }
-
-    /// Correctly rounded (half an LSB) where the roots have the format's bits, else the
-    /// roots' relative error.
-    const UNIT_ERROR: f64 = {
-        let lsb = 1.0 / (1_u64 << F::FRAC_NBITS) as f64;
-        if F::Bits::ROOT_ERROR > lsb {
-            F::Bits::ROOT_ERROR
-        } else {
-            lsb
-        }
-    };
 
     /// Exact, in the wide integer ([`WideBits::quantize_raw`]).
     #[inline]
@@ -630,6 +594,52 @@ where
         }
         Self::from_raw(rounded)
     }
+}
+
+impl<F, O> Precision for Fx<F, O>
+where
+    F: FixedSigned + fmt::Debug + Default + Send + Sync + 'static,
+    F::Bits: WideBits,
+    O: Overflow,
+{
+    const NAME: &'static str = FixedName::<F>::NAME;
+
+    const SPLIT: Option<(u32, u32)> = Some((F::INT_NBITS, F::FRAC_NBITS));
+
+    const RANGE: f64 = {
+        // MAX = 2^(INT_NBITS − 1) − 2^−FRAC_NBITS, exact in f64 for the formats used here.
+        let int = (1_u64 << (F::INT_NBITS - 1)) as f64;
+        int - 1.0 / (1_u64 << F::FRAC_NBITS) as f64
+    };
+
+    #[inline]
+    fn from_f64(x: f64) -> Option<Self> {
+        if x.is_finite() {
+            F::checked_from_num(x).map(Self::new)
+        } else {
+            None
+        }
+    }
+
+    #[inline]
+    fn to_f64(self) -> f64 {
+        self.0.to_num::<f64>()
+    }
+
+    fn resolution(_magnitude: f64) -> f64 {
+        F::DELTA.to_num::<f64>()
+    }
+
+    /// Correctly rounded (half an LSB) where the roots have the format's bits, else the
+    /// roots' relative error.
+    const UNIT_ERROR: f64 = {
+        let lsb = 1.0 / (1_u64 << F::FRAC_NBITS) as f64;
+        if F::Bits::ROOT_ERROR > lsb {
+            F::Bits::ROOT_ERROR
+        } else {
+            lsb
+        }
+    };
 }
 
 /// `"i16f16"` for `I16F16`: the lowercase name of a `fixed` type, spelled at compile time from
@@ -826,7 +836,7 @@ mod tests {
         check::<I32F32>(huge, |c| I32F32::new(fixed::types::I32F32::from_bits(c)));
     }
 
-    /// The error model's unit (one LSB at 1, [`Scalar::UNIT_ERROR`]) holds for the fast unit
+    /// The error model's unit (one LSB at 1, [`Precision::UNIT_ERROR`]) holds for the fast unit
     /// vectors as for the exact ones, at every binary point a 32-bit format may have.
     #[test]
     fn unit_vectors_are_within_the_unit_error_at_every_binary_point() {

@@ -5,7 +5,7 @@
 //! microcontroller compute the very same bits: `libm`'s in software, or for `f32` on a
 //! Cortex-M4F the FPU's `vsqrt.f32` (a handful of instructions against several hundred).
 
-use super::Scalar;
+use super::{Precision, Scalar};
 use core::cmp::Ordering;
 
 /// The correctly rounded square root of an `f32` by the FPU of a Cortex-M4F.
@@ -45,23 +45,9 @@ use vsqrt::sqrtf;
 macro_rules! float_scalar {
     ($($t:ident: $sqrt:path, $diff:path),*) => {$(
         impl Scalar for $t {
-            const NAME: &'static str = stringify!($t);
             const ZERO: Self = 0.0;
             const ONE: Self = 1.0;
             const MAX: Self = $t::MAX;
-            #[allow(trivial_numeric_casts, reason = "the identity cast for f64")]
-            const RANGE: f64 = $t::MAX as f64;
-
-            #[inline]
-            #[allow(trivial_numeric_casts, clippy::cast_possible_truncation, reason = "range checked")]
-            fn from_f64(x: f64) -> Option<Self> {
-                (x.is_finite() && x.abs() <= Self::RANGE).then_some(x as $t)
-            }
-
-            #[inline]
-            fn to_f64(self) -> f64 {
-                f64::from(self)
-            }
 
             #[inline]
             #[allow(clippy::cast_precision_loss, reason = "integers here are small")]
@@ -98,15 +84,6 @@ macro_rules! float_scalar {
                 if (truncated as $t) > self { truncated.saturating_sub(1) } else { truncated }
             }
 
-            fn resolution(magnitude: f64) -> f64 {
-                magnitude * f64::from($t::EPSILON)
-            }
-
-            /// A unit vector is its vector times a correctly rounded reciprocal of a correctly
-            /// rounded root: about a unit in the last place.
-            #[allow(trivial_numeric_casts, reason = "the identity cast for f64")]
-            const UNIT_ERROR: f64 = $t::EPSILON as f64;
-
             #[inline]
             fn sqrt(self) -> Self {
                 if self > 0.0 { $sqrt(self) } else { 0.0 }
@@ -116,6 +93,33 @@ macro_rules! float_scalar {
             fn diff_of_products(a: Self, b: Self, c: Self, d: Self) -> (Self, Ordering) {
                 $diff(a, b, c, d)
             }
+        }
+
+        impl Precision for $t {
+            const NAME: &'static str = stringify!($t);
+
+            #[allow(trivial_numeric_casts, reason = "the identity cast for f64")]
+            const RANGE: f64 = $t::MAX as f64;
+
+            #[inline]
+            #[allow(trivial_numeric_casts, clippy::cast_possible_truncation, reason = "range checked")]
+            fn from_f64(x: f64) -> Option<Self> {
+                (x.is_finite() && x.abs() <= Self::RANGE).then_some(x as $t)
+            }
+
+            #[inline]
+            fn to_f64(self) -> f64 {
+                f64::from(self)
+            }
+
+            fn resolution(magnitude: f64) -> f64 {
+                magnitude * f64::from($t::EPSILON)
+            }
+
+            /// A unit vector is its vector times a correctly rounded reciprocal of a correctly
+            /// rounded root: about a unit in the last place.
+            #[allow(trivial_numeric_casts, reason = "the identity cast for f64")]
+            const UNIT_ERROR: f64 = $t::EPSILON as f64;
         }
     )*};
 }

@@ -1,5 +1,17 @@
-//! The number model: one [`Scalar`] trait that every piece of geometry and shading is written
-//! against, and its implementations for fixed-point formats ([`Fx`]) and IEEE floats.
+//! The number model, a trait per concern, and their implementations for fixed-point formats
+//! ([`Fx`]) and IEEE floats:
+//!
+//! - [`Scalar`]: what every piece of geometry and shading is written against — arithmetic,
+//!   roots and quotients (exact and fast), the vector kernels a fixed format computes in its
+//!   wide integer, the rounding to a display's levels.
+//! - [`Precision`]: what the error model knows of a format — its name, range, split,
+//!   resolution and unit vectors' error, and its exact conversions from and to `f64` — which the
+//!   range proof, the tolerances and the harness's analysis read, and arithmetic does not.
+//! - [`Bits`], sealed: the core's own formats, whose numbers are exactly their bits, as a
+//!   proven scene travels from a firmware's build to the chip.
+//!
+//! `Scalar` and `Precision` stay open: the harness's instrumented formats (an operation
+//! counter, a peak recorder, a format's constants in `f64`) implement them over the core's.
 //!
 //! This module owns how numbers behave at the edges of their range. Every other module calls
 //! only the trait, so swapping the format changes nothing but the numbers. The rules:
@@ -12,7 +24,7 @@
 //!   reach infinity in floats, and the tracer reads either as "beyond anything in the world".
 //! - Nothing panics on a proven scene: the square root of a negative number is zero, a
 //!   fixed-point division by zero saturates towards the sign of the numerator.
-//! - Every tolerance is derived from the format through [`Scalar::resolution`], never typed in.
+//! - Every tolerance is derived from the format through [`Precision::resolution`], never typed in.
 
 mod approx;
 mod bits;
@@ -40,6 +52,36 @@ use core::cmp::Ordering;
 use core::fmt::Debug;
 use core::ops::{Add, Div, Mul, Neg, Sub};
 
+/// What the error model knows of a format ([`crate::scene::range`], the surface tolerances,
+/// the camera's aim, the harness's analysis): its name, range, split, resolution and the error
+/// of its unit vectors, and its exact conversions from and to `f64`. Arithmetic callers need
+/// none of it; [`Scalar`], which the tracer is written against, has it.
+pub trait Precision: Sized {
+    /// The format's name as the command line spells it, e.g. `"i16f16"`.
+    const NAME: &'static str;
+    /// The largest finite value ([`Scalar::MAX`]) as an `f64`, for range analysis.
+    const RANGE: f64;
+    /// A fixed format's integer bits (the sign among them) and fraction bits; `None` for a
+    /// float.
+    const SPLIT: Option<(u32, u32)> = None;
+
+    /// Converts from `f64`, or `None` when `x` is not finite or does not fit.
+    fn from_f64(x: f64) -> Option<Self>;
+
+    /// Converts to `f64` (exactly, for every format here but `f64` itself, which is the identity).
+    fn to_f64(self) -> f64;
+
+    /// The spacing of representable numbers near `magnitude`: one LSB for a fixed format,
+    /// `magnitude` times the machine epsilon for a float. Tolerances are multiples of it.
+    fn resolution(magnitude: f64) -> f64;
+
+    /// How far each coordinate of a unit vector from [`Scalar::normalize3`] may be off, with
+    /// exact roots: the resolution at 1 where the format's roots are correctly rounded, more
+    /// where its roots keep fewer bits than the format has. The error model's unit for every
+    /// direction (the fast roots add [`crate::scalar::FAST_ROOT_ERROR`]).
+    const UNIT_ERROR: f64;
+}
+
 /// A real number format the tracer can compute in.
 ///
 /// `/` and `−x` are total: a quotient or negation that does not fit saturates (a float's
@@ -52,7 +94,8 @@ use core::ops::{Add, Div, Mul, Neg, Sub};
 /// built scene leaves the format (see the module documentation); `tests/scalar_operators.rs`
 /// holds the fixed formats to this paragraph.
 pub trait Scalar:
-    Copy
+    Precision
+    + Copy
     + Default
     + PartialEq
     + PartialOrd
@@ -66,26 +109,12 @@ pub trait Scalar:
     + Div<Output = Self>
     + Neg<Output = Self>
 {
-    /// The format's name as the command line spells it, e.g. `"i16f16"`.
-    const NAME: &'static str;
     /// Zero.
     const ZERO: Self;
     /// One.
     const ONE: Self;
     /// The largest finite value: the format's "infinitely far".
     const MAX: Self;
-    /// [`Self::MAX`] as an `f64`, for range analysis.
-    const RANGE: f64;
-    /// A fixed format's integer bits (the sign among them) and fraction bits; `None` for a
-    /// float.
-    const SPLIT: Option<(u32, u32)> = None;
-
-    /// Converts from `f64`, or `None` when `x` is not finite or does not fit.
-    fn from_f64(x: f64) -> Option<Self>;
-
-    /// Converts to `f64` (exactly, for every format here but `f64` itself, which is the identity).
-    fn to_f64(self) -> f64;
-
     /// The integer `n` (saturating when it does not fit).
     fn from_int(n: i32) -> Self;
 
@@ -100,16 +129,6 @@ pub trait Scalar:
 
     /// The largest integer not greater than `self`, saturated to `i32`.
     fn floor_int(self) -> i32;
-
-    /// The spacing of representable numbers near `magnitude`: one LSB for a fixed format,
-    /// `magnitude` times the machine epsilon for a float. Tolerances are multiples of it.
-    fn resolution(magnitude: f64) -> f64;
-
-    /// How far each coordinate of a unit vector from [`Scalar::normalize3`] may be off, with
-    /// exact roots: the resolution at 1 where the format's roots are correctly rounded, more
-    /// where its roots keep fewer bits than the format has. The error model's unit for every
-    /// direction (the fast roots add [`crate::scalar::FAST_ROOT_ERROR`]).
-    const UNIT_ERROR: f64;
 
     /// The square root; zero for zero and for negative inputs.
     #[must_use]
@@ -284,13 +303,13 @@ pub enum RayKind {
 /// What an error message needs to know of a format it cannot name by type.
 #[derive(Clone, Copy, Debug)]
 pub struct FormatInfo {
-    /// [`Scalar::NAME`].
+    /// [`Precision::NAME`].
     pub name: &'static str,
-    /// [`Scalar::RANGE`].
+    /// [`Precision::RANGE`].
     pub range: f64,
-    /// [`Scalar::resolution`].
+    /// [`Precision::resolution`].
     pub resolution: fn(f64) -> f64,
-    /// [`Scalar::UNIT_ERROR`].
+    /// [`Precision::UNIT_ERROR`].
     pub unit_error: f64,
     /// [`Scalar::FAST_ROOTS`].
     pub fast_roots: bool,

@@ -2,6 +2,9 @@
 //! that proves a description fits that format before converting it.
 
 mod error;
+// The range proof's analysis (its bounds and features): the harness's `analyze`, predictions and
+// stress cases read it; a user of the core needs only `Scene::build`, which runs it.
+#[doc(hidden)]
 pub mod range;
 mod validate;
 
@@ -42,11 +45,11 @@ pub struct Object<S> {
     /// The surface.
     pub material: Material<S>,
     /// The object's own part of the surface tolerance (see [`SURFACE_TOLERANCE_STEPS`]). For a
-    /// sphere of radius r ([`range::own_tolerance_terms`]), a ray from its surface computes
+    /// sphere of radius r (the range proof's `own_tolerance_terms`), a ray from its surface computes
     /// c = |o − c|² − r² ≈ 0 with the rounding error of r² and finds a root near c/2r: the
     /// error grows as the sphere shrinks (for a fixed format, an LSB over r), besides the
     /// rounding of a point r from the centre. For a triangle
-    /// ([`range::triangle_tolerance_terms`]), the distance it finds rounds with its corners'
+    /// (`triangle_tolerance_terms`), the distance it finds rounds with its corners'
     /// coordinates and its edges against its area. A plane adds nothing.
     pub tolerance: S,
     /// Where primary rays can meet it ([`crate::cull`]).

@@ -67,11 +67,11 @@ pub const RANGE_HEADROOM: f64 = 1.01;
 
 /// The errors a light must be from a surface for its shadow rays to tell which side of it the
 /// light is on: a decision, not a shape, so fewer than [`MIN_FEATURE_STEPS`].
-pub const SIDE_STEPS: f64 = 2.0;
+pub(crate) const SIDE_STEPS: f64 = 2.0;
 
 /// The steps between neighbouring pixels' rays a format must resolve: at fewer, neighbouring
 /// pixels would see along one ray.
-pub const MIN_PIXEL_STEPS: f64 = 2.0;
+pub(crate) const MIN_PIXEL_STEPS: f64 = 2.0;
 
 /// The largest magnitude one computation reaches.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -89,7 +89,7 @@ pub struct Magnitude {
 /// A small quantity a computation must resolve against the rounding error it makes.
 ///
 /// The error is a sum of terms, each a coefficient times the format's resolution at some
-/// magnitude ([`Scalar::resolution`]): for a fixed format a multiple of its LSB, for a float a
+/// magnitude ([`crate::scalar::Precision::resolution`]): for a fixed format a multiple of its LSB, for a float a
 /// multiple of its relative precision at that magnitude. The feature must span `steps` errors.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Feature {
@@ -130,10 +130,10 @@ impl Feature {
 /// What one term of an error is a multiple of.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Scale {
-    /// The format's resolution at this magnitude ([`Scalar::resolution`]): the rounding of a
+    /// The format's resolution at this magnitude ([`crate::scalar::Precision::resolution`]): the rounding of a
     /// number that large.
     At(f64),
-    /// The error of a unit vector's coordinates ([`Scalar::UNIT_ERROR`]): a direction's
+    /// The error of a unit vector's coordinates ([`crate::scalar::Precision::UNIT_ERROR`]): a direction's
     /// rounding, and a cosine's.
     Unit,
 }
@@ -204,13 +204,13 @@ impl Terms {
 
 /// The size of the error `terms` describe in format `S`.
 #[must_use]
-pub fn error<S: Scalar>(terms: &Terms) -> f64 {
+pub(crate) fn error<S: Scalar>(terms: &Terms) -> f64 {
     error_with(terms, &FormatInfo::of::<S>())
 }
 
 /// The size of the error `terms` describe in `format`.
 #[must_use]
-pub fn error_with(terms: &Terms, format: &FormatInfo) -> f64 {
+pub(crate) fn error_with(terms: &Terms, format: &FormatInfo) -> f64 {
     terms
         .iter()
         .map(|(coefficient, scale)| {
@@ -226,7 +226,7 @@ pub fn error_with(terms: &Terms, format: &FormatInfo) -> f64 {
 /// The surface tolerance ([`SURFACE_TOLERANCE_STEPS`]) at a surface point whose largest
 /// coordinate is at most `reach` (relative to the eye), on a sphere of `radius` or a sheet.
 #[must_use]
-pub fn tolerance_terms(reach: f64, radius: Option<f64>) -> Terms {
+pub(crate) fn tolerance_terms(reach: f64, radius: Option<f64>) -> Terms {
     let sheet =
         Terms::new(&[(SURFACE_TOLERANCE_STEPS, 0.0)]).units(SURFACE_TOLERANCE_STEPS * reach);
     radius.map_or(sheet, |r| sheet.plus(own_tolerance_terms(r)))
@@ -236,7 +236,7 @@ pub fn tolerance_terms(reach: f64, radius: Option<f64>) -> Terms {
 /// of a point `radius` from its centre, and the error of the root its test finds for a ray
 /// that starts on it, c/2r with c rounded at r².
 #[must_use]
-pub fn own_tolerance_terms(radius: f64) -> Terms {
+pub(crate) fn own_tolerance_terms(radius: f64) -> Terms {
     Terms::new(&[(SURFACE_TOLERANCE_STEPS / radius, radius * radius)])
         .units(SURFACE_TOLERANCE_STEPS * radius)
 }
@@ -248,7 +248,7 @@ pub fn own_tolerance_terms(radius: f64) -> Terms {
 /// distance); with e1 × e2, at the square of the longest edge L, times |s| ≤ L; and as a triple
 /// product, at L³; the denominator is twice the area A, seen along the ray.
 #[must_use]
-pub fn triangle_tolerance_terms(vertices: [[f32; 3]; 3], eye: Vec3<f64>) -> Terms {
+pub(crate) fn triangle_tolerance_terms(vertices: [[f32; 3]; 3], eye: Vec3<f64>) -> Terms {
     let corners = vertices.map(Vec3::from_f32);
     let [a, b, c] = corners;
     let (e1, e2) = (b - a, c - a);

@@ -163,6 +163,7 @@ impl<S: Scalar> Plane<S> {
 mod tests {
     use super::*;
     use crate::scalar::I16F16;
+    use crate::scalar::Precision;
     use crate::test_util::{assert_close, for_each_format, span, v};
 
     fn floor<S: Scalar>(checker: Option<Checker<S>>) -> Plane<S> {

@@ -291,6 +291,7 @@ fn component<S: Scalar>(v: [S; 3], k: usize) -> S {
 mod tests {
     use super::*;
     use crate::methods::MethodName;
+    use crate::scalar::Precision;
     use crate::test_util::{assert_close, for_each_format, span, v};
 
     /// The triangle (0,0,4), (2,0,4), (0,2,4), facing −z towards the origin.
