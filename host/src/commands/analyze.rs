@@ -13,12 +13,19 @@ pub fn run(args: &AnalyzeArgs) -> Result<()> {
 }
 
 fn analyze(args: &AnalyzeArgs, named: &NamedScene) -> Result<()> {
-    let size @ (width, height) = args.size;
+    let (width, height) = args.size;
     let methods = args.methods.methods();
     let analysis = Analysis::of(&named.scene, methods, width, height)?;
     say!("# {} by methods {methods}\n", named.name)?;
     print_extents(&analysis.extents)?;
     print_bits(&analysis.bits)?;
+    print_split(&analysis)?;
+    print_formats(args, named, &analysis)?;
+    print_pick(args, named, &analysis)
+}
+
+/// The scene's 32-bit split, as it is or rescaled.
+fn print_split(analysis: &Analysis) -> io::Result<()> {
     let split_line = |split: Format| {
         let (integer, fraction) = split.split().unwrap_or_default();
         format!(
@@ -27,14 +34,21 @@ fn analyze(args: &AnalyzeArgs, named: &NamedScene) -> Result<()> {
         )
     };
     match (analysis.split(false), analysis.split(true)) {
-        (Some(split), _) => say!("\nThe scene's 32-bit split, {}.", split_line(split))?,
+        (Some(split), _) => say!("\nThe scene's 32-bit split, {}.", split_line(split)),
         (None, Some(split)) => say!(
             "\nNo 32-bit fixed format holds the scene as it is; rescaled about the eye, its split \
              is {}.",
             split_line(split)
-        )?,
-        (None, None) => say!("\nNo 32-bit fixed format holds the scene, even rescaled.")?,
+        ),
+        (None, None) => say!("\nNo 32-bit fixed format holds the scene, even rescaled."),
     }
+}
+
+/// Every format: whether it holds the scene, its prediction beside the PSNR measured, and its
+/// costs from the committed chart.
+fn print_formats(args: &AnalyzeArgs, named: &NamedScene, analysis: &Analysis) -> Result<()> {
+    let size @ (width, height) = args.size;
+    let methods = args.methods.methods();
     say!(
         "\n## Formats, at {width}x{height}\n\nThe model's bound against f64 (the format's \
          constants and tolerances, rendered in f64; its rounding, which may move each pixel's \
@@ -91,12 +105,17 @@ fn analyze(args: &AnalyzeArgs, named: &NamedScene) -> Result<()> {
             costs[2]
         )?;
     }
-    let target = args.auto.target_psnr;
-    let machine = args.auto.cost_on;
+    Ok(())
+}
+
+/// The cheapest format that reaches the target (what `--format auto` takes), or why none does.
+fn print_pick(args: &AnalyzeArgs, named: &NamedScene, analysis: &Analysis) -> Result<()> {
+    let (target, machine) = (args.auto.target_psnr, args.auto.cost_on);
+    let methods = args.methods.methods();
     match pick(
-        &[(&named.scene, &analysis)],
+        &[(&named.scene, analysis)],
         methods,
-        size,
+        args.size,
         machine,
         target,
         true,

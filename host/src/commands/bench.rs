@@ -46,15 +46,28 @@ pub fn run(args: &BenchArgs) -> Result<()> {
 }
 
 fn bench(args: &BenchArgs, named: &NamedScene) -> Result<()> {
-    let desc = named.scene.desc();
-    let (width, height) = args.size;
     let methods = args.methods.methods();
-    let first = *args.formats.first().context("give at least one format")?;
     let mut jobs: Vec<(Format, Methods)> = args.formats.iter().map(|&f| (f, methods)).collect();
     if !args.formats.contains(&Format::F32) {
         // The baseline, by the same methods but for the fast roots, which f32 does not have.
         jobs.push((Format::F32, exact_roots(methods)));
     }
+    let bench = time(args, named, &jobs)?;
+    print(&bench, jobs.iter().any(|&(_, m)| m != methods))?;
+    if let Some(path) = &args.json {
+        let text = serde_json::to_string_pretty(&bench)?;
+        std::fs::write(path, text + "\n")
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    Ok(())
+}
+
+/// Times every job on one thread and the first on each thread count asked for, all
+/// interleaved; each against f32 and against one thread.
+fn time(args: &BenchArgs, named: &NamedScene, jobs: &[(Format, Methods)]) -> Result<Bench> {
+    let desc = named.scene.desc();
+    let (width, height) = args.size;
+    let first = *args.formats.first().context("give at least one format")?;
     let renderers = jobs
         .iter()
         .map(|&(format, methods)| {
@@ -67,8 +80,6 @@ fn bench(args: &BenchArgs, named: &NamedScene) -> Result<()> {
             prepare(format, &request)
         })
         .collect::<Result<Vec<_>>>()?;
-
-    // Every format on one thread, then the first format on each thread count, all interleaved.
     let mut configs: Vec<(usize, u16)> = (0..jobs.len()).map(|i| (i, 1)).collect();
     configs.extend(args.threads.iter().filter(|&&n| n != 1).map(|&n| (0, n)));
     let tasks: Vec<Box<dyn Fn() + '_>> = configs
@@ -86,7 +97,6 @@ fn bench(args: &BenchArgs, named: &NamedScene) -> Result<()> {
     );
     let task_refs: Vec<&dyn Fn()> = tasks.iter().map(|task| &**task).collect();
     let times = interleaved_median_ms(usize::from(args.runs), &task_refs);
-
     let time_of = |format_index: usize, threads: u16| {
         configs
             .iter()
@@ -98,7 +108,7 @@ fn bench(args: &BenchArgs, named: &NamedScene) -> Result<()> {
         .position(|&(f, _)| f == Format::F32)
         .context("f32 is timed")?;
     let f32_ms = time_of(f32_index, 1).context("f32 is timed on one thread")?;
-    let format_times = args
+    let formats = args
         .formats
         .iter()
         .enumerate()
@@ -112,7 +122,7 @@ fn bench(args: &BenchArgs, named: &NamedScene) -> Result<()> {
         })
         .collect();
     let one_thread = time_of(0, 1).context("the first format is timed on one thread")?;
-    let thread_times = args
+    let threads = args
         .threads
         .iter()
         .filter_map(|&n| {
@@ -125,18 +135,24 @@ fn bench(args: &BenchArgs, named: &NamedScene) -> Result<()> {
             })
         })
         .collect();
-    let bench = Bench {
+    Ok(Bench {
         scene: named.name.clone(),
         width,
         height,
         runs: args.runs,
-        formats: format_times,
-        threads: thread_times,
-    };
+        formats,
+        threads,
+    })
+}
 
+/// The two tables (`f32_by_exact_roots`: f32 was timed by exact roots, as it has no fast ones),
+/// and for Whitted's own picture the VAX's 74 minutes beside it.
+fn print(bench: &Bench, f32_by_exact_roots: bool) -> std::io::Result<()> {
     say!(
-        "{} {width}x{height}, median of {} interleaved runs:",
+        "{} {}x{}, median of {} interleaved runs:",
         bench.scene,
+        bench.width,
+        bench.height,
         bench.runs
     )?;
     say!("| format | ms/frame (1 thread) | time ÷ f32 |")?;
@@ -149,7 +165,7 @@ fn bench(args: &BenchArgs, named: &NamedScene) -> Result<()> {
             f.ratio_to_f32
         )?;
     }
-    if jobs.iter().any(|&(_, m)| m != methods) {
+    if f32_by_exact_roots {
         say!("(f32, which has no fast roots, by exact roots)")?;
     }
     say!("")?;
@@ -164,24 +180,26 @@ fn bench(args: &BenchArgs, named: &NamedScene) -> Result<()> {
             t.speedup
         )?;
     }
-    if bench.scene == "whitted" && (width, height) == (512, 512) {
+    // The first format on one thread.
+    let one_thread = bench.formats.first();
+    if let (true, Some(one)) = (
+        bench.scene == "whitted" && (bench.width, bench.height) == (512, 512),
+        one_thread,
+    ) {
         let fastest = bench
             .threads
             .iter()
             .map(|t| t.ms_per_frame)
-            .fold(one_thread, f64::min);
+            .fold(one.ms_per_frame, f64::min);
         say!(
-            "\nWhitted's spheres and checkerboard took {VAX_MINUTES} minutes on a VAX-11/780 in 1979; here \
-             {first} takes {one_thread:.1} ms on one thread ({:.0}x faster) and {fastest:.1} ms on all \
-             threads tried ({:.0}x).",
-            VAX_MINUTES * 60_000.0 / one_thread,
+            "\nWhitted's spheres and checkerboard took {VAX_MINUTES} minutes on a VAX-11/780 in \
+             1979; here {} takes {:.1} ms on one thread ({:.0}x faster) and {fastest:.1} ms on \
+             all threads tried ({:.0}x).",
+            one.format,
+            one.ms_per_frame,
+            VAX_MINUTES * 60_000.0 / one.ms_per_frame,
             VAX_MINUTES * 60_000.0 / fastest
         )?;
-    }
-    if let Some(path) = &args.json {
-        let text = serde_json::to_string_pretty(&bench)?;
-        std::fs::write(path, text + "\n")
-            .with_context(|| format!("cannot write {}", path.display()))?;
     }
     Ok(())
 }

@@ -4,14 +4,15 @@ use crate::cli::CompareArgs;
 use crate::heatmap::heatmap;
 use crate::metrics::{Accuracy, accuracy};
 use crate::output::{self, say};
-use crate::render::{Request, all_cores, prepare, prepare_reference, rgb565_image};
+use crate::render::{AnyFormat, Request, all_cores, prepare, prepare_reference, rgb565_image};
 use crate::timing::interleaved_median_ms;
 use anyhow::{Context, Result};
 use obscura::methods::MethodName;
 use obscura::{Dither, Presentation};
-use obscura_scene::{Format, NamedScene};
+use obscura_scene::{Format, NamedScene, OwnedScene};
 use serde::Serialize;
 use std::io;
+use std::path::PathBuf;
 
 /// The figures `compare` prints and writes as JSON.
 #[derive(Debug, Serialize)]
@@ -74,7 +75,6 @@ fn compare(args: &CompareArgs, named: &NamedScene) -> Result<()> {
         methods,
     } = super::resolve(named, &args.scene)?;
     let (width, height) = args.scene.size;
-    let reference = Format::F64;
     let desc = scene.desc();
     let request = Request {
         desc: &desc,
@@ -84,35 +84,22 @@ fn compare(args: &CompareArgs, named: &NamedScene) -> Result<()> {
     };
     let contender = prepare(format, &request)?;
     let baseline = prepare_reference(&request)?;
-    let threads = all_cores();
     let rendering = |format: Format| format!("rendering {name} in {format}");
     let image = contender
-        .render(threads, None)
+        .render(all_cores(), None)
         .with_context(|| rendering(format))?;
     let truth = baseline
-        .render(threads, None)
-        .with_context(|| rendering(reference))?;
-    eprintln!(
-        "timing {format} and {reference} on 1 thread, {} interleaved runs each",
-        args.runs
-    );
-    let times = interleaved_median_ms(
-        usize::from(args.runs),
-        &[&|| drop(contender.render(1, None)), &|| {
-            drop(baseline.render(1, None))
-        }],
-    );
-
+        .render(all_cores(), None)
+        .with_context(|| rendering(REFERENCE))?;
+    let times = time(args, format, contender.as_ref(), baseline.as_ref());
     let files = [
         (args.out_dir.join(format!("{format}.png")), &image),
-        (args.out_dir.join(format!("{reference}.png")), &truth),
+        (args.out_dir.join(format!("{REFERENCE}.png")), &truth),
+        (args.out_dir.join("diff.png"), &heatmap(&image, &truth)),
     ];
     for (path, image) in &files {
         super::save(image, path)?;
     }
-    let diff_path = args.out_dir.join("diff.png");
-    super::save(&heatmap(&image, &truth), &diff_path)?;
-
     let objects = contender.object_map()?;
     let Accuracy {
         psnr_db,
@@ -121,26 +108,14 @@ fn compare(args: &CompareArgs, named: &NamedScene) -> Result<()> {
         differing_pixels_pct,
         object_mismatch_pct,
     } = accuracy(&image, &truth, &objects, &baseline.object_map()?);
-    // As an RGB565 display shows it, rounded to the nearest level and dithered.
-    let mut rgb565 = Vec::new();
-    for dither in [Dither::None, Dither::Ordered] {
-        let presentation = Presentation {
-            dither,
-            ..Presentation::default()
-        };
-        let frame = rgb565_image(
-            &contender.rgb565_frame(presentation, &mut |_, _| {})?,
-            width,
-        );
-        let path = args
-            .out_dir
-            .join(format!("{format}-rgb565-dither-{}.png", dither.name()));
-        super::save(&frame, &path)?;
-        rgb565.push((accuracy(&frame, &truth, &objects, &objects).psnr_db, path));
-    }
+    let rgb565 = rgb565_figures(args, format, contender.as_ref(), &truth, &objects)?;
+    let converged = args
+        .converged
+        .map(|samples| converged(samples, &scene, &request, [&image, &truth], &objects))
+        .transpose()?;
     let report = Report {
         format: format.name(),
-        reference: reference.name(),
+        reference: REFERENCE.name(),
         scene: name,
         width,
         height,
@@ -154,58 +129,9 @@ fn compare(args: &CompareArgs, named: &NamedScene) -> Result<()> {
         runs: args.runs,
         rgb565_psnr_db: rgb565[0].0,
         rgb565_dithered_psnr_db: rgb565[1].0,
-        converged: args
-            .converged
-            .map(|samples| {
-                let mut many = scene.clone();
-                many.samples = samples;
-                many.adaptive_samples = false;
-                many.shadow_samples = samples;
-                many.adaptive_shadows = false;
-                let desc = many.desc();
-                let converged = prepare_reference(&Request {
-                    desc: &desc,
-                    ..request
-                })?
-                .render(threads, Some("converged f64"))
-                .context("rendering the converged f64 image")?;
-                let psnr = |image| accuracy(image, &converged, &objects, &objects).psnr_db;
-                Ok::<_, anyhow::Error>(Converged {
-                    samples,
-                    scene_samples: scene.samples,
-                    adaptive_samples: scene.adaptive_samples,
-                    psnr_db: psnr(&image),
-                    reference_psnr_db: psnr(&truth),
-                })
-            })
-            .transpose()?,
+        converged,
     };
-    print_table(&report)?;
-    say!(
-        "as an RGB565 display shows it: {:.2} dB against f64 rounded to the nearest level, {:.2} dB \
-         with the ordered dither (wrote {} and {})",
-        report.rgb565_psnr_db,
-        report.rgb565_dithered_psnr_db,
-        rgb565[0].1.display(),
-        rgb565[1].1.display()
-    )?;
-    if let Some(c) = &report.converged {
-        say!(
-            "against f64 with {} rays per pixel (how far {}{} are from converged): {format} {:.2} \
-             dB, {reference} {:.2} dB",
-            c.samples,
-            if c.adaptive_samples { "adaptive " } else { "" },
-            c.scene_samples,
-            c.psnr_db,
-            c.reference_psnr_db
-        )?;
-    }
-    say!(
-        "wrote {}, {} and {} (diff: largest channel error per pixel, log scale, legend below)",
-        files[0].0.display(),
-        files[1].0.display(),
-        diff_path.display()
-    )?;
+    print_report(&report, &rgb565, &files.map(|(path, _)| path))?;
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&report)?;
         std::fs::write(path, text + "\n")
@@ -213,6 +139,124 @@ fn compare(args: &CompareArgs, named: &NamedScene) -> Result<()> {
         say!("wrote {}", path.display())?;
     }
     Ok(())
+}
+
+/// What a format is compared against.
+const REFERENCE: Format = Format::F64;
+
+/// The median single-thread times of a frame in `format` and in f64, interleaved.
+fn time(
+    args: &CompareArgs,
+    format: Format,
+    contender: &dyn AnyFormat,
+    baseline: &dyn AnyFormat,
+) -> Vec<f64> {
+    eprintln!(
+        "timing {format} and {REFERENCE} on 1 thread, {} interleaved runs each",
+        args.runs
+    );
+    interleaved_median_ms(
+        usize::from(args.runs),
+        &[&|| drop(contender.render(1, None)), &|| {
+            drop(baseline.render(1, None))
+        }],
+    )
+}
+
+/// The frame as an RGB565 display shows it, rounded to the nearest level and dithered: each
+/// one's PSNR against f64, and the PNG written of it.
+fn rgb565_figures(
+    args: &CompareArgs,
+    format: Format,
+    contender: &dyn AnyFormat,
+    truth: &image::RgbImage,
+    objects: &[Option<usize>],
+) -> Result<Vec<(f64, PathBuf)>> {
+    let mut figures = Vec::new();
+    for dither in [Dither::None, Dither::Ordered] {
+        let presentation = Presentation {
+            dither,
+            ..Presentation::default()
+        };
+        let frame = rgb565_image(
+            &contender.rgb565_frame(presentation, &mut |_, _| {})?,
+            args.scene.size.0,
+        );
+        let path = args
+            .out_dir
+            .join(format!("{format}-rgb565-dither-{}.png", dither.name()));
+        super::save(&frame, &path)?;
+        figures.push((accuracy(&frame, truth, objects, objects).psnr_db, path));
+    }
+    Ok(figures)
+}
+
+/// The format's and f64's `images` against an f64 render of `scene` with `samples` rays per
+/// pixel and per disc light, all traced.
+fn converged(
+    samples: u16,
+    scene: &OwnedScene,
+    request: &Request<'_>,
+    [image, truth]: [&image::RgbImage; 2],
+    objects: &[Option<usize>],
+) -> Result<Converged> {
+    let mut many = scene.clone();
+    many.samples = samples;
+    many.adaptive_samples = false;
+    many.shadow_samples = samples;
+    many.adaptive_shadows = false;
+    let desc = many.desc();
+    let converged = prepare_reference(&Request {
+        desc: &desc,
+        ..*request
+    })?
+    .render(all_cores(), Some("converged f64"))
+    .context("rendering the converged f64 image")?;
+    let psnr = |image| accuracy(image, &converged, objects, objects).psnr_db;
+    Ok(Converged {
+        samples,
+        scene_samples: scene.samples,
+        adaptive_samples: scene.adaptive_samples,
+        psnr_db: psnr(image),
+        reference_psnr_db: psnr(truth),
+    })
+}
+
+/// The table, the RGB565 figures, the converged figures, and the files written.
+fn print_report(
+    report: &Report,
+    rgb565: &[(f64, PathBuf)],
+    files: &[PathBuf; 3],
+) -> io::Result<()> {
+    print_table(report)?;
+    if let [(_, plain), (_, dithered)] = rgb565 {
+        say!(
+            "as an RGB565 display shows it: {:.2} dB against f64 rounded to the nearest level, \
+             {:.2} dB with the ordered dither (wrote {} and {})",
+            report.rgb565_psnr_db,
+            report.rgb565_dithered_psnr_db,
+            plain.display(),
+            dithered.display()
+        )?;
+    }
+    if let Some(c) = &report.converged {
+        say!(
+            "against f64 with {} rays per pixel (how far {}{} are from converged): {} {:.2} \
+             dB, {REFERENCE} {:.2} dB",
+            c.samples,
+            if c.adaptive_samples { "adaptive " } else { "" },
+            c.scene_samples,
+            report.format,
+            c.psnr_db,
+            c.reference_psnr_db
+        )?;
+    }
+    say!(
+        "wrote {}, {} and {} (diff: largest channel error per pixel, log scale, legend below)",
+        files[0].display(),
+        files[1].display(),
+        files[2].display()
+    )
 }
 
 fn print_table(r: &Report) -> io::Result<()> {

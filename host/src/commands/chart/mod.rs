@@ -55,19 +55,49 @@ fn variants() -> Vec<Variant> {
 }
 
 pub fn run(args: &ChartArgs) -> Result<()> {
-    let (width, height) = args.size;
-    let variants = variants();
     output::check_dir(&args.out_dir)?;
-
-    // The microcontrollers: one firmware image per flash-full of formats, each drawing every
-    // variant; each run is also held to the host's frames, bit for bit in fixed point.
-    let mut costs: HashMap<(Target, &str, Format, Methods), f64> = HashMap::new();
-    let targets: &[Target] = if args.no_firmware {
-        &[]
+    let variants = variants();
+    let costs = if args.no_firmware {
+        HashMap::new()
     } else {
-        &[Target::M4f, Target::M0]
+        firmware_costs(args)?
     };
-    for &target in targets {
+    let host = measure_on_host(args, &variants)?;
+    let points = points(args, &host, &costs)?;
+    let csv = args.out_dir.join("speed-accuracy.csv");
+    write_csv(&points, &csv).with_context(|| format!("cannot write {}", csv.display()))?;
+    let (svg, png) = (
+        args.out_dir.join("speed-accuracy.svg"),
+        args.out_dir.join("speed-accuracy.png"),
+    );
+    plot::speed_accuracy(&points, &svg, &png)?;
+    print_table(&points)?;
+    for (v, reason) in &host.refused {
+        say!(
+            "refused: {} in {} by {}: {reason}",
+            v.scene.name,
+            v.format,
+            v.methods.to_string()
+        )?;
+    }
+    print_recommendations(&host.measured, &points)?;
+    say!(
+        "wrote {}, {} and {}",
+        csv.display(),
+        svg.display(),
+        png.display()
+    )?;
+    samples::run(args)
+}
+
+/// Instructions per pixel of a variant on a microcontroller.
+type Costs = HashMap<(Target, &'static str, Format, Methods), f64>;
+
+/// The microcontrollers' costs: one firmware image per flash-full of formats, each drawing every
+/// variant; each run is also held to the host's frames, bit for bit in fixed point.
+fn firmware_costs(args: &ChartArgs) -> Result<Costs> {
+    let mut costs = Costs::new();
+    for target in [Target::M4f, Target::M0] {
         firmware::check_prerequisites(target)?;
         for (i, formats) in target.chart_images().iter().enumerate() {
             let settings = FirmwareSettings {
@@ -115,19 +145,35 @@ pub fn run(args: &ChartArgs) -> Result<()> {
             }
         }
     }
+    Ok(costs)
+}
 
-    // The host: accuracy against f64 (same methods, exact roots), and single-thread time per
-    // pixel, all variants timed in one interleaved run.
+/// What the host measured of the variants: those the format holds, with their accuracy and
+/// single-thread time per frame, and those it refuses with the reason.
+struct HostMeasurements<'a> {
+    measured: Vec<&'a Variant>,
+    accuracies: Vec<crate::metrics::Accuracy>,
+    times_ms: Vec<f64>,
+    refused: Vec<(&'a Variant, String)>,
+}
+
+/// Accuracy against f64 (same methods, exact roots), and single-thread time per frame, all
+/// variants timed in one interleaved run.
+fn measure_on_host<'a>(args: &ChartArgs, variants: &'a [Variant]) -> Result<HostMeasurements<'a>> {
+    let (width, height) = args.size;
     eprintln!(
         "measuring {} variants on the host at {width}x{height}",
         variants.len()
     );
     let threads = all_cores();
     let mut prepared: Vec<Box<dyn AnyFormat>> = Vec::new();
-    let mut accuracies = Vec::new();
-    let mut measured = Vec::new();
-    let mut refused = Vec::new();
-    for variant in &variants {
+    let mut host = HostMeasurements {
+        measured: Vec::new(),
+        accuracies: Vec::new(),
+        times_ms: Vec::new(),
+        refused: Vec::new(),
+    };
+    for variant in variants {
         let request = Request {
             desc: &variant.scene.desc,
             width,
@@ -139,7 +185,7 @@ pub fn run(args: &ChartArgs) -> Result<()> {
         let contender = match prepare(variant.format, &request) {
             Ok(contender) => contender,
             Err(error) => {
-                refused.push((variant, format!("{error:#}")));
+                host.refused.push((variant, format!("{error:#}")));
                 continue;
             }
         };
@@ -152,22 +198,28 @@ pub fn run(args: &ChartArgs) -> Result<()> {
         };
         let image = contender.render(threads, None).with_context(label)?;
         let truth = reference.render(threads, None).with_context(label)?;
-        accuracies.push(accuracy(
+        host.accuracies.push(accuracy(
             &image,
             &truth,
             &contender.object_map().with_context(label)?,
             &reference.object_map().with_context(label)?,
         ));
         prepared.push(contender);
-        measured.push(variant);
+        host.measured.push(variant);
     }
-    let times = frame_ms(args.runs, &prepared);
-    let pixels = f64::from(width) * f64::from(height);
+    host.times_ms = frame_ms(args.runs, &prepared);
+    Ok(host)
+}
 
-    let points: Vec<SpeedPoint> = measured
+/// The chart's points: each measured variant's costs and accuracy. Fails when a firmware ran
+/// but reported no frame of a variant the host measured.
+fn points(args: &ChartArgs, host: &HostMeasurements<'_>, costs: &Costs) -> Result<Vec<SpeedPoint>> {
+    let pixels = f64::from(args.size.0) * f64::from(args.size.1);
+    let points: Vec<SpeedPoint> = host
+        .measured
         .iter()
-        .zip(&accuracies)
-        .zip(&times)
+        .zip(&host.accuracies)
+        .zip(&host.times_ms)
         .map(|((v, acc), ms)| SpeedPoint {
             scene: v.scene.name.to_owned(),
             format: v.format.name().to_owned(),
@@ -195,31 +247,7 @@ pub fn run(args: &ChartArgs) -> Result<()> {
             );
         }
     }
-
-    let csv = args.out_dir.join("speed-accuracy.csv");
-    write_csv(&points, &csv).with_context(|| format!("cannot write {}", csv.display()))?;
-    let (svg, png) = (
-        args.out_dir.join("speed-accuracy.svg"),
-        args.out_dir.join("speed-accuracy.png"),
-    );
-    plot::speed_accuracy(&points, &svg, &png)?;
-    print_table(&points)?;
-    for (v, reason) in &refused {
-        say!(
-            "refused: {} in {} by {}: {reason}",
-            v.scene.name,
-            v.format,
-            v.methods.to_string()
-        )?;
-    }
-    print_recommendations(&measured, &points)?;
-    say!(
-        "wrote {}, {} and {}",
-        csv.display(),
-        svg.display(),
-        png.display()
-    )?;
-    samples::run(args)
+    Ok(points)
 }
 
 fn find(scene: &str, format: &str) -> Result<(&'static BuiltIn, Format)> {
