@@ -2,7 +2,6 @@
 //! chosen per render: [`Methods`] holds one choice per question.
 
 use crate::scalar::Scalar;
-use crate::words::{Reader, Words, Writer};
 use core::fmt;
 
 /// How a ray meets a sphere.
@@ -83,43 +82,6 @@ pub struct Methods {
     /// Self-intersection.
     pub bias: BiasMethod,
 }
-
-crate::words::words_of_struct!(Methods {
-    sphere,
-    triangle,
-    roots,
-    rays,
-    bias
-});
-/// Words ([`crate::words`]) for choices: each as its place in [`MethodName::ALL`].
-macro_rules! words_of_choice {
-    ($($ty:ty),*) => {$(
-        impl Words for $ty {
-            fn put(&self, out: &mut Writer<'_>) {
-                let place = Self::ALL.iter().position(|(m, _)| m == self);
-                out.word(place.and_then(|p| u32::try_from(p).ok()).unwrap_or(u32::MAX));
-            }
-
-            fn take(input: &mut Reader<'_>) -> Self {
-                let place = usize::try_from(input.word()).unwrap_or(usize::MAX);
-                Self::ALL.get(place).map_or_else(
-                    || {
-                        input.refuse();
-                        Self::default()
-                    },
-                    |&(m, _)| m,
-                )
-            }
-        }
-    )*};
-}
-words_of_choice!(
-    SphereMethod,
-    TriangleMethod,
-    RootMethod,
-    RayMethod,
-    BiasMethod
-);
 
 impl Methods {
     /// The lecture's methods: the quadratic, Cramer's rule, exact roots, a ray per pixel, an

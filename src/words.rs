@@ -11,7 +11,11 @@
 //! too only a scene the range proof holds reaches the tracer: a [`crate::Scene`] comes only from
 //! a description the build has proven.
 
+use crate::methods::{
+    BiasMethod, MethodName, Methods, RayMethod, RootMethod, SphereMethod, TriangleMethod,
+};
 use crate::scalar::Bits;
+use crate::uses::Uses;
 use core::fmt;
 
 /// Words that are not a scene's or a camera's as [`crate::words`] writes them, in the format and
@@ -70,13 +74,27 @@ impl Writer<'_> {
     }
 }
 
-/// Where words come from, and whether they have been found not to be what was read.
+/// Where words come from, whether they have been found not to be what was read, and the parts
+/// of the tracer the value read may use ([`Uses`]: a kind of shape it leaves out is refused
+/// where its tag is read, so that no code to read it is linked).
 pub(crate) struct Reader<'a> {
     words: &'a [u32],
     refused: bool,
+    parts: Uses,
 }
 
 impl Reader<'_> {
+    /// Whether the value read may use `part`.
+    #[inline(always)]
+    pub(crate) const fn allows(&self, part: Uses) -> bool {
+        self.parts.contains(part)
+    }
+
+    /// The value read may use only `parts` (a scene of a tracer of these parts).
+    pub(crate) fn allow_only(&mut self, parts: Uses) {
+        self.parts = parts;
+    }
+
     /// The next word; past the end, 0 and the reader refused. Out of line: reading a scene is
     /// mostly calls of it, one per word, and a firmware's image is smaller so.
     #[inline(never)]
@@ -151,6 +169,7 @@ pub(crate) fn read<S: Bits, T: Words>(what: &'static str, words: &[u32]) -> Resu
     let mut input = Reader {
         words: body.get(1..).unwrap_or_default(),
         refused: false,
+        parts: Uses::EVERYTHING,
     };
     let value = T::take(&mut input);
     if input.refused || !input.words.is_empty() {
@@ -282,11 +301,14 @@ pub(crate) use words_of_struct;
 
 /// Words for an enum: its variant's place among those listed (every one, in order), then its
 /// fields: `words_of_enum!(Cone<S> { Everywhere, Within { axis, cos } })`, a variant with one
-/// unnamed field as `Solid(colour)`. A place beyond the list refuses the reader.
+/// unnamed field as `Solid(colour)`. A variant may name the part of the tracer it needs
+/// (`Triangle(triangle) if Uses::TRIANGLES`): read where the reader does not allow it
+/// ([`Reader::allows`]), it refuses the reader, as a place beyond the list does, and after the
+/// first no code to read its fields is linked.
 macro_rules! words_of_enum {
     ($ty:ident $(<$t:ident>)? {
-        $first:ident $(($first_inner:ident))? $({ $($first_field:ident),* })?
-        $(, $variant:ident $(($inner:ident))? $({ $($field:ident),* })?)* $(,)?
+        $first:ident $(($first_inner:ident))? $({ $($first_field:ident),* })? $(if $first_part:expr)?
+        $(, $variant:ident $(($inner:ident))? $({ $($field:ident),* })? $(if $part:expr)?)* $(,)?
     }) => {
         impl$(<$t: $crate::scalar::Bits>)? $crate::words::Words for $ty$(<$t>)? {
             #[allow(unused_assignments, reason = "the place after the last variant")]
@@ -315,13 +337,13 @@ macro_rules! words_of_enum {
                 let mut place = 0_u32;
                 $(
                     place += 1;
-                    if tag == place {
+                    if tag == place && true $(&& input.allows($part))? {
                         return Self::$variant
                             $(({ let $inner = $crate::words::Words::take(input); $inner }))?
                             $({ $($field: $crate::words::Words::take(input)),* })?;
                     }
                 )*
-                if tag != 0 {
+                if tag != 0 || !(true $(&& input.allows($first_part))?) {
                     input.refuse();
                 }
                 Self::$first
@@ -332,6 +354,45 @@ macro_rules! words_of_enum {
     };
 }
 pub(crate) use words_of_enum;
+
+// The methods: each choice as its place in its list.
+words_of_struct!(Methods {
+    sphere,
+    triangle,
+    roots,
+    rays,
+    bias
+});
+
+/// Words for choices: each as its place in [`MethodName::ALL`].
+macro_rules! words_of_choice {
+    ($($ty:ty),*) => {$(
+        impl Words for $ty {
+            fn put(&self, out: &mut Writer<'_>) {
+                let place = Self::ALL.iter().position(|(m, _)| m == self);
+                out.word(place.and_then(|p| u32::try_from(p).ok()).unwrap_or(u32::MAX));
+            }
+
+            fn take(input: &mut Reader<'_>) -> Self {
+                let place = usize::try_from(input.word()).unwrap_or(usize::MAX);
+                Self::ALL.get(place).map_or_else(
+                    || {
+                        input.refuse();
+                        Self::default()
+                    },
+                    |&(m, _)| m,
+                )
+            }
+        }
+    )*};
+}
+words_of_choice!(
+    SphereMethod,
+    TriangleMethod,
+    RootMethod,
+    RayMethod,
+    BiasMethod
+);
 
 #[cfg(test)]
 mod tests {
@@ -372,19 +433,19 @@ mod tests {
 
     /// What a tracer of spheres and planes by the lecture's methods has (the methods' bits, which
     /// the test below checks, written out: a const argument cannot call `Uses::methods`).
-    const SPHERES_AND_PLANES: u32 = crate::Uses::SPHERES
-        .union(crate::Uses::PLANES)
-        .union(crate::Uses::from_bits(0x2_a500))
+    const SPHERES_AND_PLANES: u32 = Uses::SPHERES
+        .union(Uses::PLANES)
+        .union(Uses::from_bits(0x2_a500))
         .bits();
 
     #[test]
     fn a_scene_reads_back_only_into_a_tracer_with_every_part_it_uses() {
-        let parts = crate::Uses::from_bits(SPHERES_AND_PLANES);
+        let parts = Uses::from_bits(SPHERES_AND_PLANES);
         assert_eq!(
             parts,
-            crate::Uses::SPHERES
-                .union(crate::Uses::PLANES)
-                .union(crate::Uses::methods(&crate::Methods::LECTURE))
+            Uses::SPHERES
+                .union(Uses::PLANES)
+                .union(Uses::methods(&Methods::LECTURE))
         );
         let whitted = Scene::<f32, 8, 4, 8>::build(&crate::scenes::WHITTED).unwrap();
         let shapes = Scene::<f32, 8, 4, 8>::build(&crate::scenes::SHAPES).unwrap();
@@ -393,8 +454,32 @@ mod tests {
         let shapes_words = words_of(|sink| shapes.write_words(sink));
         let read = Scene::<f32, 8, 4, 8, SPHERES_AND_PLANES>::from_words(&whitted_words);
         assert_eq!(read.map(|scene| scene.uses()), Ok(whitted.uses()));
-        // Triangles, which the tracer leaves out.
+        // Triangles, which the tracer leaves out; spheres, which a tracer of planes and
+        // triangles does; stable spheres, the lecture's quadratic.
         assert!(Scene::<f32, 8, 4, 8, SPHERES_AND_PLANES>::from_words(&shapes_words).is_err());
+        const NO_SPHERES: u32 = SPHERES_AND_PLANES & !Uses::SPHERES.bits() | Uses::TRIANGLES.bits();
+        assert!(Scene::<f32, 8, 4, 8, NO_SPHERES>::from_words(&shapes_words).is_err());
+        let stable = Methods {
+            sphere: SphereMethod::Stable,
+            ..Methods::LECTURE
+        };
+        let whitted_stable =
+            Scene::<f32, 8, 4, 8>::build_with(&crate::scenes::WHITTED, stable).unwrap();
+        let words = words_of(|sink| whitted_stable.write_words(sink));
+        assert!(Scene::<f32, 8, 4, 8, SPHERES_AND_PLANES>::from_words(&words).is_err());
+        // Several rays per pixel, and an area light.
+        for desc in [
+            crate::SceneDesc {
+                samples: 4,
+                ..crate::scenes::WHITTED
+            },
+            crate::scenes::SOFT,
+        ] {
+            let scene = Scene::<f32, 8, 4, 8>::build(&desc).unwrap();
+            let words = words_of(|sink| scene.write_words(sink));
+            assert!(!parts.contains(scene.uses()));
+            assert!(Scene::<f32, 8, 4, 8, SPHERES_AND_PLANES>::from_words(&words).is_err());
+        }
     }
 
     #[test]
@@ -413,7 +498,7 @@ mod tests {
         assert_eq!(
             refused,
             Err(crate::RenderError::TracerLacks {
-                missing: crate::Uses::LENS
+                missing: Uses::LENS
             })
         );
         // Its own camera draws.

@@ -240,14 +240,7 @@ impl<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, cons
     /// capacities, a deeper ray tree than the ray stack holds, or uses a part `USES` leaves
     /// out ([`Self::uses`]).
     pub fn from_words(words: &[u32]) -> Result<Self, WordsError> {
-        let scene: Self = words::read::<S, Self>("scene", words)?;
-        if !Uses::from_bits(USES).contains(scene.uses()) {
-            return Err(WordsError {
-                what: "scene",
-                format: S::NAME,
-            });
-        }
-        Ok(scene)
+        words::read::<S, Self>("scene", words)
     }
 }
 
@@ -273,7 +266,11 @@ impl<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, cons
         self.frame.put(out);
     }
 
+    /// Refuses the parts `USES` leaves out where they are read: a kind of shape at its tag
+    /// ([`Reader::allow_only`]), a method, an area light or several rays per pixel once read.
     fn take(input: &mut Reader<'_>) -> Self {
+        let parts = Uses::from_bits(USES);
+        input.allow_only(parts);
         let mut objects = Vec::new();
         for _ in 0..input.count(OBJECTS) {
             // Within the capacity: count() says so.
@@ -298,7 +295,12 @@ impl<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, cons
             }
         }
         let settings = Settings::take(input);
-        if usize::from(settings.max_depth) >= RAYS {
+        let area_lights = lights.iter().any(|light| light.shadow_rays > 1);
+        if usize::from(settings.max_depth) >= RAYS
+            || !parts.contains(Uses::methods(&settings.methods))
+            || (area_lights && !parts.contains(Uses::AREA_LIGHTS))
+            || (settings.samples > 1 && !parts.contains(Uses::SAMPLES))
+        {
             input.refuse();
         }
         Self {

@@ -53,9 +53,9 @@ pub enum Shape<S> {
 }
 
 crate::words::words_of_enum!(Shape<S> {
-    Sphere(sphere),
-    Plane(plane),
-    Triangle(triangle)
+    Sphere(sphere) if Uses::SPHERES,
+    Plane(plane) if Uses::PLANES,
+    Triangle(triangle) if Uses::TRIANGLES
 });
 
 impl<S: Scalar> Shape<S> {
