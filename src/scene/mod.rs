@@ -669,11 +669,14 @@ impl<S: Scalar> Converter<S> {
         // The eye's foot on the plane, and its place on the grid of squares aligned to the
         // plane's point, counted in squares: the pattern is measured from there, so that the
         // coordinates it multiplies are of points within the world, however large the squares.
+        // The place is kept modulo two squares, not one: a square's colour is the parity of
+        // its two coordinates, and the parity of the foot's own square must stay, or an eye
+        // moved across a square's edge would swap every colour of the board.
         let to_eye = self.eye - point;
         let foot = point + u * to_eye.dot(u) + v * to_eye.dot(v);
         let place = |axis: Vec3<f64>| {
             let squares = to_eye.dot(axis) / size;
-            squares - libm::floor(squares)
+            squares - 2.0 * libm::floor(squares / 2.0)
         };
         Ok(Checker {
             colour: self.colour(item, "shape.plane.checker.colour", desc.colour)?,

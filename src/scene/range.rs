@@ -398,7 +398,7 @@ pub fn magnitudes<'a>(
                             let size = f64::from(checker.size);
                             (
                                 "a checker coordinate",
-                                checker_reach(origin, world) / size + 1.0,
+                                checker_reach(origin, world) / size + 2.0,
                                 Remedy::LargerSquares,
                             )
                         }),
@@ -756,7 +756,7 @@ fn object_features(
                         1.0,
                         Terms::new(&[
                             (3.0_f64.sqrt() * reach, 1.0 / size),
-                            (1.0, reach / size + 1.0),
+                            (1.0, reach / size + 2.0),
                         ]),
                         Remedy::LargerSquares,
                     ),

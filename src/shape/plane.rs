@@ -43,7 +43,8 @@ pub struct Checker<S> {
     pub u: Vec3<S>,
     /// The second in-plane axis divided by the square size.
     pub v: Vec3<S>,
-    /// The origin's coordinates on the grid of squares, each in [0, 1).
+    /// The origin's coordinates on the grid of squares anchored at the plane's point, modulo two
+    /// squares (each in [0, 2)), so that a square's colour is where the plane puts it.
     pub start: [S; 2],
 }
 

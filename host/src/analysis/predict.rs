@@ -415,7 +415,7 @@ fn object_shifts<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods, pixel: f64)
                 "checker square size",
             ) => {
                 let size = f64::from(checker.size);
-                shift.inner += size * S::resolution(seen / size + 1.0) / seen / pixel;
+                shift.inner += size * S::resolution(seen / size + 2.0) / seen / pixel;
             }
             _ => {}
         }
