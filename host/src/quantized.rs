@@ -4,10 +4,12 @@
 //! format's; a quotient saturates at its range. The rounding of each operation is left out but
 //! for the one an image is most sensitive to: a power (Phong's highlight, cosⁿ) is taken of
 //! its cosine plus the format's rounding of a cosine, which an exponent n multiplies by n where
-//! the highlight shows, and raised by the bound of its own products' rounding, which the
-//! exponent multiplies alike. Up, not down: xⁿ is convex, so a cosine rounded up moves it
-//! further than one rounded down, and a highlight narrower than the format resolves spreads
-//! (its cosines round to 1). So a render in it against the f64 reference shows what the format's
+//! the highlight shows, and moved by the bound of its own products' rounding, which the
+//! exponent multiplies alike. Up, mostly: xⁿ is convex, so a cosine rounded up moves it further
+//! than one rounded down, and a highlight narrower than the format resolves spreads (its
+//! cosines round to 1); but down within the rounding of 1, where a cosine cannot rise above 1
+//! and a format's falls short of it (a light at the eye, seen in a mirror-like surface facing
+//! it: 1 − ε to the power n is far below 1). So a render in it against the f64 reference shows what the format's
 //! constants, tolerances and highlights do to the image, pixel by pixel, which
 //! [`crate::analysis`] adds to its model of the rest of the rounding.
 
@@ -132,13 +134,23 @@ impl<S: Scalar> Scalar for Quantized<S> {
         Self::new(S::ratio(num, den).to_f64())
     }
 
-    /// The power of the base plus its rounding as a cosine, plus the rounding of the power
-    /// itself ([`power_rounding`]), at most 1: see the module documentation.
+    /// The power of the base moved by its rounding as a cosine, and by the rounding of the
+    /// power itself ([`power_rounding`]), the way that moves the power further: see the module
+    /// documentation.
     fn powi(self, exponent: u16) -> Self {
-        let base = (self.0 + COSINE_STEPS * S::UNIT_ERROR).clamp(0.0, 1.0);
-        let power = base.powi(i32::from(exponent));
-        let rounding = power_rounding(base, exponent, S::resolution(1.0) / 2.0);
-        Self::new((power + rounding).min(1.0))
+        let n = i32::from(exponent);
+        let cosine = COSINE_STEPS * S::UNIT_ERROR;
+        let exact = self.0.clamp(0.0, 1.0).powi(n);
+        let (up, down) = (
+            (self.0 + cosine).clamp(0.0, 1.0),
+            (self.0 - cosine).clamp(0.0, 1.0),
+        );
+        let rounding = |base: f64| power_rounding(base, exponent, S::resolution(1.0) / 2.0);
+        if up.powi(n) - exact >= exact - down.powi(n) {
+            Self::new((up.powi(n) + rounding(up)).min(1.0))
+        } else {
+            Self::new((down.powi(n) - rounding(down)).max(0.0))
+        }
     }
 
     fn diff_of_products(a: Self, b: Self, c: Self, d: Self) -> (Self, Ordering) {

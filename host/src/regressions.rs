@@ -104,6 +104,14 @@ fn a_highlight_whose_cosines_round_up_is_predicted_so() {
 }
 
 #[test]
+fn a_highlight_at_its_peak_everywhere_is_predicted_so() {
+    let scene = hostile("headlight");
+    for format in [Format::I16f16, Format::I18f14, Format::F32] {
+        refused_or_held(&scene, format, Methods::LECTURE, 32, &[]);
+    }
+}
+
+#[test]
 fn sphere_roots_at_the_edge_of_the_range_neither_wrap_nor_lie() {
     for format in [Format::I20f12, Format::I32f32] {
         let world = hostile(&format!("roots-{format}"));

@@ -97,30 +97,46 @@ impl OwnedScene {
     /// length multiplied by s. The camera sees the very same image.
     pub fn scaled(&self, s: f32) -> Self {
         let eye = self.camera.eye;
-        let point = |p: [f32; 3]| std::array::from_fn(|i| eye[i] + s * (p[i] - eye[i]));
+        self.transformed(
+            |p| std::array::from_fn(|i| eye[i] + s * (p[i] - eye[i])),
+            |d| d,
+            |length| s * length,
+        )
+    }
+
+    /// The scene moved by a map of the world: every position (the eye, where it looks, the
+    /// objects' and the lights' places) through `position`, every direction (the camera's up,
+    /// a plane's normal, the sky's up) through `direction`, and every length (a radius, a
+    /// square's size, `far`, the lens's aperture and focus distance) through `length`.
+    pub fn transformed(
+        &self,
+        position: impl Fn([f32; 3]) -> [f32; 3],
+        direction: impl Fn([f32; 3]) -> [f32; 3],
+        length: impl Fn(f32) -> f32,
+    ) -> Self {
         let objects = self
             .objects
             .iter()
             .map(|object| {
                 let shape = match object.shape {
                     ShapeDesc::Sphere { center, radius } => ShapeDesc::Sphere {
-                        center: point(center),
-                        radius: s * radius,
+                        center: position(center),
+                        radius: length(radius),
                     },
                     ShapeDesc::Plane {
-                        point: on,
+                        point,
                         normal,
                         checker,
                     } => ShapeDesc::Plane {
-                        point: point(on),
-                        normal,
+                        point: position(point),
+                        normal: direction(normal),
                         checker: checker.map(|c| obscura::CheckerDesc {
-                            size: s * c.size,
+                            size: length(c.size),
                             ..c
                         }),
                     },
                     ShapeDesc::Triangle { vertices } => ShapeDesc::Triangle {
-                        vertices: vertices.map(point),
+                        vertices: vertices.map(&position),
                     },
                 };
                 ObjectDesc { shape, ..*object }
@@ -130,21 +146,36 @@ impl OwnedScene {
             .lights
             .iter()
             .map(|light| LightDesc {
-                position: point(light.position),
-                radius: light.radius * s,
+                position: position(light.position),
+                radius: length(light.radius),
                 ..*light
             })
             .collect();
+        let background = match self.background {
+            BackgroundDesc::Gradient {
+                horizon,
+                zenith,
+                up,
+            } => BackgroundDesc::Gradient {
+                horizon,
+                zenith,
+                up: direction(up),
+            },
+            solid @ BackgroundDesc::Solid(_) => solid,
+        };
         Self {
             camera: CameraDesc {
-                look_at: point(self.camera.look_at),
-                aperture: s * self.camera.aperture,
-                focus_distance: self.camera.focus_distance.map(|f| s * f),
+                eye: position(self.camera.eye),
+                look_at: position(self.camera.look_at),
+                up: direction(self.camera.up),
+                aperture: length(self.camera.aperture),
+                focus_distance: self.camera.focus_distance.map(&length),
                 ..self.camera
             },
             objects,
             lights,
-            far: s * self.far,
+            background,
+            far: length(self.far),
             ..*self
         }
     }

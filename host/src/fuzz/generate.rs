@@ -212,7 +212,35 @@ impl Generator {
             scene.samples = if self.chance(0.5) { 4 } else { 16 };
             scene.adaptive_samples = true;
         }
+        // An eighth of the scenes on a grid of a power of two about an eighth of their unit:
+        // every position a multiple of the cell, every plane facing along an axis with squares
+        // of one to eight cells, so that eyes and lights stand on squares' edges and the scene
+        // translates exactly by any multiple of the cell.
+        if self.chance(0.125) {
+            scene = self.on_a_grid(&scene, unit);
+        }
         Generated { scene, size }
+    }
+
+    /// `scene` on a grid of cells of a power of two near `unit`/8 (see [`Self::scene`]).
+    fn on_a_grid(&mut self, scene: &OwnedScene, unit: f64) -> OwnedScene {
+        let cell = 2_f64.powi((unit / 8.0).log2().round() as i32);
+        let snap = |p: [f32; 3]| p.map(|c| ((f64::from(c) / cell).round() * cell) as f32);
+        let mut snapped = scene.transformed(snap, |d| d, |l| l);
+        for object in &mut snapped.objects {
+            if let ShapeDesc::Plane {
+                normal, checker, ..
+            } = &mut object.shape
+            {
+                let mut axis = [0.0; 3];
+                axis[self.below(3)] = if self.chance(0.5) { 1.0 } else { -1.0 };
+                *normal = axis;
+                if let Some(checker) = checker {
+                    checker.size = (cell * f64::from(1_u8 << self.below(4))) as f32;
+                }
+            }
+        }
+        snapped
     }
 
     /// Mostly a colour in [0, 1], now and then far brighter.

@@ -19,12 +19,18 @@
 //!   image a handful of pixels on an edge flip or not by chance: beyond twice the expected
 //!   count plus three, chance is under 0.1 %.)
 //!
+//! - the picture moves with the world ([`metamorphic`]): the scene and its eye translated
+//!   together draw the same frame bit for bit in every format; by the lecture's methods, in f64,
+//!   a world doubled draws the same picture, a mirrored one its mirror image, and an eye nudged
+//!   by an ulp changes only pixels an edge passes through (a **metamorphic violation**).
+//!
 //! Every failure is written as a scene file whose header says what failed and the command that
 //! shows it.
 
 #[cfg(test)]
 mod corpus;
 pub mod generate;
+pub mod metamorphic;
 
 use crate::analysis::{Analysis, Fit, Prediction, Reference};
 use crate::checked;
@@ -40,6 +46,7 @@ use rand_pcg::Pcg64;
 use rayon::prelude::*;
 use rayon::{ThreadPool, ThreadPoolBuilder};
 use serde::Serialize;
+use std::collections::BTreeMap;
 use std::fmt;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -86,6 +93,13 @@ pub enum Failure {
         /// What each said.
         message: String,
     },
+    /// A picture did not move with the world as a metamorphic relation says.
+    Metamorphic {
+        /// The relation: translate, scale, mirror or nudge.
+        relation: &'static str,
+        /// What changed.
+        message: String,
+    },
     /// The measurement fell short of the prediction by more than the margin.
     FalseAccept {
         /// The predicted PSNR, in dB.
@@ -106,6 +120,9 @@ impl fmt::Display for Failure {
             Self::Panic { message } => write!(f, "panic: {message}"),
             Self::SkippedHit { message } => write!(f, "skipped hit: {message}"),
             Self::Disagreement { message } => write!(f, "disagreement: {message}"),
+            Self::Metamorphic { relation, message } => {
+                write!(f, "metamorphic violation ({relation}): {message}")
+            }
             Self::FalseAccept {
                 predicted_psnr_db,
                 measured_psnr_db,
@@ -160,6 +177,10 @@ pub struct Tally {
     pub skipped_hits: u64,
     /// Builds where analyze and the build disagreed.
     pub disagreements: u64,
+    /// Metamorphic relations checked, by relation (translate counts each format).
+    pub relations_checked: BTreeMap<&'static str, u64>,
+    /// Of those, the ones the picture broke.
+    pub metamorphic_violations: u64,
     /// Builds measured worse than predicted, beyond the margins.
     pub false_accepts: u64,
     /// The failures, each once.
@@ -177,6 +198,10 @@ impl Tally {
         self.panics += other.panics;
         self.skipped_hits += other.skipped_hits;
         self.disagreements += other.disagreements;
+        for (relation, count) in other.relations_checked {
+            *self.relations_checked.entry(relation).or_default() += count;
+        }
+        self.metamorphic_violations += other.metamorphic_violations;
         self.false_accepts += other.false_accepts;
         self.findings.extend(other.findings);
     }
@@ -187,9 +212,14 @@ impl Tally {
             Failure::Panic { .. } => self.panics += 1,
             Failure::SkippedHit { .. } => self.skipped_hits += 1,
             Failure::Disagreement { .. } => self.disagreements += 1,
+            Failure::Metamorphic { .. } => self.metamorphic_violations += 1,
             Failure::FalseAccept { .. } => self.false_accepts += 1,
         }
         self.findings.push(finding);
+    }
+
+    fn check(&mut self, relation: &'static str) {
+        *self.relations_checked.entry(relation).or_default() += 1;
     }
 
     /// Whether nothing failed.
@@ -203,17 +233,24 @@ impl fmt::Display for Tally {
         write!(
             f,
             "{} scenes, {} scene × format × method builds ({} accepted and rendered, {} of them \
-             held to their prediction): {} overflows, {} panics, {} skipped hits, {} \
-             disagreements with analyze, {} false accepts",
+             held to their prediction; metamorphic relations checked: {}): {} overflows, {} \
+             panics, {} skipped hits, {} disagreements with analyze, {} false accepts, {} \
+             metamorphic violations",
             self.scenes,
             self.builds,
             self.accepted,
             self.held_to_prediction,
+            self.relations_checked
+                .iter()
+                .map(|(relation, count)| format!("{relation} {count}"))
+                .collect::<Vec<_>>()
+                .join(", "),
             self.overflows,
             self.panics,
             self.skipped_hits,
             self.disagreements,
-            self.false_accepts
+            self.false_accepts,
+            self.metamorphic_violations
         )
     }
 }
@@ -358,7 +395,22 @@ fn try_methods(
         }
         return;
     };
-    let stable = stable(scene, &request, &reference.image);
+    let nudged = nudged(scene, &request);
+    let stable = nudged
+        .as_ref()
+        .is_some_and(|(image, _)| psnr(image, &reference.image) >= STABLE_PSNR_DB);
+    if methods == Methods::LECTURE {
+        try_translation(scene, &request, tally, &finding);
+        for (relation, broken) in
+            f64_relations(scene, &request, &reference, nudged.as_ref(), stable)
+        {
+            tally.check(relation);
+            if let Some(message) = broken {
+                let failure = Failure::Metamorphic { relation, message };
+                tally.record(finding(Format::F64, failure));
+            }
+        }
+    }
     let analysis = Analysis::with_reference(scene, methods, &reference);
     for &format in FORMATS {
         tally.builds += 1;
@@ -451,20 +503,144 @@ pub fn false_accept(prediction: &Prediction, measured: &Accuracy, pixels: u32) -
         || measured.object_mismatch_pct > MARGIN * prediction.mismatch_pct + spare_pct
 }
 
-/// Whether the f64 image stays within [`STABLE_PSNR_DB`] when the eye moves by one ulp.
-fn stable(scene: &OwnedScene, request: &Request<'_>, reference: &RgbImage) -> bool {
+/// The f64 image and object map with the eye nudged by one ulp of f32 (`None` where that
+/// scene is refused).
+fn nudged(scene: &OwnedScene, request: &Request<'_>) -> Option<(RgbImage, Vec<Option<usize>>)> {
     let mut nudged = scene.clone();
     nudged.camera.eye = nudged.camera.eye.map(f32::next_up);
     let desc = nudged.desc();
-    let Ok(image) = prepare_reference(&Request {
+    let prepared = prepare_reference(&Request {
         desc: &desc,
         ..*request
     })
-    .and_then(|nudged| nudged.render(1, None)) else {
-        return false;
+    .ok()?;
+    Some((prepared.render(1, None).ok()?, prepared.object_map().ok()?))
+}
+
+/// The PSNR between two images of the same size, in dB.
+fn psnr(image: &RgbImage, reference: &RgbImage) -> f64 {
+    let (width, height) = reference.dimensions();
+    let none = vec![None; (width * height) as usize];
+    accuracy(image, reference, &none, &none).psnr_db
+}
+
+/// The largest translation tried: moved by up to this, a scene on a grid of powers of two still
+/// moves exactly.
+const TRANSLATION_LIMIT: f32 = 1_048_576.0;
+
+/// The scene and its eye translated together ([`metamorphic::exact_translation`]) are accepted
+/// or refused alike and draw the same frame in every format.
+fn try_translation(
+    scene: &OwnedScene,
+    request: &Request<'_>,
+    tally: &mut Tally,
+    finding: &impl Fn(Format, Failure) -> Finding,
+) {
+    let Some(t) = metamorphic::exact_translation(scene, TRANSLATION_LIMIT) else {
+        return;
     };
-    let none = vec![None; (request.width * request.height) as usize];
-    accuracy(&image, reference, &none, &none).psnr_db >= STABLE_PSNR_DB
+    let moved = metamorphic::translated(scene, t);
+    let moved_desc = moved.desc();
+    let moved_request = Request {
+        desc: &moved_desc,
+        ..*request
+    };
+    let draw = |request: &Request<'_>, format| {
+        prepare(format, request).and_then(|prepared| prepared.render(1, None))
+    };
+    for &format in std::iter::once(&Format::F64).chain(FORMATS) {
+        tally.check("translate");
+        let message = match (draw(request, format), draw(&moved_request, format)) {
+            (Ok(here), Ok(there)) if here == there => continue,
+            (Err(_), Err(_)) => continue,
+            (Ok(here), Ok(there)) => {
+                let differing = here
+                    .pixels()
+                    .zip(there.pixels())
+                    .filter(|(a, b)| a != b)
+                    .count();
+                format!("moved by {t:?}, {differing} pixels differ")
+            }
+            (Ok(_), Err(error)) => format!("refused when moved by {t:?}: {error:#}"),
+            (Err(error), Ok(_)) => {
+                format!("accepted when moved by {t:?}, refused where it was: {error:#}")
+            }
+        };
+        let relation = "translate";
+        tally.record(finding(format, Failure::Metamorphic { relation, message }));
+    }
+}
+
+/// A relation checked, and what broke it (if it broke).
+type Checked = (&'static str, Option<String>);
+
+/// In f64: an eye nudged by an ulp changes only pixels an edge passes through; where that keeps
+/// the image stable, a world doubled draws the same picture, and a mirrored one its mirror image.
+fn f64_relations(
+    scene: &OwnedScene,
+    request: &Request<'_>,
+    reference: &Reference,
+    nudged: Option<&(RgbImage, Vec<Option<usize>>)>,
+    stable: bool,
+) -> Vec<Checked> {
+    let mut checked = Vec::new();
+    let pixels = f64::from(request.width * request.height);
+    let small = metamorphic::nudge_is_small(scene, request.height);
+    if let (Some((image, objects)), true) = (nudged, small) {
+        let unexplained =
+            metamorphic::unexplained_changes(&reference.image, &reference.objects, image, objects);
+        let broken = (unexplained as f64 > SPARE_PIXELS + metamorphic::UNEXPLAINED_SHARE * pixels)
+            .then(|| format!("{unexplained} of {pixels} pixels changed with no edge near them"));
+        checked.push(("nudge", broken));
+    }
+    if stable {
+        checked.extend(mirror_and_scale(scene, request, reference));
+    }
+    checked
+}
+
+/// Where an ulp of the eye keeps the f64 image stable: the world doubled draws the same
+/// picture, and mirrored its mirror image.
+fn mirror_and_scale(
+    scene: &OwnedScene,
+    request: &Request<'_>,
+    reference: &Reference,
+) -> Vec<Checked> {
+    let draw = |moved: &OwnedScene| {
+        let desc = moved.desc();
+        prepare_reference(&Request {
+            desc: &desc,
+            ..*request
+        })
+        .and_then(|prepared| prepared.render(1, None))
+    };
+    let relations = [
+        ("scale", metamorphic::doubled(scene), false),
+        ("mirror", metamorphic::mirrored(scene), true),
+    ];
+    relations
+        .into_iter()
+        .filter_map(|(relation, moved, mirror)| {
+            let broken = match draw(&moved?) {
+                Ok(image) => {
+                    let image = if mirror {
+                        metamorphic::mirror_image(&image)
+                    } else {
+                        image
+                    };
+                    let apart = psnr(&image, &reference.image);
+                    (apart < STABLE_PSNR_DB).then(|| {
+                        format!(
+                            "{apart:.1} dB from the picture, where an ulp of the eye keeps \
+                             {STABLE_PSNR_DB} dB"
+                        )
+                    })
+                }
+                Err(error) => Some(format!("refused: {error:#}")),
+            };
+            Some((relation, broken))
+        })
+        .collect()
 }
 
 /// Writes the scene of a finding as a scene file whose header says what failed and how to
