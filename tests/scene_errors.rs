@@ -133,20 +133,67 @@ fn zero_and_negative_radius() {
 }
 
 #[test]
+fn a_direction_too_short_to_give_one_is_refused_as_such() {
+    let objects = [plane([0.0, 1e-30, 0.0], None)];
+    let error = build(&scene(&objects, &[])).unwrap_err();
+    assert_eq!(
+        error.to_string(),
+        "object 0: shape.plane.normal is 1.000e-30 long, too short to give a direction (it must \
+         be longer than f32's epsilon, 1.192e-7); give it a direction of length 1"
+    );
+    let mut desc = scene(&[], &[]);
+    desc.camera.up = [0.0, 1e-9, 0.0];
+    assert_eq!(
+        build(&desc).unwrap_err(),
+        SceneError::TooShort {
+            item: Item::Camera,
+            field: "up",
+            length: f64::from(1e-9_f32)
+        }
+    );
+    let mut desc = scene(&[], &[]);
+    desc.background = BackgroundDesc::Gradient {
+        horizon: [1.0; 3],
+        zenith: [0.0, 0.0, 1.0],
+        up: [0.0, 1e-9, 0.0],
+    };
+    assert!(matches!(
+        build(&desc).unwrap_err(),
+        SceneError::TooShort {
+            item: Item::Scene,
+            field: "background.gradient.up",
+            ..
+        }
+    ));
+}
+
+#[test]
+fn a_huge_number_is_printed_in_scientific_notation() {
+    let mut desc = scene(&[], &[]);
+    desc.camera.aperture = 1e30;
+    let message = build(&desc).unwrap_err().to_string();
+    assert!(
+        message.contains("reaches 1.000e30 from the eye") && message.len() < 160,
+        "{message}"
+    );
+}
+
+#[test]
 fn zero_length_normal_view_and_up() {
     let objects = [plane([0.0, 0.0, 0.0], None)];
     assert_eq!(
         build(&scene(&objects, &[])).unwrap_err(),
-        SceneError::ZeroLength {
+        SceneError::TooShort {
             item: Item::Object(0),
-            field: "shape.plane.normal"
+            field: "shape.plane.normal",
+            length: 0.0
         }
     );
     let mut desc = scene(&[], &[]);
     desc.camera.look_at = desc.camera.eye;
     assert!(matches!(
         build(&desc).unwrap_err(),
-        SceneError::ZeroLength {
+        SceneError::TooShort {
             item: Item::Camera,
             ..
         }
@@ -155,9 +202,10 @@ fn zero_length_normal_view_and_up() {
     desc.camera.up = [0.0; 3];
     assert_eq!(
         build(&desc).unwrap_err(),
-        SceneError::ZeroLength {
+        SceneError::TooShort {
             item: Item::Camera,
-            field: "up"
+            field: "up",
+            length: 0.0
         }
     );
 }

@@ -303,11 +303,16 @@ fn default_threads() -> u16 {
 }
 
 /// Parses a PSNR target in dB: a finite positive number.
+/// The highest PSNR a target may ask for: above it only identical images measure (one level
+/// off in one channel of 2²⁴ RGB888 pixels is 125 dB).
+const MAX_TARGET_PSNR: f64 = 200.0;
+
 fn parse_psnr(text: &str) -> Result<f64, String> {
     match text.parse::<f64>() {
-        Ok(db) if db.is_finite() && db > 0.0 => Ok(db),
+        Ok(db) if db > 0.0 && db <= MAX_TARGET_PSNR => Ok(db),
         _ => Err(format!(
-            "`{text}` is not a PSNR in dB (a positive number, e.g. 40)"
+            "`{text}` is not a PSNR to aim for: give a number of dB above 0 and at most \
+             {MAX_TARGET_PSNR} (above it only identical images measure), e.g. 40"
         )),
     }
 }

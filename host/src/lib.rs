@@ -35,7 +35,10 @@ use std::process::ExitCode;
 /// Runs the `obscura` command line on this process's arguments.
 #[must_use]
 pub fn main() -> ExitCode {
-    let cli = cli::Cli::parse();
+    let cli = match cli::Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(asked) => return answer(&asked),
+    };
     // A command that does not catch an overflow itself (to say at which pixel of which scene)
     // still ends with it as an error, never with a wrapped number.
     let outcome = checked::catch(|| commands::run(cli.command).and_then(|()| Ok(output::flush()?)))
@@ -54,4 +57,35 @@ pub fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// What the command line asked that is not a command: help or the version, written to
+/// standard output (a failure to write it, to a full disk, is a failure), or a mistake in it,
+/// written to standard error as clap words it.
+fn answer(asked: &clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    use std::io::{IsTerminal, Write};
+    if matches!(
+        asked.kind(),
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion
+    ) {
+        let mut stdout = std::io::stdout().lock();
+        let text = asked.render();
+        let written = if stdout.is_terminal() {
+            write!(stdout, "{}", text.ansi())
+        } else {
+            write!(stdout, "{text}")
+        }
+        .and_then(|()| stdout.flush());
+        return match written {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(error) if error.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+            Err(error) => {
+                eprintln!("error: cannot write to standard output: {error}");
+                ExitCode::FAILURE
+            }
+        };
+    }
+    let _ = asked.print();
+    ExitCode::from(u8::try_from(asked.exit_code()).unwrap_or(2))
 }

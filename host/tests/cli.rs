@@ -215,7 +215,7 @@ fn bad_arguments_fail_with_a_clear_message() {
         ),
         (
             &["analyze", "whitted", "--target-psnr", "lots"],
-            "PSNR in dB",
+            "not a PSNR to aim for",
         ),
         (
             &[
@@ -515,6 +515,44 @@ fn a_full_disk_on_standard_output_is_an_error_not_a_panic() {
     let message = stderr(&output);
     assert!(
         message.starts_with("error: cannot write standard output") && !message.contains("panicked"),
+        "{message}"
+    );
+}
+
+#[test]
+fn help_or_version_into_a_full_disk_fails() {
+    for flag in ["--help", "--version"] {
+        let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else {
+            return; // not a Linux machine
+        };
+        let output = Command::new(env!("CARGO_BIN_EXE_obscura"))
+            .arg(flag)
+            .stdout(full)
+            .output()
+            .unwrap();
+        assert!(!output.status.success(), "{flag}");
+        assert!(
+            stderr(&output).starts_with("error: cannot write to standard output"),
+            "{flag}: {}",
+            stderr(&output)
+        );
+    }
+}
+
+#[test]
+fn a_target_psnr_no_image_can_reach_is_refused_briefly() {
+    let output = obscura(&[
+        "compare",
+        "whitted",
+        "--format",
+        "auto",
+        "--target-psnr",
+        "1e308",
+    ]);
+    assert!(!output.status.success());
+    let message = stderr(&output);
+    assert!(
+        message.contains("`1e308` is not a PSNR to aim for") && message.len() < 400,
         "{message}"
     );
 }

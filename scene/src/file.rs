@@ -131,18 +131,30 @@ pub fn load(name: &str) -> Result<NamedScene> {
 fn read(path: &Path) -> Result<String> {
     let file =
         std::fs::File::open(path).with_context(|| format!("cannot read {}", path.display()))?;
-    let mut text = String::new();
+    let mut bytes = Vec::new();
     file.take(MAX_FILE_BYTES + 1)
-        .read_to_string(&mut text)
-        .with_context(|| format!("cannot read {} as text", path.display()))?;
-    if text.len() as u64 > MAX_FILE_BYTES {
+        .read_to_end(&mut bytes)
+        .with_context(|| format!("cannot read {}", path.display()))?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
         bail!(
             "{} is larger than a scene file may be ({} KiB): is it the scene you meant?",
             path.display(),
             MAX_FILE_BYTES / 1024
         );
     }
-    Ok(text)
+    String::from_utf8(bytes).map_err(|error| {
+        let valid = error.utf8_error().valid_up_to();
+        let bytes = error.as_bytes();
+        let before = String::from_utf8_lossy(&bytes[..valid]);
+        let line = before.matches('\n').count() + 1;
+        let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+        anyhow::anyhow!(
+            "{}:{line}:{column}: byte 0x{:02x} is not UTF-8 text; a scene file is TOML, which is \
+             UTF-8: save it as UTF-8",
+            path.display(),
+            bytes[valid]
+        )
+    })
 }
 
 /// Parses the TOML text of the scene file at `path`.
@@ -185,7 +197,8 @@ fn wrong_in(value: &DeValue<'_>, span: Range<usize>, path: &str) -> Option<(Rang
             let numbers = items
                 .iter()
                 .all(|v| matches!(v.get_ref(), DeValue::Integer(_) | DeValue::Float(_)));
-            if numbers && items.len() != 3 {
+            // An empty list is no vector: a scene may have no objects or no lights.
+            if numbers && !items.is_empty() && items.len() != 3 {
                 return Some((
                     span,
                     format!(
@@ -212,7 +225,8 @@ impl NamedScene {
 
     /// `error`, where it is a refusal of this scene's build ([`SceneError`]) and the scene came
     /// from a file, placed at the line and column of the value at fault (or of its object,
-    /// light or camera when the value is one the tracer computes).
+    /// light or camera when the value is one the tracer computes, or of `far` for one of the
+    /// whole scene's).
     pub fn locate(&self, error: anyhow::Error) -> anyhow::Error {
         let Some(source) = &self.source else {
             return error;
@@ -223,7 +237,14 @@ impl NamedScene {
         let Ok(table) = DeTable::parse(&source.text) else {
             return error;
         };
-        match span_of(table.get_ref(), refusal) {
+        // A refusal of the whole scene at no key the file spells out (a value the tracer
+        // computes) is about the world's size, which `far` sets.
+        let span = span_of(table.get_ref(), refusal).or_else(|| {
+            (refusal.item() == Some(Item::Scene))
+                .then(|| entry(table.get_ref(), "far").map(Spanned::span))
+                .flatten()
+        });
+        match span {
             Some(span) => error.context(Located::new(&source.path, &source.text, span)),
             None => error.context(source.path.display().to_string()),
         }
@@ -371,6 +392,44 @@ mod tests {
         let error = format!("{:#}", parse(&shape).expect_err("no cubes"));
         assert!(
             error.contains("cube") && error.contains("sphere"),
+            "{error}"
+        );
+    }
+
+    #[test]
+    fn a_scene_without_objects_or_lights_is_written_with_empty_lists() {
+        let objects = MINIMAL.find("[[objects]]").unwrap();
+        let empty = format!("objects = []\nlights = []\n{}", &MINIMAL[..objects]);
+        let scene = parse(&empty).expect("empty lists are a scene's");
+        assert!(scene.objects.is_empty() && scene.lights.is_empty());
+    }
+
+    #[test]
+    fn a_count_of_rays_beyond_its_type_is_refused_as_a_count() {
+        for (key, value) in [("samples", "70000"), ("shadow_samples", "-1")] {
+            let text = MINIMAL.replace("far = 20.0", &format!("far = 20.0\n{key} = {value}"));
+            let error = format!("{:#}", parse(&text).expect_err("beyond a count"));
+            assert!(
+                error.starts_with(&format!("scene.toml:3:{}: ", key.len() + 4))
+                    && error.contains(&format!("{value} is not a count of rays"))
+                    && !error.contains("u16"),
+                "{error}"
+            );
+        }
+    }
+
+    #[test]
+    fn bytes_that_are_not_utf8_are_refused_at_their_place() {
+        let path = std::env::temp_dir().join("obscura-not-utf8.toml");
+        std::fs::write(&path, b"far = 20.0\n# caf\xe9\n").unwrap();
+        let error = format!("{:#}", read(&path).expect_err("latin-1"));
+        let _ = std::fs::remove_file(&path);
+        assert!(
+            error.ends_with(&format!(
+                "{}:2:6: byte 0xe9 is not UTF-8 text; a scene file is TOML, which is UTF-8: \
+                 save it as UTF-8",
+                path.display()
+            )),
             "{error}"
         );
     }
@@ -533,6 +592,17 @@ mod tests {
             expected: "> 0",
         };
         assert_eq!(placed(MINIMAL, far), "scene.toml:2:15");
+        // A value of the whole scene the tracer computes: the world's size, far.
+        let world = SceneError::OutOfRange {
+            item: Item::Scene,
+            quantity: "a point along a ray, o + t·d",
+            value: 1e6,
+            format: "i16f16",
+            range: 32768.0,
+            remedy: obscura::Remedy::ShrinkWorld,
+            holds: obscura::scalar::FormatSet::default(),
+        };
+        assert_eq!(placed(MINIMAL, world), "scene.toml:2:15");
     }
 
     #[test]

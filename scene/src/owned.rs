@@ -29,13 +29,13 @@ pub struct OwnedScene {
     #[serde(default = "default_max_depth")]
     pub max_depth: u8,
     /// See [`SceneDesc::samples`].
-    #[serde(default = "default_samples")]
+    #[serde(default = "default_samples", deserialize_with = "ray_count")]
     pub samples: u16,
     /// See [`SceneDesc::adaptive_samples`].
     #[serde(default)]
     pub adaptive_samples: bool,
     /// See [`SceneDesc::shadow_samples`].
-    #[serde(default = "default_samples")]
+    #[serde(default = "default_samples", deserialize_with = "ray_count")]
     pub shadow_samples: u16,
     /// See [`SceneDesc::adaptive_shadows`].
     #[serde(default)]
@@ -56,6 +56,18 @@ fn default_max_depth() -> u8 {
 
 fn default_samples() -> u16 {
     1
+}
+
+/// A count of rays (`samples`, `shadow_samples`): any whole number reads, and one beyond a
+/// count's type is refused as a count, not as a type (the build refuses one outside 1 to 256).
+fn ray_count<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<u16, D::Error> {
+    let count = i64::deserialize(deserializer)?;
+    u16::try_from(count).map_err(|_| {
+        serde::de::Error::custom(format!(
+            "{count} is not a count of rays: give a whole number from 1 to {}",
+            obscura::pattern::MAX_SAMPLES
+        ))
+    })
 }
 
 impl OwnedScene {

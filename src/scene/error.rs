@@ -119,13 +119,16 @@ pub enum SceneError {
         /// What it must be, in words ("> 0", "in (0, 180)", ...).
         expected: &'static str,
     },
-    /// A plane's normal or the camera's view direction has zero length. Give it a direction.
-    ZeroLength {
+    /// A vector that must give a direction (a plane's normal, the camera's view direction or
+    /// up, the sky's up) is too short to: no longer than f32's epsilon. Give it a direction.
+    TooShort {
         /// Whose vector.
         item: Item,
         /// Which vector: its key in a scene file, under the item's table, or the difference
         /// of two (`look_at − eye`).
         field: &'static str,
+        /// Its length.
+        length: f64,
     },
     /// The three corners of a triangle lie on one line, so it has no area and no normal.
     /// Move a corner off the line through the other two, or leave the triangle out.
@@ -241,7 +244,7 @@ impl SceneError {
         match *self {
             Self::NotFinite { item, .. }
             | Self::OutOfBounds { item, .. }
-            | Self::ZeroLength { item, .. }
+            | Self::TooShort { item, .. }
             | Self::DegenerateTriangle { item }
             | Self::OutsideWorld { item, .. }
             | Self::OutOfRange { item, .. }
@@ -260,7 +263,7 @@ impl SceneError {
         match *self {
             Self::NotFinite { field, .. }
             | Self::OutOfBounds { field, .. }
-            | Self::ZeroLength { field, .. } => Some(field),
+            | Self::TooShort { field, .. } => Some(field),
             Self::OutOfRange { quantity, .. } | Self::BelowResolution { quantity, .. } => {
                 Some(quantity)
             }
@@ -296,9 +299,21 @@ impl fmt::Display for SceneError {
                     "{item}: {field} is not a finite number; give a finite value"
                 )
             }
-            SceneError::ZeroLength { item, field } => {
-                write!(f, "{item}: {field} has zero length; give it a direction")
-            }
+            SceneError::TooShort {
+                item,
+                field,
+                length: 0.0,
+            } => write!(f, "{item}: {field} has zero length; give it a direction"),
+            SceneError::TooShort {
+                item,
+                field,
+                length,
+            } => write!(
+                f,
+                "{item}: {field} is {length:.3e} long, too short to give a direction (it must be \
+                 longer than f32's epsilon, {:.3e}); give it a direction of length 1",
+                f32::EPSILON
+            ),
             SceneError::DegenerateTriangle { item } => write!(
                 f,
                 "{item}: the triangle's corners lie on one line, so it has no area; move a \
@@ -344,7 +359,11 @@ impl fmt::Display for SceneError {
                 value,
                 expected,
             } => {
-                write!(f, "{item}: {field} is {value}, but it must be {expected}")
+                write!(
+                    f,
+                    "{item}: {field} is {}, but it must be {expected}",
+                    Number(value)
+                )
             }
             SceneError::LensTouches {
                 object,
@@ -353,9 +372,11 @@ impl fmt::Display for SceneError {
             } => {
                 write!(
                     f,
-                    "the camera: the lens of aperture {aperture} reaches the surface of object \
-                     {object}, {clearance:.4} from the eye; make the aperture smaller than the \
-                     surface's distance from the eye, or move the eye away from it"
+                    "the camera: the lens of aperture {} reaches the surface of object \
+                     {object}, {:.4} from the eye; make the aperture smaller than the \
+                     surface's distance from the eye, or move the eye away from it",
+                    Number(aperture),
+                    Number(clearance)
                 )
             }
             SceneError::OutsideWorld {
@@ -365,8 +386,10 @@ impl fmt::Display for SceneError {
             } => {
                 write!(
                     f,
-                    "{item} reaches {distance:.4} from the eye, beyond the world radius far = \
-                     {far}; raise far or move it closer"
+                    "{item} reaches {:.4} from the eye, beyond the world radius far = {}; raise \
+                     far or move it closer",
+                    Number(distance),
+                    Number(far)
                 )
             }
             SceneError::OutOfRange {
@@ -412,3 +435,21 @@ impl fmt::Display for SceneError {
 }
 
 impl core::error::Error for SceneError {}
+
+/// A number as a message prints it: as written (to the precision asked, if any) where it is of
+/// everyday size, in scientific notation where it is huge or tiny, so that an aperture of 10³⁰
+/// is not 31 digits.
+struct Number<T>(T);
+
+impl<T: Copy + Into<f64> + fmt::Display + fmt::LowerExp> fmt::Display for Number<T> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (x, magnitude) = (self.0, self.0.into().abs());
+        let everyday =
+            magnitude == 0.0 || !magnitude.is_finite() || (1e-4..1e6).contains(&magnitude);
+        match (everyday, f.precision()) {
+            (true, Some(digits)) => write!(f, "{x:.digits$}"),
+            (true, None) => write!(f, "{x}"),
+            (false, _) => write!(f, "{x:.3e}"),
+        }
+    }
+}

@@ -8,6 +8,8 @@ mod error;
 pub mod range;
 mod validate;
 
+use validate::direction;
+
 pub use error::{Item, Remedy, SceneError};
 
 use crate::camera::{Camera, Frame, MAX_IMAGE_SIDE};
@@ -498,16 +500,10 @@ impl<S: Scalar> Converter<S> {
                     "background.gradient.zenith − horizon",
                     Vec3::from_f32(zenith) - Vec3::from_f32(horizon),
                 )?,
-                // Validation guarantees a non-zero up.
                 up: self.vector(
                     Item::Scene,
                     "background.gradient.up",
-                    Vec3::from_f32(up)
-                        .direction()
-                        .ok_or(SceneError::ZeroLength {
-                            item: Item::Scene,
-                            field: "background.gradient.up",
-                        })?,
+                    direction(Item::Scene, "background.gradient.up", Vec3::from_f32(up))?,
                 )?,
             },
         };
@@ -561,13 +557,7 @@ impl<S: Scalar> Converter<S> {
                 normal,
                 checker,
             } => {
-                // Validation guarantees a non-zero normal.
-                let n = Vec3::from_f32(normal)
-                    .direction()
-                    .ok_or(SceneError::ZeroLength {
-                        item,
-                        field: "shape.plane.normal",
-                    })?;
+                let n = direction(item, "shape.plane.normal", Vec3::from_f32(normal))?;
                 let checker = match checker {
                     Some(checker) => {
                         Some(self.checker(item, Vec3::from_f32(point), n, &checker)?)
@@ -658,12 +648,7 @@ impl<S: Scalar> Converter<S> {
         } else {
             Vec3::new(0.0, 0.0, 1.0)
         };
-        let u = (least - n * n.dot(least))
-            .direction()
-            .ok_or(SceneError::ZeroLength {
-                item,
-                field: "shape.plane.normal",
-            })?;
+        let u = direction(item, "shape.plane.normal", least - n * n.dot(least))?;
         let v = n.cross(u);
         let size = f64::from(desc.size);
         // The eye's foot on the plane, and its place on the grid of squares aligned to the

@@ -39,12 +39,7 @@ pub(super) fn validate(desc: &SceneDesc<'_>) -> Result<Frame, SceneError> {
             colour(Item::Scene, "background.gradient.horizon", horizon)?;
             colour(Item::Scene, "background.gradient.zenith", zenith)?;
             finite(Item::Scene, "background.gradient.up", &up)?;
-            if Vec3::from_f32(up).length() == 0.0 {
-                return Err(SceneError::ZeroLength {
-                    item: Item::Scene,
-                    field: "background.gradient.up",
-                });
-            }
+            direction(Item::Scene, "background.gradient.up", Vec3::from_f32(up))?;
         }
     }
     let frame = camera(&desc.camera)?;
@@ -125,15 +120,9 @@ fn camera(camera: &CameraDesc) -> Result<Frame, SceneError> {
             "in (0, 180) degrees",
         ));
     }
-    if distance(camera.look_at, camera.eye) == 0.0 {
-        return Err(SceneError::ZeroLength {
-            item,
-            field: "look_at − eye",
-        });
-    }
-    if Vec3::from_f32(camera.up).length() == 0.0 {
-        return Err(SceneError::ZeroLength { item, field: "up" });
-    }
+    let view = Vec3::from_f32(camera.look_at) - Vec3::from_f32(camera.eye);
+    direction(item, "look_at − eye", view)?;
+    direction(item, "up", Vec3::from_f32(camera.up))?;
     finite(item, "aperture", &[camera.aperture])?;
     at_least(item, "aperture", camera.aperture, 0.0, "≥ 0")?;
     if let Some(focus) = camera.focus_distance {
@@ -191,13 +180,7 @@ fn shape(item: Item, shape: &ShapeDesc, eye: [f32; 3]) -> Result<f64, SceneError
         } => {
             finite(item, "shape.plane.point", &point)?;
             finite(item, "shape.plane.normal", &normal)?;
-            let n = Vec3::from_f32(normal);
-            if n.length() == 0.0 {
-                return Err(SceneError::ZeroLength {
-                    item,
-                    field: "shape.plane.normal",
-                });
-            }
+            let n = direction(item, "shape.plane.normal", Vec3::from_f32(normal))?;
             if let Some(checker) = checker {
                 unit_colour(item, "shape.plane.checker.colour", checker.colour)?;
                 finite(item, "shape.plane.checker.size", &[checker.size])?;
@@ -210,7 +193,7 @@ fn shape(item: Item, shape: &ShapeDesc, eye: [f32; 3]) -> Result<f64, SceneError
                 )?;
             }
             let to_eye = Vec3::from_f32(eye) - Vec3::from_f32(point);
-            Ok(n.dot(to_eye).abs() / n.length())
+            Ok(n.dot(to_eye).abs())
         }
         ShapeDesc::Triangle { vertices } => {
             for v in &vertices {
@@ -262,6 +245,20 @@ fn colour(item: Item, field: &'static str, c: [f32; 3]) -> Result<(), SceneError
         at_least(item, field, channel, 0.0, "≥ 0 on every channel")?;
     }
     Ok(())
+}
+
+/// `v`'s direction, where it is long enough to give one ([`Vec3::direction`]): a vector of
+/// f32s no longer than f32's epsilon is refused as too short.
+pub(super) fn direction(
+    item: Item,
+    field: &'static str,
+    v: Vec3<f64>,
+) -> Result<Vec3<f64>, SceneError> {
+    v.direction().ok_or(SceneError::TooShort {
+        item,
+        field,
+        length: v.length(),
+    })
 }
 
 fn finite(item: Item, field: &'static str, values: &[f32]) -> Result<(), SceneError> {

@@ -10,13 +10,19 @@
 //!   left to right, in f64, where the scene's patterns are mirror-symmetric (no checkerboard, one
 //!   ray per pixel, point lights, a pinhole);
 //! - **nudge**: where an eye nudged by one ulp of f32 moves what it sees by far less than a
-//!   pixel ([`nudge_is_small`]), in f64 it changes only pixels an edge passes through: a changed pixel whose primary ray meets the
+//!   pixel and every feature is wider than one ([`nudge_is_small`]), in f64 it changes only
+//!   pixels an edge passes through: a changed pixel whose primary ray meets the
 //!   same object and whose neighbours all showed that object and its colour is unexplained
 //!   (the checkerboard that followed the eye swapped every square).
 
 use image::{Rgb, RgbImage};
 use obscura::scene::range;
 use obscura::{ShapeDesc, Vec3};
+
+/// The distance between two points.
+fn distance(a: Vec3<f64>, b: Vec3<f64>) -> f64 {
+    (a - b).length()
+}
 use obscura_scene::OwnedScene;
 use std::cell::{Cell, RefCell};
 
@@ -117,8 +123,22 @@ pub const NUDGE_PIXELS: f64 = 0.01;
 /// [`NUDGE_PIXELS`] in an image `height` pixels high: the nudge against a pixel's width at the
 /// nearest surface and at the nearest plane of a surface (an eye crossing a triangle's plane
 /// sees its other side: another picture, though no edge is near). With a narrow field of view
-/// or a far eye, an ulp is a pixel or more, and the relation says nothing.
+/// or a far eye, an ulp is a pixel or more, and the relation says nothing; nor where area
+/// lights take several shadow rays, a sphere encloses the eye, or a checkerboard's squares are
+/// narrower than a pixel at the world's edge.
 pub fn nudge_is_small(scene: &OwnedScene, height: u32) -> bool {
+    // Area lights' shadow rays are patterned by the point they leave from, which a nudge
+    // moves; a sphere around the eye mirrors its rays back through it (a caustic at the eye).
+    let area_lights = scene.shadow_samples > 1 && scene.lights.iter().any(|l| l.radius > 0.0);
+    let enclosed = scene.objects.iter().any(|o| match o.shape {
+        ShapeDesc::Sphere { center, radius } => {
+            distance(Vec3::from_f32(center), Vec3::from_f32(scene.camera.eye)) < f64::from(radius)
+        }
+        ShapeDesc::Plane { .. } | ShapeDesc::Triangle { .. } => false,
+    });
+    if area_lights || enclosed {
+        return false;
+    }
     let eye = scene.camera.eye;
     let nudge = eye
         .iter()
@@ -146,7 +166,18 @@ pub fn nudge_is_small(scene: &OwnedScene, height: u32) -> bool {
             range::clearance(object, eye).min(plane)
         })
         .fold(f64::INFINITY, f64::min);
-    nudge < NUDGE_PIXELS * pixel * nearest
+    // Squares narrower than a pixel at the world's edge alias there: every pixel has edges
+    // through it, which any nudge moves.
+    let fine_squares = scene.objects.iter().any(|o| match o.shape {
+        ShapeDesc::Plane {
+            checker: Some(checker),
+            ..
+        } => f64::from(checker.size) < f64::from(scene.far) * pixel,
+        ShapeDesc::Plane { checker: None, .. }
+        | ShapeDesc::Sphere { .. }
+        | ShapeDesc::Triangle { .. } => false,
+    });
+    !fine_squares && nudge < NUDGE_PIXELS * pixel * nearest
 }
 
 /// Whether two colours differ by at least [`CHANGED_LEVELS`] in some channel.
