@@ -4,6 +4,10 @@ use crate::methods::RootMethod;
 use crate::scalar::Scalar;
 use core::ops::{Add, Mul, Neg, Sub};
 
+/// The length a vector must exceed to give a direction at the precision descriptions are
+/// written in: f32's epsilon.
+pub const SHORTEST_DIRECTION: f64 = f32::EPSILON as f64;
+
 /// A point or direction.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Vec3<S> {
@@ -126,12 +130,11 @@ impl Vec3<f64> {
         Self::new(f64::from(x), f64::from(y), f64::from(z))
     }
 
-    /// The unit vector, or `None` for a vector too short to have a direction at the precision
-    /// descriptions are written in (f32's epsilon).
+    /// The unit vector, or `None` for a vector no longer than [`SHORTEST_DIRECTION`].
     #[must_use]
     pub fn direction(self) -> Option<Self> {
         let length = self.length();
-        (length > f64::from(f32::EPSILON)).then(|| self * length.recip())
+        (length > SHORTEST_DIRECTION).then(|| self * length.recip())
     }
 
     /// Converts to format `S`, or `None` when a coordinate does not fit.

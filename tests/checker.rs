@@ -11,6 +11,8 @@ use obscura::{
     Scene, SceneDesc, ShapeDesc, scenes,
 };
 
+const LECTURE: Methods = Methods::LECTURE;
+
 /// `whitted` with its eye at `eye`.
 fn whitted_from(eye: [f32; 3]) -> SceneDesc<'static> {
     SceneDesc {
@@ -41,8 +43,6 @@ fn an_eye_nudged_across_a_square_edge_draws_the_same_picture() {
         assert!(apart >= 30.0, "{format}: {apart:.2} dB apart");
     }
 }
-
-const LECTURE: Methods = Methods::LECTURE;
 
 /// A square's side on the floor of the camera path.
 const SQUARE: f32 = 0.5;

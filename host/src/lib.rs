@@ -35,19 +35,16 @@ use std::process::ExitCode;
 /// Runs the `obscura` command line on this process's arguments.
 #[must_use]
 pub fn main() -> ExitCode {
-    let cli = match cli::Cli::try_parse() {
-        Ok(cli) => cli,
-        Err(asked) => return answer(&asked),
+    let outcome = match cli::Cli::try_parse() {
+        Ok(cli) => run(cli),
+        // Help and the version are written as any output is (a full disk is an error).
+        Err(asked) if !asked.use_stderr() => shown(&asked),
+        // A mistake in the command line, as clap words it.
+        Err(mistake) => {
+            let _ = mistake.print();
+            return ExitCode::from(u8::try_from(mistake.exit_code()).unwrap_or(2));
+        }
     };
-    // A command that does not catch an overflow itself (to say at which pixel of which scene)
-    // still ends with it as an error, never with a wrapped number.
-    let outcome = checked::catch(|| commands::run(cli.command).and_then(|()| Ok(output::flush()?)))
-        .unwrap_or_else(|overflowed| {
-            Err(anyhow::anyhow!(
-                "{overflowed}: the scene build's range proof missed it (a bug in obscura: please \
-             report it with the scene)"
-            ))
-        });
     match outcome {
         Ok(()) => ExitCode::SUCCESS,
         // `obscura scenes | head -1`: the reader has what it wanted.
@@ -59,33 +56,26 @@ pub fn main() -> ExitCode {
     }
 }
 
-/// What the command line asked that is not a command: help or the version, written to
-/// standard output (a failure to write it, to a full disk, is a failure), or a mistake in it,
-/// written to standard error as clap words it.
-fn answer(asked: &clap::Error) -> ExitCode {
-    use clap::error::ErrorKind;
-    use std::io::{IsTerminal, Write};
-    if matches!(
-        asked.kind(),
-        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion
-    ) {
-        let mut stdout = std::io::stdout().lock();
-        let text = asked.render();
-        let written = if stdout.is_terminal() {
-            write!(stdout, "{}", text.ansi())
-        } else {
-            write!(stdout, "{text}")
-        }
-        .and_then(|()| stdout.flush());
-        return match written {
-            Ok(()) => ExitCode::SUCCESS,
-            Err(error) if error.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
-            Err(error) => {
-                eprintln!("error: cannot write to standard output: {error}");
-                ExitCode::FAILURE
-            }
-        };
+/// Runs a command. One that does not catch an overflow itself (to say at which pixel of which
+/// scene) still ends with it as an error, never with a wrapped number.
+fn run(cli: cli::Cli) -> anyhow::Result<()> {
+    checked::catch(|| commands::run(cli.command).and_then(|()| Ok(output::flush()?)))
+        .unwrap_or_else(|overflowed| {
+            Err(anyhow::anyhow!(
+                "{overflowed}: the scene build's range proof missed it (a bug in obscura: please \
+             report it with the scene)"
+            ))
+        })
+}
+
+/// Help or the version on standard output, in colour on a terminal.
+fn shown(asked: &clap::Error) -> anyhow::Result<()> {
+    use std::io::IsTerminal;
+    let text = asked.render();
+    if std::io::stdout().is_terminal() {
+        output::text(format_args!("{}", text.ansi()))?;
+    } else {
+        output::text(format_args!("{text}"))?;
     }
-    let _ = asked.print();
-    ExitCode::from(u8::try_from(asked.exit_code()).unwrap_or(2))
+    Ok(output::flush()?)
 }

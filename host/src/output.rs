@@ -28,6 +28,14 @@ pub fn line(text: fmt::Arguments<'_>) -> io::Result<()> {
         .map_err(to_stdout)
 }
 
+/// Writes text to standard output as it is, without a line of its own (see [`say!`]).
+///
+/// # Errors
+/// When standard output is closed or full.
+pub fn text(text: fmt::Arguments<'_>) -> io::Result<()> {
+    io::stdout().lock().write_fmt(text).map_err(to_stdout)
+}
+
 /// Flushes standard output (see [`say!`]).
 ///
 /// # Errors

@@ -1,6 +1,7 @@
 //! [`SceneError`]: why a scene description cannot be built, and how to fix it.
 
 use crate::scalar::FormatSet;
+use crate::vec3::SHORTEST_DIRECTION;
 use core::fmt;
 
 /// The part of a scene description an error is about.
@@ -311,8 +312,8 @@ impl fmt::Display for SceneError {
             } => write!(
                 f,
                 "{item}: {field} is {length:.3e} long, too short to give a direction (it must be \
-                 longer than f32's epsilon, {:.3e}); give it a direction of length 1",
-                f32::EPSILON
+                 longer than f32's epsilon, {SHORTEST_DIRECTION:.3e}); give it a direction of \
+                 length 1"
             ),
             SceneError::DegenerateTriangle { item } => write!(
                 f,
@@ -441,11 +442,13 @@ impl core::error::Error for SceneError {}
 /// is not 31 digits.
 struct Number<T>(T);
 
+/// The magnitudes a message writes out in full; others in scientific notation.
+const EVERYDAY: core::ops::Range<f64> = 1e-4..1e6;
+
 impl<T: Copy + Into<f64> + fmt::Display + fmt::LowerExp> fmt::Display for Number<T> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let (x, magnitude) = (self.0, self.0.into().abs());
-        let everyday =
-            magnitude == 0.0 || !magnitude.is_finite() || (1e-4..1e6).contains(&magnitude);
+        let everyday = magnitude == 0.0 || !magnitude.is_finite() || EVERYDAY.contains(&magnitude);
         match (everyday, f.precision()) {
             (true, Some(digits)) => write!(f, "{x:.digits$}"),
             (true, None) => write!(f, "{x}"),

@@ -22,7 +22,7 @@ use crate::methods::{Methods, RootMethod};
 use crate::occlusion::Cone;
 use crate::scalar::REACH_ERRORS;
 use crate::scalar::{Bits, FormatInfo, FormatSet, Scalar};
-use crate::shape::{Checker, Plane, Shape, Sphere, Triangle};
+use crate::shape::{CHECKER_PERIOD, Checker, Plane, Shape, Sphere, Triangle};
 use crate::uses::Uses;
 use crate::vec3::Vec3;
 use crate::words::{self, Reader, Words, WordsError, Writer};
@@ -661,7 +661,7 @@ impl<S: Scalar> Converter<S> {
         let foot = point + u * to_eye.dot(u) + v * to_eye.dot(v);
         let place = |axis: Vec3<f64>| {
             let squares = to_eye.dot(axis) / size;
-            squares - 2.0 * libm::floor(squares / 2.0)
+            squares - CHECKER_PERIOD * libm::floor(squares / CHECKER_PERIOD)
         };
         Ok(Checker {
             colour: self.colour(item, "shape.plane.checker.colour", desc.colour)?,

@@ -56,6 +56,7 @@ use crate::desc::{BackgroundDesc, ObjectDesc, SceneDesc, ShapeDesc};
 use crate::methods::{MethodName, Methods, RootMethod, SphereMethod, TriangleMethod};
 use crate::scalar::FAST_ROOT_ERROR;
 use crate::scalar::{FormatInfo, FormatSet, Scalar};
+use crate::shape::CHECKER_PERIOD;
 use crate::vec3::Vec3;
 
 /// A feature must span this many steps of the error its computation makes, or rounding would
@@ -398,7 +399,7 @@ pub fn magnitudes<'a>(
                             let size = f64::from(checker.size);
                             (
                                 "a checker coordinate",
-                                checker_reach(origin, world) / size + 2.0,
+                                checker_reach(origin, world) / size + CHECKER_PERIOD,
                                 Remedy::LargerSquares,
                             )
                         }),
@@ -756,7 +757,7 @@ fn object_features(
                         1.0,
                         Terms::new(&[
                             (3.0_f64.sqrt() * reach, 1.0 / size),
-                            (1.0, reach / size + 2.0),
+                            (1.0, reach / size + CHECKER_PERIOD),
                         ]),
                         Remedy::LargerSquares,
                     ),

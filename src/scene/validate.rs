@@ -247,8 +247,8 @@ fn colour(item: Item, field: &'static str, c: [f32; 3]) -> Result<(), SceneError
     Ok(())
 }
 
-/// `v`'s direction, where it is long enough to give one ([`Vec3::direction`]): a vector of
-/// f32s no longer than f32's epsilon is refused as too short.
+/// `v`'s direction, where it is long enough to give one ([`Vec3::direction`]); one no longer
+/// than [`crate::vec3::SHORTEST_DIRECTION`] is refused as too short.
 pub(super) fn direction(
     item: Item,
     field: &'static str,

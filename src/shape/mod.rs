@@ -5,7 +5,7 @@ mod plane;
 mod sphere;
 mod triangle;
 
-pub use plane::{Checker, Plane};
+pub use plane::{CHECKER_PERIOD, Checker, Plane};
 pub use sphere::Sphere;
 pub use triangle::{PerRay, Triangle};
 

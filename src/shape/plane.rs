@@ -30,6 +30,10 @@ crate::words::words_of_struct!(Plane<S> {
     checker
 });
 
+/// Squares after which a checkerboard's colours repeat: a square's colour is the parity of its
+/// two coordinates, so the count of squares from a plane's point matters modulo two.
+pub const CHECKER_PERIOD: f64 = 2.0;
+
 /// A checkerboard on a plane: the two in-plane axes, pre-divided by the square size, so that
 /// (p − origin)·axis counts squares from the origin, where the count starts at `start`; and the
 /// colour of every other square.
@@ -43,8 +47,8 @@ pub struct Checker<S> {
     pub u: Vec3<S>,
     /// The second in-plane axis divided by the square size.
     pub v: Vec3<S>,
-    /// The origin's coordinates on the grid of squares anchored at the plane's point, modulo two
-    /// squares (each in [0, 2)), so that a square's colour is where the plane puts it.
+    /// The origin's coordinates on the grid of squares anchored at the plane's point, modulo
+    /// [`CHECKER_PERIOD`] (each in [0, 2)), so that a square's colour is where the plane puts it.
     pub start: [S; 2],
 }
 

@@ -5,6 +5,7 @@
 
 mod predict;
 
+pub(crate) use predict::pixel_angle;
 pub use predict::{Prediction, Reference};
 
 use crate::checked::Checked;

@@ -43,6 +43,7 @@ use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use image::RgbImage;
 use obscura::scalar::FAST_ROOT_ERROR;
 use obscura::scene::range;
+use obscura::shape::CHECKER_PERIOD;
 use obscura::{
     Item, Methods, RayMethod, RootMethod, Scalar, SceneDesc, ShapeDesc, TriangleMethod, Vec3,
 };
@@ -303,7 +304,7 @@ fn psnr(mse: f64) -> f64 {
 
 /// The smallest angle between neighbouring pixels' rays: at the image's corner, where the
 /// image plane is seen most obliquely.
-fn pixel_angle(desc: &SceneDesc<'_>, width: u32, height: u32) -> f64 {
+pub(crate) fn pixel_angle(desc: &SceneDesc<'_>, width: u32, height: u32) -> f64 {
     let half_height = (f64::from(desc.camera.vfov_degrees).to_radians() / 2.0).tan();
     let half_width = half_height * f64::from(width) / f64::from(height);
     let (corner, _, _) = range::camera(half_width, half_height, width, height, 0.0);
@@ -415,7 +416,7 @@ fn object_shifts<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods, pixel: f64)
                 "checker square size",
             ) => {
                 let size = f64::from(checker.size);
-                shift.inner += size * S::resolution(seen / size + 2.0) / seen / pixel;
+                shift.inner += size * S::resolution(seen / size + CHECKER_PERIOD) / seen / pixel;
             }
             _ => {}
         }

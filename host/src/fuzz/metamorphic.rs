@@ -15,14 +15,10 @@
 //!   same object and whose neighbours all showed that object and its colour is unexplained
 //!   (the checkerboard that followed the eye swapped every square).
 
+use crate::analysis::pixel_angle;
 use image::{Rgb, RgbImage};
 use obscura::scene::range;
 use obscura::{ShapeDesc, Vec3};
-
-/// The distance between two points.
-fn distance(a: Vec3<f64>, b: Vec3<f64>) -> f64 {
-    (a - b).length()
-}
 use obscura_scene::OwnedScene;
 use std::cell::{Cell, RefCell};
 
@@ -103,12 +99,17 @@ pub fn mirrored(scene: &OwnedScene) -> Option<OwnedScene> {
             }
         )
     });
-    let area_lights = scene.shadow_samples > 1 && scene.lights.iter().any(|l| l.radius > 0.0);
-    if checkered || scene.samples > 1 || area_lights || scene.camera.aperture > 0.0 {
+    if checkered || scene.samples > 1 || area_lights(scene) || scene.camera.aperture > 0.0 {
         return None;
     }
     let flip = |[x, y, z]: [f32; 3]| [-x, y, z];
     Some(scene.transformed(flip, flip, |l| l))
+}
+
+/// Whether the scene's area lights take several shadow rays, patterned by the point they leave
+/// from (neither mirror-symmetric nor still under a nudge).
+fn area_lights(scene: &OwnedScene) -> bool {
+    scene.shadow_samples > 1 && scene.lights.iter().any(|l| l.radius > 0.0)
 }
 
 /// The image mirrored left to right.
@@ -120,35 +121,26 @@ pub fn mirror_image(image: &RgbImage) -> RgbImage {
 pub const NUDGE_PIXELS: f64 = 0.01;
 
 /// Whether nudging the eye by an ulp of f32 (on every axis) moves what it sees by less than
-/// [`NUDGE_PIXELS`] in an image `height` pixels high: the nudge against a pixel's width at the
+/// [`NUDGE_PIXELS`] in an image of `width` × `height` pixels: the nudge against a pixel's width at the
 /// nearest surface and at the nearest plane of a surface (an eye crossing a triangle's plane
 /// sees its other side: another picture, though no edge is near). With a narrow field of view
 /// or a far eye, an ulp is a pixel or more, and the relation says nothing; nor where area
 /// lights take several shadow rays, a sphere encloses the eye, or a checkerboard's squares are
 /// narrower than a pixel at the world's edge.
-pub fn nudge_is_small(scene: &OwnedScene, height: u32) -> bool {
-    // Area lights' shadow rays are patterned by the point they leave from, which a nudge
-    // moves; a sphere around the eye mirrors its rays back through it (a caustic at the eye).
-    let area_lights = scene.shadow_samples > 1 && scene.lights.iter().any(|l| l.radius > 0.0);
+pub fn nudge_is_small(scene: &OwnedScene, width: u32, height: u32) -> bool {
+    let eye = Vec3::from_f32(scene.camera.eye);
+    // A sphere around the eye mirrors its rays back through it (a caustic at the eye).
     let enclosed = scene.objects.iter().any(|o| match o.shape {
         ShapeDesc::Sphere { center, radius } => {
-            distance(Vec3::from_f32(center), Vec3::from_f32(scene.camera.eye)) < f64::from(radius)
+            (Vec3::from_f32(center) - eye).length() < f64::from(radius)
         }
         ShapeDesc::Plane { .. } | ShapeDesc::Triangle { .. } => false,
     });
-    if area_lights || enclosed {
+    if area_lights(scene) || enclosed {
         return false;
     }
-    let eye = scene.camera.eye;
-    let nudge = eye
-        .iter()
-        .map(|&c| f64::from(c.next_up()) - f64::from(c))
-        .map(|d| d * d)
-        .sum::<f64>()
-        .sqrt();
-    let pixel = 2.0 * (f64::from(scene.camera.vfov_degrees).to_radians() / 2.0).tan()
-        / f64::from(height.max(1));
-    let eye = Vec3::from_f32(eye);
+    let nudge = (Vec3::from_f32(scene.camera.eye.map(f32::next_up)) - eye).length();
+    let pixel = pixel_angle(&scene.desc(), width, height);
     let nearest = scene
         .objects
         .iter()

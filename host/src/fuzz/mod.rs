@@ -35,7 +35,7 @@ pub mod metamorphic;
 use crate::analysis::{Analysis, Fit, Prediction, Reference};
 use crate::checked;
 use crate::metrics::{Accuracy, accuracy};
-use crate::render::{Request, exact_roots, prepare, prepare_reference};
+use crate::render::{AnyFormat, Request, exact_roots, prepare, prepare_reference};
 use anyhow::{Context, Result};
 use image::RgbImage;
 use obscura::methods::MethodName;
@@ -503,17 +503,21 @@ pub fn false_accept(prediction: &Prediction, measured: &Accuracy, pixels: u32) -
         || measured.object_mismatch_pct > MARGIN * prediction.mismatch_pct + spare_pct
 }
 
+/// `scene`, a moved copy of the request's, built in f64 at the request's size and methods.
+fn reference_of(scene: &OwnedScene, request: &Request<'_>) -> Result<Box<dyn AnyFormat>> {
+    let desc = scene.desc();
+    prepare_reference(&Request {
+        desc: &desc,
+        ..*request
+    })
+}
+
 /// The f64 image and object map with the eye nudged by one ulp of f32 (`None` where that
 /// scene is refused).
 fn nudged(scene: &OwnedScene, request: &Request<'_>) -> Option<(RgbImage, Vec<Option<usize>>)> {
     let mut nudged = scene.clone();
     nudged.camera.eye = nudged.camera.eye.map(f32::next_up);
-    let desc = nudged.desc();
-    let prepared = prepare_reference(&Request {
-        desc: &desc,
-        ..*request
-    })
-    .ok()?;
+    let prepared = reference_of(&nudged, request).ok()?;
     Some((prepared.render(1, None).ok()?, prepared.object_map().ok()?))
 }
 
@@ -585,7 +589,7 @@ fn f64_relations(
 ) -> Vec<Checked> {
     let mut checked = Vec::new();
     let pixels = f64::from(request.width * request.height);
-    let small = metamorphic::nudge_is_small(scene, request.height);
+    let small = metamorphic::nudge_is_small(scene, request.width, request.height);
     if let (Some((image, objects)), true) = (nudged, small) {
         let unexplained =
             metamorphic::unexplained_changes(&reference.image, &reference.objects, image, objects);
@@ -607,12 +611,7 @@ fn mirror_and_scale(
     reference: &Reference,
 ) -> Vec<Checked> {
     let draw = |moved: &OwnedScene| {
-        let desc = moved.desc();
-        prepare_reference(&Request {
-            desc: &desc,
-            ..*request
-        })
-        .and_then(|prepared| prepared.render(1, None))
+        reference_of(moved, request).and_then(|prepared| prepared.render(1, None))
     };
     let relations = [
         ("scale", metamorphic::doubled(scene), false),
