@@ -9,7 +9,7 @@ use crate::cost::Machine;
 use crate::fuzz::false_accept;
 use crate::metrics::accuracy;
 use crate::render::{Request, exact_roots, prepare, prepare_reference};
-use obscura::{Methods, RayMethod, SphereMethod, TriangleMethod};
+use obscura::{BiasMethod, Methods, RayMethod, RootMethod, SphereMethod, TriangleMethod};
 use obscura_scene::{Format, OwnedScene};
 
 /// The scene of `host/scenes/hostile/NAME.toml`, whose header says what it broke.
@@ -109,6 +109,37 @@ fn a_highlight_at_its_peak_everywhere_is_predicted_so() {
     for format in [Format::I16f16, Format::I18f14, Format::F32] {
         refused_or_held(&scene, format, Methods::LECTURE, 32, &[]);
     }
+}
+
+#[test]
+fn a_floor_at_the_worlds_edge_is_drawn_where_it_is_or_refused() {
+    let scene = hostile("worlds-edge");
+    for format in [Format::I12f20, Format::I16f16, Format::F32] {
+        assert!(refused_or_held(&scene, format, Methods::LECTURE, 64, &[]));
+    }
+    let rendered = refused_or_held(
+        &scene,
+        Format::I20f12,
+        Methods::LECTURE,
+        64,
+        &["raise far well beyond the plane's distance"],
+    );
+    assert!(
+        !rendered,
+        "i20f12 cannot place a disc 0.0098 across to its steps of 0.00024"
+    );
+}
+
+#[test]
+fn a_mirror_as_large_as_the_world_reflects_across_it() {
+    let scene = hostile("across-the-world");
+    let methods = Methods {
+        sphere: SphereMethod::Stable,
+        triangle: TriangleMethod::Watertight,
+        bias: BiasMethod::Exclude,
+        ..Methods::LECTURE
+    };
+    assert!(refused_or_held(&scene, Format::F32, methods, 32, &[]));
 }
 
 #[test]
@@ -248,6 +279,46 @@ fn one_large_triangle_by_moller_trumbore_is_refused_or_predicted_so() {
             &["Möller–Trumbore", "triangle=watertight resolves it"],
         );
         refused_or_held(&triangle, format, Methods::LECTURE, 256, &[]);
+    }
+}
+
+#[test]
+fn a_reciprocal_that_does_not_fit_is_refused() {
+    let small = hostile("reciprocal");
+    let methods = Methods {
+        triangle: TriangleMethod::MollerTrumbore,
+        ..Methods::LECTURE
+    };
+    for format in [Format::I8f24, Format::I10f22] {
+        let rendered = refused_or_held(&small, format, methods, 12, &["Möller–Trumbore's"]);
+        assert!(!rendered, "{format} cannot hold 1/det up to 9 000");
+    }
+    // The fuzzer's, by other methods besides.
+    for (name, methods) in [
+        (
+            "eye-on-triangle-i8f24",
+            Methods {
+                sphere: SphereMethod::Stable,
+                triangle: TriangleMethod::MollerTrumbore,
+                roots: RootMethod::Approx,
+                bias: BiasMethod::Exclude,
+                ..Methods::LECTURE
+            },
+        ),
+        (
+            "narrow-view-triangle-i8f24",
+            Methods {
+                sphere: SphereMethod::Stable,
+                triangle: TriangleMethod::MollerTrumbore,
+                rays: RayMethod::Stepped,
+                bias: BiasMethod::Exclude,
+                ..Methods::LECTURE
+            },
+        ),
+    ] {
+        let scene = hostile(name);
+        let rendered = refused_or_held(&scene, Format::I8f24, methods, 16, &["Möller–Trumbore's"]);
+        assert!(!rendered, "{name}: i8f24 cannot hold its 1/det");
     }
 }
 

@@ -67,6 +67,8 @@ pub enum Remedy {
     MoveLight,
     /// A light too bright for a format's steps.
     DimLight,
+    /// A plane so near the world's edge that the world cuts only a small disc from it.
+    AwayFromTheEdge,
 }
 
 impl fmt::Display for Remedy {
@@ -91,6 +93,9 @@ impl fmt::Display for Remedy {
             }
             Self::MoveLight => "move the light away from the surface",
             Self::DimLight => "dim the light",
+            Self::AwayFromTheEdge => {
+                "raise far well beyond the plane's distance from the eye, or bring the plane nearer"
+            }
         })
     }
 }

@@ -95,7 +95,9 @@ pub struct Scene<
 pub(crate) struct Settings<S> {
     pub(crate) ambient: Rgb<S>,
     pub(crate) background: Background<S>,
-    /// The longest a ray can be: the world's diameter.
+    /// The longest a ray can be: the diameter of the ball rays start in (the world and its
+    /// slack), longer than any way from a ray's origin to a surface in the world, so that no
+    /// hit at the world's far side is lost to the rounding of its distance.
     pub(crate) ray_length: S,
     /// The surface tolerance at the origin; see [`SURFACE_TOLERANCE_STEPS`].
     pub(crate) tolerance_base: S,
@@ -516,7 +518,11 @@ impl<S: Scalar> Converter<S> {
         Ok(Settings {
             ambient: self.colour(Item::Scene, "ambient", desc.ambient)?,
             background,
-            ray_length: self.scalar(Item::Scene, "a ray's length", 2.0 * self.world)?,
+            ray_length: self.scalar(
+                Item::Scene,
+                "a ray's length",
+                range::ray_length(self.world, self.slack),
+            )?,
             tolerance_base: self.scalar(Item::Scene, "the surface tolerance", tolerance_base)?,
             tolerance_per_unit: self.scalar(
                 Item::Scene,
@@ -558,6 +564,12 @@ impl<S: Scalar> Converter<S> {
                 checker,
             } => {
                 let n = direction(item, "shape.plane.normal", Vec3::from_f32(normal))?;
+                // The eye's foot on the plane, and the radius of the disc the world cuts from
+                // it (validation keeps the plane within the world).
+                let to_eye = self.eye - Vec3::from_f32(point);
+                let height = n.dot(to_eye);
+                let foot = self.eye - n * height;
+                let rim = range::visible_rim(self.world, height);
                 let checker = match checker {
                     Some(checker) => {
                         Some(self.checker(item, Vec3::from_f32(point), n, &checker)?)
@@ -567,7 +579,8 @@ impl<S: Scalar> Converter<S> {
                 Shape::Plane(Plane::new(
                     self.point(item, "shape.plane.point", point)?,
                     self.vector(item, "shape.plane.normal", n)?,
-                    self.scalar(item, "the world radius", self.world)?,
+                    self.vector(item, "the eye's foot on the plane", foot - self.eye)?,
+                    self.scalar(item, "the plane's visible disc", rim)?,
                     checker,
                 ))
             }
@@ -585,11 +598,11 @@ impl<S: Scalar> Converter<S> {
                     self.point(item, "shape.triangle.vertices", b)?,
                     self.point(item, "shape.triangle.vertices", c)?,
                 ];
-                // Möller–Trumbore's smallest determinant: below it a numerator over it would
-                // leave the format.
+                // Möller–Trumbore's smallest determinant: below it 1/det, or a numerator over
+                // it, would leave the format.
                 let origin = self.world + self.slack;
-                let numerators = range::triangle_numerators(origin, self.eye, [a64, b64, c64]);
-                let min_det = numerators * range::RANGE_HEADROOM / S::RANGE;
+                let multiples = range::reciprocal_multiples(origin, self.eye, [a64, b64, c64]);
+                let min_det = multiples * range::RANGE_HEADROOM / S::RANGE;
                 tolerance = range::error_with(
                     &range::triangle_tolerance_terms([a, b, c], self.eye),
                     &self.tolerances,
@@ -651,21 +664,19 @@ impl<S: Scalar> Converter<S> {
         let u = direction(item, "shape.plane.normal", least - n * n.dot(least))?;
         let v = n.cross(u);
         let size = f64::from(desc.size);
-        // The eye's foot on the plane, and its place on the grid of squares aligned to the
-        // plane's point, counted in squares: the pattern is measured from there, so that the
-        // coordinates it multiplies are of points within the world, however large the squares.
+        // The place of the eye's foot on the plane (where the pattern is measured from, so
+        // that the coordinates it multiplies are of points within the world, however large the
+        // squares) on the grid of squares aligned to the plane's point, counted in squares.
         // The place is kept modulo two squares, not one: a square's colour is the parity of
         // its two coordinates, and the parity of the foot's own square must stay, or an eye
         // moved across a square's edge would swap every colour of the board.
         let to_eye = self.eye - point;
-        let foot = point + u * to_eye.dot(u) + v * to_eye.dot(v);
         let place = |axis: Vec3<f64>| {
             let squares = to_eye.dot(axis) / size;
             squares - CHECKER_PERIOD * libm::floor(squares / CHECKER_PERIOD)
         };
         Ok(Checker {
             colour: self.colour(item, "shape.plane.checker.colour", desc.colour)?,
-            origin: self.vector(item, "checker origin", foot - self.eye)?,
             u: self.vector(item, "checker axis", u * size.recip())?,
             v: self.vector(item, "checker axis", v * size.recip())?,
             start: [

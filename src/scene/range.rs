@@ -13,12 +13,14 @@
 //!   validation keeps below every surface's distance from the eye and below R), or points on
 //!   surfaces, moved off them by the surface tolerance τ. A sphere's surface point is c + r·n, within |c| + r ≤ R; a triangle's is
 //!   a + u·e1 + v·e2 with u, v, u + v in [0, 1], a convex combination of its corners; a plane's
-//!   is a hit that passed the world test (|p| ≤ R) projected onto the plane, which moves it by
-//!   the rounding of its t. So |o| ≤ O = R + s, the slack s ([`origin_slack`]) being τ and the
+//!   is a hit that passed the world test (within the disc of radius ρ = √(R² − h²) the world
+//!   cuts from a plane h from the eye, about the eye's foot on it: |p| ≤ R) projected onto the
+//!   plane, which moves it by the rounding of its t. So |o| ≤ O = R + s, the slack s ([`origin_slack`]) being τ and the
 //!   rounding of a surface point.
 //! - **Directions** are unit vectors to within a few steps (unit vectors are correctly
 //!   rounded; a mirror direction keeps the length of the incoming one; a refracted direction
-//!   has unit length by construction), and hits lie within t < T = 2R, the world's diameter.
+//!   has unit length by construction), and hits lie within t < T = 2O, the diameter of the
+//!   ball rays start in ([`ray_length`]: longer than any way from an origin to a surface).
 //!   So a point along a ray, o + t·d, is within P = O + T.
 //! - **Weights** (diffuse, specular, reflection, transmission) are in [0, 1] with reflection +
 //!   transmission ≤ 1, so each level of a ray tree carries at most weight 1 in all.
@@ -31,14 +33,14 @@
 //! | lens | a lens point A·(a·right + b·up), its tilt (A/f)·(a·right + b·up) | within A ≤ R and A/f, a² + b² ≤ 1 |
 //! | every shape | o + t·d, o − (corner or centre) and their sums | [`magnitudes`]: a point along a ray, P |
 //! | plane | n·d·t for t in the span, offset − n·o | a ray's length T, and P |
-//! | plane | the world test | coordinates tested against R first, then scaled within 1 |
+//! | plane | the world test | a hit less the eye's foot, P + R; each coordinate tested against ρ, then scaled within 1 by a power of two near 1/ρ, which must fit |
 //! | plane | checker coordinates (p − corner)·axis/size | a checker coordinate |
 //! | sphere, quadratic | o − c, b = d·(o − c), \|o − c\|², b², b² − c | b² − c: (\|o\| + \|c\|)² + r² |
 //! | sphere, stable | f = o − c, \|f\|², f + b·d, \|f + b·d\|², r² − that | \|f\|² ≤ (\|o\| + \|c\|)² |
 //! | sphere | −b ± √Δ, b ± √Δ | the sphere's roots, \|b\| + √(b² + r²) |
 //! | sphere | p − c for the normal; c + r·n | a hit point less the centre, P + \|c\| |
 //! | triangle, Cramer | e1 × e2, det[−d s e2], det[−d e1 s], s·(e1 × e2) | Cramer's determinants |
-//! | triangle, Möller–Trumbore | d × e2, s × e1, their dot products; each times 1/det | its numerators; 1/det is cut off where a numerator over it would leave the format |
+//! | triangle, Möller–Trumbore | d × e2, s × e1, their dot products; each times 1/det | its numerators; 1/det is cut off where it, or a numerator over it, would leave the format |
 //! | triangle, watertight | sheared corners, edge functions, their sum | the watertight edge functions |
 //! | triangle | a + u·e1 + v·e2 | a convex combination of the corners: O |
 //! | shading | cosines, mirror direction d + 2(cos)·n, Phong's power of a cosine clamped to 1 | at most 3: a direction's reflection |
@@ -328,6 +330,16 @@ pub fn origin_slack(desc: &SceneDesc<'_>, methods: &Methods, format: &FormatInfo
     tolerance + rounding + quotient
 }
 
+/// The longest a ray is followed in a world of radius `world` whose rays start up to `slack`
+/// beyond it ([`origin_slack`]): the diameter of the ball they start in, 2(R + s). A surface
+/// lies within R of the eye (to within its rounding, which the slack exceeds), so that a ray
+/// finds it however far across the world it is (a mirror sphere about the eye sends its rays
+/// exactly 2R across).
+#[must_use]
+pub fn ray_length(world: f64, slack: f64) -> f64 {
+    2.0 * (world + slack)
+}
+
 /// Every magnitude of the scene's computations by `methods`, for rays that start within
 /// `slack` beyond the world ([`origin_slack`]); the description must have passed validation.
 /// See the module documentation for what each bounds.
@@ -340,7 +352,7 @@ pub fn magnitudes<'a>(
     let eye = desc.camera.eye;
     let aperture = f64::from(desc.camera.aperture);
     let origin = world + slack;
-    let length = 2.0 * world;
+    let length = ray_length(world, slack);
     let along = origin + length;
     let scene = |quantity, value, remedy| Magnitude {
         item: Item::Scene,
@@ -350,7 +362,7 @@ pub fn magnitudes<'a>(
     };
     let global = [
         scene(
-            "a ray's length (the world's diameter)",
+            "a ray's length (the world's diameter and its slack)",
             length,
             Remedy::ShrinkWorld,
         ),
@@ -395,6 +407,11 @@ pub fn magnitudes<'a>(
                         ]
                     }
                     ShapeDesc::Plane { checker, .. } => [
+                        Some((
+                            "a hit less the eye's foot on the plane",
+                            along + world,
+                            Remedy::ShrinkWorld,
+                        )),
                         checker.map(|checker| {
                             let size = f64::from(checker.size);
                             (
@@ -404,23 +421,24 @@ pub fn magnitudes<'a>(
                             )
                         }),
                         None,
-                        None,
                     ],
                     ShapeDesc::Triangle { vertices } => {
                         let corners = vertices.map(Vec3::from_f32);
                         let eye = Vec3::from_f32(eye);
                         let (quantity, value) =
                             triangle_magnitude(methods.triangle, origin, eye, corners);
-                        // Möller–Trumbore takes a determinant below numerators/range for a ray
-                        // parallel to the triangle: the primary rays' must stay above it, or it
-                        // misses a triangle it faces.
+                        // Möller–Trumbore takes a determinant below numerators/range (or
+                        // 1/range, where 1/det itself would not fit) for a ray parallel to the
+                        // triangle: the primary rays' must stay above it, or it misses a
+                        // triangle it faces.
                         let seen = (methods.triangle == TriangleMethod::MollerTrumbore)
                             .then(|| smallest_determinant(eye, aperture, corners))
                             .flatten()
                             .map(|det| {
                                 (
-                                    "Möller–Trumbore's numerators over a primary ray's determinant",
-                                    triangle_numerators(origin, eye, corners) / det,
+                                    "Möller–Trumbore's numerators (or 1) over a primary ray's \
+                                     determinant",
+                                    reciprocal_multiples(origin, eye, corners) / det,
                                     Remedy::LargerTriangle,
                                 )
                             });
@@ -456,6 +474,13 @@ pub(crate) fn triangle_numerators(origin: f64, eye: Vec3<f64>, [a, b, c]: [Vec3<
     let (e1, e2) = ((b - a).length(), (c - a).length());
     let s = origin + (a - eye).length();
     (s * e1 * e2).max(s * e1.max(e2)).max(e1 * e2)
+}
+
+/// What Möller–Trumbore's 1/det is multiplied by at most: its numerators
+/// ([`triangle_numerators`]), or 1 where they are smaller, for 1/det itself must fit the
+/// format. A determinant below this over the format's range is taken for a parallel ray.
+pub(crate) fn reciprocal_multiples(origin: f64, eye: Vec3<f64>, corners: [Vec3<f64>; 3]) -> f64 {
+    triangle_numerators(origin, eye, corners).max(1.0)
 }
 
 /// The smallest |det| = |d·(e1 × e2)| of a unit ray from the eye, or from a point of its lens
@@ -764,7 +789,14 @@ fn object_features(
                 ]
             });
             let [square, reciprocal] = checker.map_or([None, None], |[a, b]| [Some(a), Some(b)]);
-            [square, reciprocal, Some(clearance(reach)), None]
+            let rim = visible_rim(world, gap);
+            let rim = feature(
+                VISIBLE_DISC,
+                rim,
+                rim_error(world, rim),
+                Remedy::AwayFromTheEdge,
+            );
+            [square, reciprocal, Some(clearance(reach)), Some(rim)]
         }
         ShapeDesc::Triangle { vertices } => {
             // The tests' determinants are twice the area seen along the ray; their
@@ -816,6 +848,21 @@ fn object_features(
             ]
         }
     }
+}
+
+/// What a plane's feature at the world's edge is called: the radius of the disc the world cuts
+/// from it (the analysis moves the plane's silhouette by its error).
+pub const VISIBLE_DISC: &str = "the radius of the disc the world (far) cuts from the plane";
+
+/// The error with which a hit is placed on a plane, against its visible disc of radius `rim`,
+/// in a world of radius `world`: the rounding of a point along a ray and of its difference
+/// from the eye's foot, the rounding of its direction times its length (up to the world's
+/// diameter), and the rounding of the squares, scaled to within (¼, 1], relative to them.
+/// (Where the disc is small its rim is seen nearly head on, so that the rounding of the
+/// distance along the ray hardly moves the hit across the plane.)
+#[must_use]
+pub fn rim_error(world: f64, rim: f64) -> Terms {
+    Terms::new(&[(2.0, world), (2.0 * rim, 1.0)]).units(2.0 * world)
 }
 
 /// The error of a sphere's discriminant, for a ray whose origin is `f` from the centre.
@@ -994,35 +1041,69 @@ pub(super) fn check(
 fn too_large(format: &FormatInfo, desc: &SceneDesc<'_>, methods: &Methods) -> Option<Magnitude> {
     let slack = origin_slack(desc, methods, format);
     magnitudes(desc, methods, slack)
-        .chain(plane_scale(format, desc))
+        .chain(plane_scales(format, desc))
         .find(|m| !fits(m.value, format.range))
 }
 
-/// A plane keeps a hit to the world by testing |p·s|² ≤ (R·s)², each coordinate of p within R
-/// and s the power of two that brings R within (½, 1] — or one LSB, where the format resolves
-/// no finer: then R·s outgrows 1, and the sum of the three squares, 3(R·s)², must fit.
-fn plane_scale(format: &FormatInfo, desc: &SceneDesc<'_>) -> Option<Magnitude> {
-    let plane = desc
-        .objects
-        .iter()
-        .position(|o| matches!(o.shape, ShapeDesc::Plane { .. }))?;
+/// A plane keeps a hit to its visible disc by testing |q·s|² ≤ (ρ·s)², each coordinate of q
+/// (the hit less the eye's foot) within ρ and s the power of two that brings ρ within (½, 1]:
+/// that power must fit the format (a disc far smaller than 1 needs a large one), or, where the
+/// format resolves no finer than one LSB, ρ·s outgrows 1 and the sum of the three squares,
+/// 3(ρ·s)², must fit. (A disc of radius 0 is refused as a feature: [`features`].)
+fn plane_scales<'a>(
+    format: &'a FormatInfo,
+    desc: &'a SceneDesc<'a>,
+) -> impl Iterator<Item = Magnitude> + 'a {
     let world = f64::from(desc.far);
-    // As the plane finds it: halved until R·s ≤ 1, or doubled while R·s ≤ ½, below half
-    // the format's range (each loop ends within f64's exponents).
-    let mut ideal = 1.0_f64;
-    while world * ideal > 1.0 {
-        ideal /= 2.0;
-    }
-    while world * ideal <= 0.5 && ideal < format.range / 2.0 {
-        ideal *= 2.0;
-    }
-    let scaled = world * ideal.max((format.resolution)(1.0));
-    Some(Magnitude {
-        item: Item::Object(plane),
-        quantity: "the sum of a hit's squared coordinates in the plane's world scale",
-        value: 3.0 * scaled * scaled,
-        remedy: Remedy::ShrinkWorld,
-    })
+    let eye = Vec3::from_f32(desc.camera.eye);
+    desc.objects
+        .iter()
+        .enumerate()
+        .filter_map(move |(i, object)| Some((Item::Object(i), plane_rim(object, eye, world)?)))
+        .filter(|&(_, rim)| rim > 0.0)
+        .flat_map(move |(item, rim)| {
+            // As the plane finds it: halved until ρ·s ≤ 1, or doubled while ρ·s ≤ ½ (each
+            // loop ends within f64's exponents: ρ is a normal f64 below f32's largest).
+            let mut ideal = 1.0_f64;
+            while rim * ideal > 1.0 {
+                ideal /= 2.0;
+            }
+            while rim * ideal <= 0.5 {
+                ideal *= 2.0;
+            }
+            let scaled = rim * ideal.max((format.resolution)(1.0));
+            [
+                Magnitude {
+                    item,
+                    quantity: "the power of two that brings the radius of the plane's visible \
+                               disc within (½, 1]",
+                    value: ideal,
+                    remedy: Remedy::AwayFromTheEdge,
+                },
+                Magnitude {
+                    item,
+                    quantity: "the sum of a hit's squared coordinates in the plane's scale",
+                    value: 3.0 * scaled * scaled,
+                    remedy: Remedy::ShrinkWorld,
+                },
+            ]
+        })
+}
+
+/// The radius of the disc a world of radius `world` cuts from a plane `height` from the eye
+/// (the plane within the world): √(R² − h²), as (R − h)(R + h) so that it keeps its digits
+/// where h is near R.
+#[must_use]
+pub fn visible_rim(world: f64, height: f64) -> f64 {
+    let h = height.abs().min(world);
+    ((world - h) * (world + h)).sqrt()
+}
+
+/// The radius of `object`'s visible disc in a world of radius `world` about `eye`, if it is a
+/// plane.
+fn plane_rim(object: &ObjectDesc, eye: Vec3<f64>, world: f64) -> Option<f64> {
+    matches!(object.shape, ShapeDesc::Plane { .. })
+        .then(|| visible_rim(world, clearance(object, eye)))
 }
 
 /// The first feature `format` cannot resolve by `methods`.

@@ -6,27 +6,38 @@ use crate::ray::{Ray, Span};
 use crate::scalar::Scalar;
 use crate::vec3::Vec3;
 
-/// A plane n·p = offset, cut off at the edge of the world.
+/// A plane n·p = offset, cut off at the edge of the world: of the plane, the tracer sees only
+/// the disc the world's ball (radius R about the eye) cuts from it, about the eye's foot on the
+/// plane, of radius ρ = √(R² − h²) for a plane h from the eye.
+///
+/// A hit is tested against that disc, not against the ball: near the world's edge (h close to
+/// R) the disc is small, and |p|² = h² + |p − foot|² would lose its radius in the rounding of
+/// h², moving the rim by R/ρ times the error of |p|.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Plane<S> {
     normal: Vec3<S>,
     offset: S,
-    world_radius: S,
-    /// A power of two near 1/R, at least 1/(2R): scaled by it, a point within R on every axis
-    /// has coordinates within 1, whose squares sum to at most 3 in any format and resolve as
-    /// finely as the format allows.
-    world_scale: S,
-    /// (R·`world_scale`)², at most 1.
-    scaled_radius_squared: S,
+    /// The eye's foot on the plane (relative to the eye): the centre of the visible disc, and
+    /// the checkerboard's origin, so that the points a pattern measures are near it.
+    foot: Vec3<S>,
+    /// The visible disc's radius ρ.
+    rim: S,
+    /// A power of two near 1/ρ, at least 1/(2ρ): scaled by it, a point within ρ of the foot on
+    /// every axis has coordinates within 1, whose squares sum to at most 3 in any format and
+    /// resolve as finely as the format allows.
+    rim_scale: S,
+    /// (ρ·`rim_scale`)², at most 1.
+    scaled_rim_squared: S,
     checker: Option<Checker<S>>,
 }
 
 crate::words::words_of_struct!(Plane<S> {
     normal,
     offset,
-    world_radius,
-    world_scale,
-    scaled_radius_squared,
+    foot,
+    rim,
+    rim_scale,
+    scaled_rim_squared,
     checker
 });
 
@@ -35,64 +46,64 @@ crate::words::words_of_struct!(Plane<S> {
 pub const CHECKER_PERIOD: f64 = 2.0;
 
 /// A checkerboard on a plane: the two in-plane axes, pre-divided by the square size, so that
-/// (p − origin)·axis counts squares from the origin, where the count starts at `start`; and the
-/// colour of every other square.
+/// (p − foot)·axis counts squares from the eye's foot on the plane, where the count starts at
+/// `start`; and the colour of every other square.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Checker<S> {
     /// The colour of the squares whose two coordinates sum to an odd number.
     pub colour: Rgb<S>,
-    /// A point on the plane: the eye's foot on it, so that the points seen are near it.
-    pub origin: Vec3<S>,
     /// The first in-plane axis divided by the square size.
     pub u: Vec3<S>,
     /// The second in-plane axis divided by the square size.
     pub v: Vec3<S>,
-    /// The origin's coordinates on the grid of squares anchored at the plane's point, modulo
+    /// The foot's coordinates on the grid of squares anchored at the plane's point, modulo
     /// [`CHECKER_PERIOD`] (each in [0, 2)), so that a square's colour is where the plane puts it.
     pub start: [S; 2],
 }
 
 crate::words::words_of_struct!(Checker<S> {
     colour,
-    origin,
     u,
     v,
     start
 });
 
 impl<S: Scalar> Plane<S> {
-    /// The plane through `point` with the unit normal `normal`, seen only within
-    /// `world_radius` of the origin (the eye).
+    /// The plane through `point` with the unit normal `normal`, of which the world cuts the
+    /// disc of radius `rim` about `foot`, the eye's foot on it (both relative to the eye, as
+    /// every position is).
     #[must_use]
     pub fn new(
         point: Vec3<S>,
         normal: Vec3<S>,
-        world_radius: S,
+        foot: Vec3<S>,
+        rim: S,
         checker: Option<Checker<S>>,
     ) -> Self {
-        // A power of two near 1/R: halved until R·scale ≤ 1 (by doubling a reach up to at most
-        // 2R, a ray's length, which the scene build proved to fit), or doubled while R·scale
-        // ≤ ½ (halving a reach down to R), so that a small world's squares do not vanish below
-        // the format's resolution; doubling stops short of the format's range, and where the
-        // reach can be halved no more.
-        let (mut reach, mut world_scale) = (S::ONE, S::ONE);
+        // A power of two near 1/ρ: halved until ρ·scale ≤ 1 (by doubling a reach up to at most
+        // 2ρ, which the scene build proved to fit), or doubled while ρ·scale ≤ ½ (halving a
+        // reach down to ρ), so that a small disc does not vanish below the format's
+        // resolution; doubling stops short of the format's range (which the scene build proved
+        // the scale for this ρ to stay within), and where the reach can be halved no more.
+        let (mut reach, mut rim_scale) = (S::ONE, S::ONE);
         let half = S::ratio(1, 2);
-        while reach < world_radius {
+        while reach < rim {
             reach = reach + reach;
-            world_scale = world_scale * half;
+            rim_scale = rim_scale * half;
         }
         let ceiling = S::MAX / S::from_int(2);
-        while reach * half >= world_radius && reach * half < reach && world_scale < ceiling {
+        while reach * half >= rim && reach * half < reach && rim_scale < ceiling {
             reach = reach * half;
-            world_scale = world_scale + world_scale;
+            rim_scale = rim_scale + rim_scale;
         }
-        let scaled_radius = world_radius * world_scale;
+        let scaled_rim = rim * rim_scale;
         Self {
             normal,
             offset: normal.dot(point),
-            world_radius,
-            world_scale,
-            scaled_radius_squared: scaled_radius * scaled_radius,
+            foot,
+            rim,
+            rim_scale,
+            scaled_rim_squared: scaled_rim * scaled_rim,
             checker,
         }
     }
@@ -125,16 +136,18 @@ impl<S: Scalar> Plane<S> {
         self.inside_world(ray.at(t)).then_some(t)
     }
 
-    /// |p| ≤ R, tested as |p·s|² ≤ (R·s)² with the power of two s ≈ 1/R: each coordinate is
-    /// tested first, so that the squares are of numbers within 1 (R² itself may not fit the
-    /// format).
+    /// Whether `p`, a point of the plane, lies in the visible disc: |q| ≤ ρ for q = p − foot,
+    /// tested as |q·s|² ≤ (ρ·s)² with the power of two s ≈ 1/ρ. Each coordinate of q is tested
+    /// against ρ first, so that the squares are of numbers within 1 (ρ² itself may not fit the
+    /// format, or resolve in it).
     fn inside_world(&self, p: Vec3<S>) -> bool {
-        let r = self.world_radius;
-        let within = |c: S| c <= r && c >= -r;
-        within(p.x)
-            && within(p.y)
-            && within(p.z)
-            && (p * self.world_scale).length_squared() <= self.scaled_radius_squared
+        let q = p - self.foot;
+        let rim = self.rim;
+        let within = |c: S| c <= rim && c >= -rim;
+        within(q.x)
+            && within(q.y)
+            && within(q.z)
+            && (q * self.rim_scale).length_squared() <= self.scaled_rim_squared
     }
 
     /// The unit normal (the same everywhere).
@@ -155,7 +168,7 @@ impl<S: Scalar> Plane<S> {
     #[must_use]
     pub fn pattern_colour(&self, point: Vec3<S>) -> Option<Rgb<S>> {
         let checker = self.checker?;
-        let local = point - checker.origin;
+        let local = point - self.foot;
         let [start_u, start_v] = checker.start;
         let squares = (local.dot(checker.u) + start_u)
             .floor_int()
@@ -171,13 +184,20 @@ mod tests {
     use crate::scalar::Precision;
     use crate::test_util::{assert_close, for_each_format, span, v};
 
-    fn floor<S: Scalar>(checker: Option<Checker<S>>) -> Plane<S> {
+    /// The floor y = −h in a world of radius `world` about the origin (the eye).
+    fn floor_at<S: Scalar>(h: f64, world: f64, checker: Option<Checker<S>>) -> Plane<S> {
+        let rim = (world * world - h * h).sqrt();
         Plane::new(
-            v(0.0, -1.0, 0.0),
+            v(0.0, -h, 0.0),
             v(0.0, 1.0, 0.0),
-            S::from_int(50),
+            v(0.0, -h, 0.0),
+            S::from_f64(rim).unwrap(),
             checker,
         )
+    }
+
+    fn floor<S: Scalar>(checker: Option<Checker<S>>) -> Plane<S> {
+        floor_at(1.0, 50.0, checker)
     }
 
     #[test]
@@ -249,12 +269,7 @@ mod tests {
     fn the_world_test_holds_a_world_whose_radius_squared_does_not_fit() {
         // R = 12 000 in 16.16: R² is far beyond its range of 32 768, a ray's length 2R is not.
         let world = 12_000.0;
-        let plane = Plane::<I16F16>::new(
-            v(0.0, -1.0, 0.0),
-            v(0.0, 1.0, 0.0),
-            I16F16::from_f64(world).unwrap(),
-            None,
-        );
+        let plane = floor_at::<I16F16>(1.0, world, None);
         // Points on the floor along the diagonal of the xz plane, at distance √2·c.
         let at = |c: f64| plane.inside_world(v(c, -1.0, c));
         assert!(at(8000.0), "11 314 away: inside");
@@ -268,12 +283,30 @@ mod tests {
     }
 
     #[test]
+    fn at_the_worlds_edge_the_visible_disc_keeps_its_radius() {
+        // A floor 10 below the eye in a world of radius 10.000 05: the world cuts a disc of
+        // radius 0.0316 from it, which testing |p|² against R² (|p|² = 100 + ρ², rounded at
+        // 100) would place only to within ρ's own size.
+        for_each_format!(S, {
+            let (h, world) = (10.0, 10.000_05);
+            let rim = (world * world - h * h).sqrt();
+            let plane = floor_at::<S>(h, world, None);
+            // A few steps of the format at the world's size, and of the rim's.
+            let steps = 4.0 * (S::resolution(world) + S::resolution(rim));
+            for angle in [0.0_f64, 0.7, 2.0, 4.0] {
+                let at = |r: f64| plane.inside_world(v(r * angle.cos(), -h, r * angle.sin()));
+                assert!(at(rim - steps), "{}: inside at {angle}", S::NAME);
+                assert!(!at(rim + steps), "{}: outside at {angle}", S::NAME);
+            }
+        });
+    }
+
+    #[test]
     fn checker_alternates_by_square() {
         for_each_format!(S, {
             let colour = Rgb::WHITE;
             let checker = Checker {
                 colour,
-                origin: v::<S>(0.0, -1.0, 0.0),
                 u: v(0.5, 0.0, 0.0),
                 v: v(0.0, 0.0, 0.5),
                 start: [S::ZERO; 2],

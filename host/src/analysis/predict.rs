@@ -405,6 +405,13 @@ fn object_shifts<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods, pixel: f64)
             {
                 shift.silhouette += error / feature.value * longest(vertices) / seen / pixel;
             }
+            // The rim of a plane's visible disc moves across the plane by its error, seen from
+            // the eye, R away, at the sine h/R of its angle with the plane.
+            (ShapeDesc::Plane { .. }, range::VISIBLE_DISC) => {
+                let world = f64::from(desc.far);
+                let height = range::clearance(object, eye);
+                shift.silhouette += error * height / (world * world) / pixel;
+            }
             // A checker coordinate, counted in squares, is rounded at its size: a point seen at
             // distance d is about d from the eye's foot, where the count starts, so its edges
             // move by size·res(d/size)/d, most at the nearest.
