@@ -1,6 +1,6 @@
 //! The command line: what each subcommand takes.
 
-use crate::analysis::TARGET_PSNR;
+use crate::analysis::{TARGET_PSNR, USELESS_PSNR};
 use crate::cost::Machine;
 use crate::firmware::Target;
 use clap::{Args, Parser, Subcommand};
@@ -73,6 +73,18 @@ pub struct AutoArgs {
     pub cost_on: Machine,
 }
 
+/// When a format predicted to stray far from f64 is refused.
+#[derive(Clone, Copy, Debug, Args)]
+pub struct RefusalArgs {
+    /// Refuse a format the model (`obscura analyze`'s) predicts below this PSNR against f64,
+    /// in dB, naming the formats and methods predicted to reach it.
+    #[arg(long, value_name = "DB", default_value_t = USELESS_PSNR, value_parser = parse_psnr)]
+    pub refuse_below: f64,
+    /// Draw in the format given even where it is predicted below --refuse-below.
+    #[arg(long)]
+    pub force: bool,
+}
+
 /// What to render, at what size, in which format, by which methods.
 #[derive(Debug, Args)]
 pub struct SceneArgs {
@@ -90,6 +102,8 @@ pub struct SceneArgs {
     pub sampling: Sampling,
     #[command(flatten)]
     pub auto: AutoArgs,
+    #[command(flatten)]
+    pub refusal: RefusalArgs,
 }
 
 /// `obscura analyze`.
@@ -186,6 +200,8 @@ pub struct FirmwareArgs {
     /// The PSNR against f64, in dB, that `--format auto` aims for.
     #[arg(long, default_value_t = TARGET_PSNR, value_parser = parse_psnr)]
     pub target_psnr: f64,
+    #[command(flatten)]
+    pub refusal: RefusalArgs,
     /// Also write the figures as JSON (an array, one object per frame) to this file.
     #[arg(long)]
     pub json: Option<PathBuf>,
@@ -231,6 +247,8 @@ pub struct PreviewArgs {
     pub sampling: Sampling,
     #[command(flatten)]
     pub presentation: PresentationSettings,
+    #[command(flatten)]
+    pub refusal: RefusalArgs,
     /// No window: write the final frame as a PNG and exit (for CI, where there is no display).
     #[arg(long)]
     pub headless: bool,

@@ -349,6 +349,60 @@ fn firmware_refuses_what_it_cannot_draw_before_building() {
 }
 
 #[test]
+fn a_format_predicted_useless_is_refused_unless_forced() {
+    let checker = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/scenes/hostile/checker-1e6.toml"
+    );
+    let dir = scratch("useless");
+    let file = dir.join("checker.png");
+    let file = file.to_str().unwrap();
+    let render = [
+        "render", checker, "--format", "i16f16", "--size", "64x64", "-o", file,
+    ];
+    let output = obscura(&render);
+    assert!(!output.status.success());
+    let message = stderr(&output);
+    assert!(
+        message.contains("i16f16 by lecture is predicted to reach only")
+            && message.contains("below the 20 dB of --refuse-below")
+            && message.contains("formats predicted to reach it: i32f32")
+            && message.contains("--force"),
+        "{message}"
+    );
+    assert!(!Path::new(file).exists(), "nothing is drawn");
+    for insist in [&["--force"][..], &["--refuse-below", "2"]] {
+        let output = obscura(&[&render[..], insist].concat());
+        assert!(output.status.success(), "{}", stderr(&output));
+    }
+    // The display's commands refuse it too, before building or drawing anything.
+    let output = Command::new(env!("CARGO_BIN_EXE_obscura"))
+        .args(["firmware", "--target", "m4f", "--scene", checker])
+        .args(["--format", "i16f16"])
+        .env("PATH", scratch("no-cargo-useless"))
+        .output()
+        .unwrap();
+    assert!(!output.status.success());
+    let message = stderr(&output);
+    assert!(
+        message.contains("checker-1e6: i16f16 by lecture is predicted to reach only"),
+        "{message}"
+    );
+    let preview = dir.join("preview.png");
+    let output = obscura(&[
+        "preview",
+        checker,
+        "--format",
+        "i16f16",
+        "--headless",
+        "-o",
+        preview.to_str().unwrap(),
+    ]);
+    assert!(!output.status.success());
+    assert!(stderr(&output).contains("--force"), "{}", stderr(&output));
+}
+
+#[test]
 fn firmware_without_qemu_says_how_to_install_it() {
     // A PATH with rustc on it and nothing else: no QEMU (and perhaps no thumb target).
     let dir = scratch("no-qemu");

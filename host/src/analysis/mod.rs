@@ -12,7 +12,7 @@ use crate::checked::Checked;
 use crate::cost::{Machine, cost};
 use crate::metrics::accuracy;
 use crate::render::{HostScene, Request, all_cores, exact_roots, prepare, prepare_reference};
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use obscura::methods::MethodName;
 use obscura::scalar::FormatInfo;
 use obscura::scene::range::{self, Feature, Magnitude};
@@ -98,6 +98,29 @@ pub struct Verdict {
     pub prediction: Option<Prediction>,
 }
 
+impl Verdict {
+    /// Format `format`'s verdict on `scene` by `methods`, whose f64 `reference` is rendered at
+    /// the size to analyse.
+    pub fn of(format: Format, scene: &OwnedScene, methods: Methods, reference: &Reference) -> Self {
+        let fit = fit(format, scene, methods, reference.image.dimensions());
+        // A rescaled scene is predicted as it will be rendered: the same image, but the
+        // nearest surface at another distance and the constants of another size.
+        let prediction = match fit {
+            Fit::Holds => predict::predict(format, &scene.desc(), methods, reference).ok(),
+            Fit::Rescaled(factor) => {
+                let rescaled = scene.scaled(factor as f32);
+                predict::predict(format, &rescaled.desc(), methods, reference).ok()
+            }
+            Fit::Refused(_) => None,
+        };
+        Self {
+            format,
+            fit,
+            prediction,
+        }
+    }
+}
+
 impl Analysis {
     /// Analyses `scene` rendered at `width × height` by `methods`.
     ///
@@ -114,28 +137,9 @@ impl Analysis {
     /// analyse.
     pub fn with_reference(scene: &OwnedScene, methods: Methods, reference: &Reference) -> Self {
         let desc = scene.desc();
-        let size = reference.image.dimensions();
         let verdicts = Format::ALL
             .iter()
-            .copied()
-            .map(|format| {
-                let fit = fit(format, scene, methods, size);
-                // A rescaled scene is predicted as it will be rendered: the same image, but the
-                // nearest surface at another distance and the constants of another size.
-                let prediction = match fit {
-                    Fit::Holds => predict::predict(format, &desc, methods, reference).ok(),
-                    Fit::Rescaled(factor) => {
-                        let rescaled = scene.scaled(factor as f32);
-                        predict::predict(format, &rescaled.desc(), methods, reference).ok()
-                    }
-                    Fit::Refused(_) => None,
-                };
-                Verdict {
-                    format,
-                    fit,
-                    prediction,
-                }
-            })
+            .map(|&format| Verdict::of(format, scene, methods, reference))
             .collect();
         Self {
             extents: extents(&desc),
@@ -264,6 +268,92 @@ pub fn pick(
 
 /// The PSNR against f64, in dB, that `--format auto` and `analyze` aim for unless told.
 pub const TARGET_PSNR: f64 = 40.0;
+
+/// The PSNR against f64, in dB, below which `render`, `compare`, `preview` and `obscura
+/// firmware` refuse a format the model predicts there, unless told to draw it anyway: a picture
+/// that far from f64 is no longer the scene's. (`chart`, `stress` and `fuzz` measure such
+/// formats on purpose.)
+pub const USELESS_PSNR: f64 = 20.0;
+
+/// Refuses `format` for `scene` at `size` by `methods` where the model predicts it below
+/// `floor` dB against f64, with the prediction, the formats predicted to reach `floor` as the
+/// scene is, and the changes of one method that make `format` reach it. f64, and a format that
+/// cannot build the scene (its build says why), pass.
+///
+/// # Errors
+/// The refusal; or a render of the f64 reference that fails.
+pub fn refuse_useless(
+    format: Format,
+    scene: &OwnedScene,
+    methods: Methods,
+    size: (u32, u32),
+    floor: f64,
+) -> Result<()> {
+    if format == Format::F64 {
+        return Ok(());
+    }
+    let desc = scene.desc();
+    let Ok(f64s) = reference(&desc, methods, size) else {
+        return Ok(());
+    };
+    let predicted = |format: Format, methods: Methods, reference: &Reference| {
+        predict::predict(format, &desc, methods, reference).map_or(f64::INFINITY, |p| p.psnr_db)
+    };
+    let psnr = predicted(format, methods, &f64s);
+    if psnr >= floor {
+        return Ok(());
+    }
+    let formats: Vec<&str> = Analysis::with_reference(scene, methods, &f64s)
+        .verdicts
+        .iter()
+        .filter(|v| v.fit == Fit::Holds && v.prediction.is_some_and(|p| p.psnr_db >= floor))
+        .map(|v| v.format.name())
+        .collect();
+    let changes: Vec<String> = one_change(methods)
+        .into_iter()
+        .filter(|&other| {
+            builds(format, &desc, other, size).is_ok()
+                && reference(&desc, other, size)
+                    .is_ok_and(|f64s| predicted(format, other, &f64s) >= floor)
+        })
+        .filter_map(|other| other.changed_from(&methods))
+        .map(|(question, name)| format!("--{question} {name}"))
+        .collect();
+    let (width, height) = size;
+    let mut message = format!(
+        "{format} by {methods} is predicted to reach only {psnr:.1} dB against f64 at \
+         {width}x{height}, below the {floor} dB of --refuse-below (`obscura analyze` says why)"
+    );
+    if !formats.is_empty() {
+        message += &format!("; formats predicted to reach it: {}", formats.join(" "));
+    }
+    if !changes.is_empty() {
+        message += &format!("; in {format}, {}", changes.join(" or "));
+    }
+    message += "; or give --force to draw it anyway";
+    bail!(message)
+}
+
+/// Every choice of methods that differs from `methods` in exactly one.
+fn one_change(methods: Methods) -> Vec<Methods> {
+    fn others<M: MethodName + PartialEq>(of: M) -> impl Iterator<Item = M> {
+        M::ALL.iter().map(|&(m, _)| m).filter(move |&m| m != of)
+    }
+    let sphere = others(methods.sphere).map(|sphere| Methods { sphere, ..methods });
+    let triangle = others(methods.triangle).map(|triangle| Methods {
+        triangle,
+        ..methods
+    });
+    let roots = others(methods.roots).map(|roots| Methods { roots, ..methods });
+    let rays = others(methods.rays).map(|rays| Methods { rays, ..methods });
+    let bias = others(methods.bias).map(|bias| Methods { bias, ..methods });
+    sphere
+        .chain(triangle)
+        .chain(roots)
+        .chain(rays)
+        .chain(bias)
+        .collect()
+}
 
 /// `--format auto` for a firmware: the cheapest format on `machine` that holds every scene as
 /// it is (a firmware's scenes are built in: it cannot rescale them) and reaches `target_psnr`

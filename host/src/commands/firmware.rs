@@ -64,6 +64,12 @@ fn configure(args: &FirmwareArgs) -> Result<(FirmwareSettings, Configuration)> {
     for &choice in &settings.frames.format {
         let machine = Machine::from(args.target);
         let format = super::firmware_format(choice, &scenes, methods, machine, args.target_psnr)?;
+        if choice == FormatChoice::Given(format) {
+            for named in &scenes {
+                super::refuse_useless(&args.refusal, format, &named.scene, methods, (SIDE, SIDE))
+                    .with_context(|| named.name.clone())?;
+            }
+        }
         if !formats.contains(&format) {
             formats.push(format);
         }

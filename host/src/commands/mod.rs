@@ -11,7 +11,7 @@ mod render;
 mod stress;
 
 use crate::analysis::{self, Analysis, Pick, pick};
-use crate::cli::{AutoArgs, Command, SceneArgs};
+use crate::cli::{AutoArgs, Command, RefusalArgs, SceneArgs};
 use crate::cost::Machine;
 use crate::output::say;
 use anyhow::{Result, bail};
@@ -105,12 +105,31 @@ pub fn firmware_format(
 pub fn resolve(named: &NamedScene, args: &SceneArgs) -> Result<Resolved> {
     let methods = args.methods.methods();
     let (format, scene) = pick_format(args.format, named, methods, args.size, &args.auto)?;
+    if let FormatChoice::Given(format) = args.format {
+        refuse_useless(&args.refusal, format, &scene, methods, args.size)?;
+    }
     Ok(Resolved {
         name: named.name.clone(),
         format,
         scene,
         methods,
     })
+}
+
+/// Refuses a format given for `scene` at `size` by `methods` where it is predicted below
+/// `refusal`'s floor ([`analysis::refuse_useless`]), unless told `--force`. (A format `auto`
+/// picks was measured to reach its target.)
+pub fn refuse_useless(
+    refusal: &RefusalArgs,
+    format: Format,
+    scene: &OwnedScene,
+    methods: Methods,
+    size: (u32, u32),
+) -> Result<()> {
+    if refusal.force {
+        return Ok(());
+    }
+    analysis::refuse_useless(format, scene, methods, size, refusal.refuse_below)
 }
 
 /// The format to render `named` in at `size` by `methods`, and the scene to render.

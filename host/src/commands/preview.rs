@@ -10,8 +10,8 @@ use crate::output::say;
 use crate::render::{Request, prepare, rgb565_image};
 use anyhow::Result;
 use obscura::methods::MethodName;
-use obscura_scene::NamedScene;
 use obscura_scene::firmware::SIDE;
+use obscura_scene::{FormatChoice, NamedScene};
 use std::time::Duration;
 
 pub fn run(args: &PreviewArgs) -> Result<()> {
@@ -29,6 +29,9 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
         machine,
         args.target_psnr,
     )?;
+    if let FormatChoice::Given(format) = args.format {
+        super::refuse_useless(&args.refusal, format, &named.scene, methods, (SIDE, SIDE))?;
+    }
     let desc = named.scene.desc();
     let request = Request {
         desc: &desc,
