@@ -219,7 +219,76 @@ impl Generator {
         if self.chance(0.125) {
             scene = self.on_a_grid(&scene, unit);
         }
+        // A sixth with the world's edge at one of its objects: moved out to be the farthest
+        // thing in the scene, `far` just short of it (refused: it pokes out of the world), at
+        // it, or just beyond it, where the world cuts a small disc from a plane.
+        if self.chance(1.0 / 6.0) {
+            self.at_the_edge(&mut scene);
+        }
         Generated { scene, size }
+    }
+
+    /// `scene` with the world's edge at one of its objects (see [`Self::scene`]): the object
+    /// scaled about the eye until its farthest point (a plane's nearest) is as far as the
+    /// farthest thing in the scene, and `far` that distance times 1 less 10⁻⁷ to 10⁻³, 1, or 1
+    /// plus 10⁻⁷ to 10⁻².
+    fn at_the_edge(&mut self, scene: &mut OwnedScene) {
+        let eye = Vec3::from_f32(scene.camera.eye);
+        let edge = |object: &ObjectDesc| match object.shape {
+            ShapeDesc::Plane { .. } => range::clearance(object, eye),
+            ShapeDesc::Sphere { center, radius } => {
+                (Vec3::from_f32(center) - eye).length() + f64::from(radius)
+            }
+            ShapeDesc::Triangle { vertices } => vertices
+                .iter()
+                .map(|&v| (Vec3::from_f32(v) - eye).length())
+                .fold(0.0, f64::max),
+        };
+        let lights = scene
+            .lights
+            .iter()
+            .map(|l| (Vec3::from_f32(l.position) - eye).length() + f64::from(l.radius));
+        let farthest = scene
+            .objects
+            .iter()
+            .map(edge)
+            .chain(lights)
+            .fold(0.0, f64::max);
+        let at = f64s(scene.camera.eye);
+        let target = self.below(scene.objects.len());
+        if let Some(object) = scene.objects.get_mut(target) {
+            let k = farthest / edge(object);
+            if k.is_finite() {
+                let out = |p: [f32; 3]| f32s(add(at, scale(sub(f64s(p), at), k)));
+                object.shape = match object.shape {
+                    ShapeDesc::Sphere { center, radius } => ShapeDesc::Sphere {
+                        center: out(center),
+                        radius: (f64::from(radius) * k) as f32,
+                    },
+                    ShapeDesc::Plane {
+                        point,
+                        normal,
+                        checker,
+                    } => ShapeDesc::Plane {
+                        point: out(point),
+                        normal,
+                        checker,
+                    },
+                    ShapeDesc::Triangle { vertices } => ShapeDesc::Triangle {
+                        vertices: vertices.map(out),
+                    },
+                };
+            }
+        }
+        let factor = match self.below(3) {
+            0 => 1.0 - self.log_uniform(1e-7, 1e-3),
+            1 => 1.0,
+            _ => 1.0 + self.log_uniform(1e-7, 1e-2),
+        };
+        let far = (farthest * factor) as f32;
+        if far > 0.0 {
+            scene.far = far;
+        }
     }
 
     /// `scene` on a grid of cells of a power of two near `unit`/8 (see [`Self::scene`]).
@@ -467,5 +536,16 @@ mod tests {
         assert!(count(|s| s.lights.iter().any(|l| l.radius > 0.0)) > 75);
         assert!(count(|s| s.camera.aperture > 0.0) > 75);
         assert!(count(|s| s.camera.focus_distance.is_some()) > 30);
+        // Planes at the world's edge: just inside it.
+        let at_the_edge = |s: &OwnedScene| {
+            let eye = Vec3::from_f32(s.camera.eye);
+            s.objects.iter().any(|o| {
+                let h = range::clearance(o, eye);
+                matches!(o.shape, ShapeDesc::Plane { .. })
+                    && h <= f64::from(s.far)
+                    && f64::from(s.far) <= 1.01 * h
+            })
+        };
+        assert!(count(at_the_edge) > 15);
     }
 }

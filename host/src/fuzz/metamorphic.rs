@@ -5,7 +5,9 @@
 //!   exactly, draw the same picture bit for bit in every format, and are accepted or refused
 //!   alike (the core builds a scene relative to its eye, so nothing else may change);
 //! - **scale**: the world, its sizes and `far` scaled by two draw the same picture in f64 (a
-//!   power of two scales every product exactly);
+//!   power of two scales every product exactly), and f32 is predicted the same error for both
+//!   (a float's rounding is relative: the model is scale-free for it, where a fixed format's
+//!   resolution is absolute and its prediction must change);
 //! - **mirror**: the scene mirrored in x (the camera's up with it) draws the picture mirrored
 //!   left to right, in f64, where the scene's patterns are mirror-symmetric (no checkerboard, one
 //!   ray per pixel, point lights, a pinhole);

@@ -22,7 +22,11 @@
 //! - the picture moves with the world ([`metamorphic`]): the scene and its eye translated
 //!   together draw the same frame bit for bit in every format; by the lecture's methods, in f64,
 //!   a world doubled draws the same picture, a mirrored one its mirror image, and an eye nudged
-//!   by an ulp changes only pixels an edge passes through (a **metamorphic violation**).
+//!   by an ulp changes only pixels an edge passes through; and f32's prediction for the world
+//!   doubled is the original's (a **metamorphic violation**).
+//!
+//! A sixth of the scenes put the world's edge at one of their objects ([`generate`]), where
+//! `far` cuts a small disc from a plane or a sphere reaches across the world.
 //!
 //! Every failure is written as a scene file whose header says what failed and the command that
 //! shows it.
@@ -32,7 +36,7 @@ mod corpus;
 pub mod generate;
 pub mod metamorphic;
 
-use crate::analysis::{Analysis, Fit, Prediction, Reference};
+use crate::analysis::{Analysis, Fit, Prediction, Reference, Verdict};
 use crate::checked;
 use crate::metrics::{Accuracy, accuracy};
 use crate::render::{AnyFormat, Request, exact_roots, prepare, prepare_reference};
@@ -412,6 +416,18 @@ fn try_methods(
         }
     }
     let analysis = Analysis::with_reference(scene, methods, &reference);
+    if methods == Methods::LECTURE && stable {
+        if let Some(broken) = scaled_prediction(scene, &request, &analysis) {
+            tally.check("scale prediction");
+            if let Some(message) = broken {
+                let relation = "scale prediction";
+                tally.record(finding(
+                    Format::F32,
+                    Failure::Metamorphic { relation, message },
+                ));
+            }
+        }
+    }
     for &format in FORMATS {
         tally.builds += 1;
         let verdict = analysis.verdicts.iter().find(|v| v.format == format);
@@ -640,6 +656,47 @@ fn mirror_and_scale(
             Some((relation, broken))
         })
         .collect()
+}
+
+/// How far, in dB, f32's prediction for the world doubled may stray from the original's: the
+/// model is scale-free for a float (its rounding is relative), and the doubled scene's values
+/// are the original's doubled exactly, so only the model's own f64 arithmetic may differ.
+const SCALED_PREDICTION_DB: f64 = 1e-6;
+
+/// Where f32 holds both the scene and the world doubled ([`metamorphic::doubled`]), whether
+/// its prediction for the doubled world is the original's (`None` where the relation does not
+/// apply).
+fn scaled_prediction(
+    scene: &OwnedScene,
+    request: &Request<'_>,
+    analysis: &Analysis,
+) -> Option<Option<String>> {
+    let original = analysis
+        .verdicts
+        .iter()
+        .find(|v| v.format == Format::F32 && v.fit == Fit::Holds)?
+        .prediction?;
+    let doubled = metamorphic::doubled(scene)?;
+    let desc = doubled.desc();
+    let request = Request {
+        desc: &desc,
+        methods: exact_roots(request.methods),
+        ..*request
+    };
+    let reference = Reference::render(&request).ok()?;
+    let verdict = Verdict::of(Format::F32, &doubled, request.methods, &reference);
+    let predicted = match (verdict.fit, verdict.prediction) {
+        (Fit::Holds, Some(prediction)) => prediction,
+        (fit, _) => return Some(Some(format!("f32 holds the scene, not doubled: {fit:?}"))),
+    };
+    let apart = (predicted.psnr_db - original.psnr_db).abs();
+    let same = apart <= SCALED_PREDICTION_DB || predicted.psnr_db == original.psnr_db;
+    Some((!same).then(|| {
+        format!(
+            "f32 is predicted {:.3} dB for the world doubled, {:.3} dB for the original",
+            predicted.psnr_db, original.psnr_db
+        )
+    }))
 }
 
 /// Writes the scene of a finding as a scene file whose header says what failed and how to
