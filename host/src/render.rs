@@ -12,8 +12,8 @@ use indicatif::{ProgressBar, ProgressStyle};
 use obscura::pattern::{Pattern, SampleId};
 use obscura::skips::{first_skipped_hit, first_skipped_shadow};
 use obscura::{
-    Camera, Corner, Methods, Presentation, Ray, RootMethod, Scalar, Scene, SceneDesc, SceneError,
-    corner_rows, render_frame, render_rows,
+    Camera, Corner, Methods, Presentation, Ray, Rgb, RootMethod, Scalar, Scene, SceneDesc,
+    SceneError, corner_rows, render_frame, render_rows,
 };
 use obscura_scene::{Format, FormatJob, MAX_LIGHTS, MAX_OBJECTS, RAY_STACK};
 use rayon::prelude::*;
@@ -301,14 +301,36 @@ impl<S: Scalar> Prepared<S> {
 }
 
 impl Prepared<f64> {
-    /// What the ray through the point `offset` (across, down) pixels from the centre of pixel
-    /// (x, y) sees (through a lens, from the pixel's first lens point), or `None` outside the
-    /// image.
-    pub fn sample(&self, x: u32, y: u32, offset: [f64; 2]) -> Option<obscura::Sample<f64>> {
-        let ray = self
-            .camera
-            .ray_through_lens(x, y, offset, Pattern::lens(x, y).disc(0))?;
-        Some(self.scene.trace(ray, SampleId { x, y, sample: 0 }))
+    /// What pixel (x, y) shows with each of its `samples` rays moved by `offset` (across,
+    /// down) pixels: the mean of their colours, each ray through its point of the pixel and its
+    /// lens point as the render takes them (all of them, where adaptive samples take some),
+    /// and the object its first ray hits; `None` outside the image.
+    pub fn pixel(
+        &self,
+        x: u32,
+        y: u32,
+        offset: [f64; 2],
+        samples: u16,
+    ) -> Option<(Rgb888, Option<usize>)> {
+        let (within, lens) = (Pattern::pixel(x, y), Pattern::lens(x, y));
+        let mut sum = [0.0; 3];
+        let mut first = None;
+        for i in 0..samples {
+            let [across, down] = if samples > 1 {
+                within.offset::<f64>(i)
+            } else {
+                [0.0; 2]
+            };
+            let at = [across + offset[0], down + offset[1]];
+            let ray = self.camera.ray_through_lens(x, y, at, lens.disc(i))?;
+            let seen = self.scene.trace(ray, SampleId { x, y, sample: i });
+            first = first.or(Some(seen.object));
+            for (total, channel) in sum.iter_mut().zip(seen.colour.to_f64()) {
+                *total += channel.clamp(0.0, 1.0);
+            }
+        }
+        let mean = Rgb::<f64>::from_f64(sum.map(|total| total / f64::from(samples.max(1))))?;
+        Some((mean.quantize(), first.flatten()))
     }
 }
 

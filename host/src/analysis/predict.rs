@@ -70,6 +70,10 @@ pub struct Reference {
     pub objects: Vec<Option<usize>>,
     /// The objects each pixel's ray tree meets ([`obscura::Sample::met`]).
     pub met: Vec<u64>,
+    /// A pixel's rays, and whether they are several or through a lens: then a moved pixel is
+    /// all of them moved, against all of them where they are.
+    samples: u16,
+    sampled: bool,
 }
 
 /// Images of at least this many pixels have their rays nudged on all cores.
@@ -98,39 +102,47 @@ impl Reference {
         let image = prepared.render(all_cores(), None)?;
         let objects = prepared.object_map()?;
         let met = prepared.met_map()?;
+        let samples = request.desc.samples;
         Ok(Self {
             prepared,
             image,
             objects,
             met,
+            samples,
+            sampled: samples > 1 || request.desc.camera.aperture > 0.0,
         })
     }
 
     /// The mean squared error, in levels², and the share of pixels whose primary ray may hit
     /// another object, when every ray may move by up to `shift(p, q)` pixels where pixel p
-    /// meets its neighbour q: each pixel's ray nudged by the most its edges move, in each of
+    /// meets its neighbour q: each pixel's ray nudged by the most an edge within its reach
+    /// moves ([`reach`]: its own, or one that moves across it from pixels away), in each of
     /// eight directions, may see whatever the f64 scene shows there (worst case: the most
     /// different). A pixel alike its eight neighbours, whose edges move by less than a pixel,
     /// is left alone. Past the image's edge, a pixel may show anything.
     fn moved(&self, shift: impl Fn(usize, usize) -> f64 + Sync) -> (f64, f64) {
         let (width, height) = self.image.dimensions();
         let index = |x: u32, y: u32| (y * width + x) as usize;
-        let around = |x: u32, y: u32| {
-            (-1_i64..=1)
-                .flat_map(move |dy| (-1_i64..=1).map(move |dx| (dx, dy)))
-                .filter(|&(dx, dy)| dx != 0 || dy != 0)
-                .filter_map(move |(dx, dy)| {
-                    let (nx, ny) = (i64::from(x) + dx, i64::from(y) + dy);
-                    let inside =
-                        nx >= 0 && ny >= 0 && nx < i64::from(width) && ny < i64::from(height);
-                    inside.then_some((nx as u32, ny as u32))
+        let own_row = |y: u32| -> Vec<f64> {
+            (0..width)
+                .map(|x| {
+                    let here = index(x, y);
+                    neighbours(width, height, x, y)
+                        .map(|(nx, ny)| shift(here, index(nx, ny)))
+                        .fold(shift(here, here), f64::max)
                 })
+                .collect()
         };
+        let own: Vec<f64> = if width * height < PARALLEL_PIXELS {
+            (0..height).flat_map(own_row).collect()
+        } else {
+            (0..height).into_par_iter().flat_map_iter(own_row).collect()
+        };
+        let reaches = reach(&own, width, height);
+        let around = |x: u32, y: u32| neighbours(width, height, x, y);
         let pixel = |x: u32, y: u32| -> (f64, f64) {
             let here = index(x, y);
-            let delta = around(x, y)
-                .map(|(nx, ny)| shift(here, index(nx, ny)))
-                .fold(shift(here, here), f64::max);
+            let delta = reaches.get(here).copied().unwrap_or(0.0);
             if delta <= 0.0 {
                 return (0.0, 0.0);
             }
@@ -147,21 +159,31 @@ impl Reference {
             if alike && delta < 1.0 {
                 return (0.0, 0.0);
             }
+            // Several rays are moved all together, and held to themselves unmoved: their
+            // mean is not the reference's pixel where adaptive samples took only some.
+            let unmoved = if self.sampled {
+                self.prepared.pixel(x, y, [0.0; 2], self.samples)
+            } else {
+                Some((Rgb888::new(colour[0], colour[1], colour[2]), object))
+            };
+            let Some((colour, object)) = unmoved else {
+                return (0.0, 0.0);
+            };
             let mut worst = 0.0_f64;
             let mut mismatched = false;
             for (across, down) in NUDGES {
-                let Some(sample) = self.prepared.sample(x, y, [across * delta, down * delta])
+                let offset = [across * delta, down * delta];
+                let Some((seen, seen_object)) = self.prepared.pixel(x, y, offset, self.samples)
                 else {
                     continue;
                 };
-                let seen: Rgb888 = sample.colour.quantize();
                 let squared: f64 = [seen.r(), seen.g(), seen.b()]
                     .iter()
-                    .zip(colour)
+                    .zip([colour.r(), colour.g(), colour.b()])
                     .map(|(&a, b)| (f64::from(a) - f64::from(b)).powi(2))
                     .sum();
                 worst = worst.max(squared);
-                mismatched |= sample.object != object;
+                mismatched |= seen_object != object;
             }
             (worst, if mismatched { 1.0 } else { 0.0 })
         };
@@ -183,6 +205,57 @@ impl Reference {
         let pixels = f64::from(width) * f64::from(height);
         (squared / (3.0 * pixels), mismatched / pixels)
     }
+}
+
+/// The pixels around (x, y) in an image of `width` × `height`: its eight neighbours, less
+/// those past the image's edge.
+fn neighbours(width: u32, height: u32, x: u32, y: u32) -> impl Iterator<Item = (u32, u32)> {
+    (-1_i64..=1)
+        .flat_map(move |dy| (-1_i64..=1).map(move |dx| (dx, dy)))
+        .filter(|&(dx, dy)| dx != 0 || dy != 0)
+        .filter_map(move |(dx, dy)| {
+            let (nx, ny) = (i64::from(x) + dx, i64::from(y) + dy);
+            let inside = nx >= 0 && ny >= 0 && nx < i64::from(width) && ny < i64::from(height);
+            inside.then_some((nx as u32, ny as u32))
+        })
+}
+
+/// How far each pixel's ray may move, given `own[i]`, the most the edges of pixel i with its
+/// neighbours move: its own, or the shift of an edge D pixels away that moves across it (an
+/// edge moved by D changes every pixel within D of it, not only its neighbours). Each pixel's
+/// own shift spreads to the pixels within it (less one per pixel, as a chessboard counts them)
+/// by two raster passes of a chamfer (Rosenfeld and Pfaltz), carrying the shift of the edge
+/// whose reach is longest there; a pixel that reach covers (by at least one) takes that
+/// shift, enough for its nudged ray to cross the edge.
+fn reach(own: &[f64], width: u32, height: u32) -> Vec<f64> {
+    let (w, h) = (i64::from(width), i64::from(height));
+    // (reach left, the shift of its edge) per pixel.
+    let mut spread: Vec<(f64, f64)> = own.iter().map(|&d| (d, d)).collect();
+    // The neighbours a raster pass has visited before a pixel: forwards, then backwards.
+    let passes: [(&[(i64, i64)], bool); 2] = [
+        (&[(-1, 0), (-1, -1), (0, -1), (1, -1)], false),
+        (&[(1, 0), (1, 1), (0, 1), (-1, 1)], true),
+    ];
+    for (visited, backwards) in passes {
+        for k in 0..w * h {
+            let i = if backwards { w * h - 1 - k } else { k };
+            let (x, y) = (i % w, i / w);
+            for &(dx, dy) in visited {
+                let (nx, ny) = (x + dx, y + dy);
+                if nx < 0 || ny < 0 || nx >= w || ny >= h {
+                    continue;
+                }
+                let (left, shift) = spread[(ny * w + nx) as usize];
+                if left - 1.0 > spread[i as usize].0 {
+                    spread[i as usize] = (left - 1.0, shift);
+                }
+            }
+        }
+    }
+    own.iter()
+        .zip(spread)
+        .map(|(&own, (left, shift))| if left >= 1.0 { own.max(shift) } else { own })
+        .collect()
 }
 
 /// What the model predicts for one format.
@@ -510,6 +583,33 @@ mod tests {
         assert!((half - half_share * 255.0 * 255.0).abs() * pixels < 1e-6);
         // Past the image's edge, anything.
         assert_eq!(reference.moved(|_, _| 40.0), (255.0 * 255.0, 1.0));
+    }
+
+    #[test]
+    fn an_edge_that_moves_far_reaches_the_pixels_it_crosses() {
+        // One row: the edge between pixels 5 and 6 moves by 3.5 pixels, across 3 on each side.
+        let mut own = vec![0.1; 12];
+        own[5] = 3.5;
+        own[6] = 3.5;
+        let far = 3.5;
+        let near = 0.1;
+        assert_eq!(
+            reach(&own, 12, 1),
+            [
+                near, near, near, far, far, far, far, far, far, near, near, near
+            ]
+        );
+        // The same along a column, and in the plane by a chessboard's count: a pixel's edges
+        // moved by 2.5 reach its eight neighbours, not the ring beyond.
+        assert_eq!(reach(&own, 1, 12), reach(&own, 12, 1));
+        let mut square = vec![0.0; 25];
+        square[12] = 2.5;
+        let reached = reach(&square, 5, 5);
+        for (i, &delta) in reached.iter().enumerate() {
+            let (x, y) = (i % 5, i / 5);
+            let ring = x.abs_diff(2).max(y.abs_diff(2));
+            assert_eq!(delta, if ring <= 1 { 2.5 } else { 0.0 }, "({x}, {y})");
+        }
     }
 
     #[test]

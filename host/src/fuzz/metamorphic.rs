@@ -174,6 +174,15 @@ pub fn nudge_is_small(scene: &OwnedScene, width: u32, height: u32) -> bool {
     !fine_squares && nudge < NUDGE_PIXELS * pixel * nearest
 }
 
+/// How many pixels of `moved` differ from `reference` by at least [`CHANGED_LEVELS`].
+pub fn changed_pixels(reference: &RgbImage, moved: &RgbImage) -> usize {
+    reference
+        .pixels()
+        .zip(moved.pixels())
+        .filter(|&(&a, &b)| differs(a, b))
+        .count()
+}
+
 /// Whether two colours differ by at least [`CHANGED_LEVELS`] in some channel.
 fn differs(a: Rgb<u8>, b: Rgb<u8>) -> bool {
     a.0.iter()
