@@ -147,7 +147,7 @@ impl Reference {
                 return (0.0, 0.0);
             }
             if delta >= f64::from(width.max(height)) {
-                return (3.0 * 255.0 * 255.0, 1.0);
+                return (3.0 * LEVELS * LEVELS, 1.0);
             }
             let colour = self.image.get_pixel(x, y).0;
             let object = self.objects.get(here).copied().flatten();
@@ -345,12 +345,13 @@ fn predict_in<S: Scalar>(
         .map(|shift| shift.silhouette.max(shift.inner))
         .sum::<f64>()
         + global;
-    let shading_levels = 255.0 * shading_error::<S>(desc);
+    let shading_levels = LEVELS * shading_error::<S>(desc);
     // Rounding a colour that errs by e levels to the nearest level changes it by one level in
     // an e share of pixels.
     let shading_mse = shading_levels * shading_levels + shading_levels.min(1.0);
     let (moved_mse, moved_share) = reference.moved(shift);
-    let total = constants_mse + moved_mse + shading_mse;
+    // No image strays further than every channel of every pixel by full scale: 0 dB.
+    let total = (constants_mse + moved_mse + shading_mse).min(LEVELS * LEVELS);
     let mismatch_pct = measured.object_mismatch_pct + 100.0 * moved_share;
     Ok(Prediction {
         psnr_db: psnr(total),
@@ -361,15 +362,18 @@ fn predict_in<S: Scalar>(
     })
 }
 
+/// A channel's full scale, in levels.
+const LEVELS: f64 = 255.0;
+
 /// The mean squared error, in levels², of a PSNR in dB.
 fn mse(psnr_db: f64) -> f64 {
-    255.0 * 255.0 / 10_f64.powf(psnr_db / 10.0)
+    LEVELS * LEVELS / 10_f64.powf(psnr_db / 10.0)
 }
 
 /// The PSNR, in dB, of a mean squared error in levels².
 fn psnr(mse: f64) -> f64 {
     if mse > 0.0 {
-        10.0 * (255.0 * 255.0 / mse).log10()
+        10.0 * (LEVELS * LEVELS / mse).log10()
     } else {
         f64::INFINITY
     }
