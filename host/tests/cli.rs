@@ -371,10 +371,18 @@ fn a_format_predicted_useless_is_refused_unless_forced() {
         "{message}"
     );
     assert!(!Path::new(file).exists(), "nothing is drawn");
-    for insist in [&["--force"][..], &["--refuse-below", "2"]] {
-        let output = obscura(&[&render[..], insist].concat());
-        assert!(output.status.success(), "{}", stderr(&output));
-    }
+    let output = obscura(&[&render[..], &["--force"]].concat());
+    assert!(output.status.success(), "{}", stderr(&output));
+    // The floor is the user's: whitted in i16f16, predicted about 30 dB, passes 20 and not 60.
+    let whitted = ["render", "whitted", "--format", "i16f16", "--size", "64x64", "-o", file];
+    assert!(obscura(&whitted).status.success());
+    let output = obscura(&[&whitted[..], &["--refuse-below", "60"]].concat());
+    assert!(!output.status.success());
+    assert!(
+        stderr(&output).contains("below the 60 dB of --refuse-below"),
+        "{}",
+        stderr(&output)
+    );
     // The display's commands refuse it too, before building or drawing anything.
     let output = Command::new(env!("CARGO_BIN_EXE_obscura"))
         .args(["firmware", "--target", "m4f", "--scene", checker])
