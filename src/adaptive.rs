@@ -28,6 +28,7 @@ use crate::color::Rgb;
 use crate::pattern::SampleId;
 use crate::scalar::Scalar;
 use crate::scene::Scene;
+use crate::shape::mesh::Meshes;
 use crate::vec3::Vec3;
 
 /// The colour a ray traced at a corner of a cell brings back, clamped to what a display shows,
@@ -102,8 +103,9 @@ pub(crate) fn trace_corner_row<
     const LIGHTS: usize,
     const RAYS: usize,
     const USES: u32,
+    M: Meshes<S>,
 >(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES>,
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>,
     camera: &Camera<S>,
     cy: u32,
     corners: &mut [Corner],
@@ -148,8 +150,9 @@ pub(crate) struct Pixel<
     const LIGHTS: usize,
     const RAYS: usize,
     const USES: u32,
+    M: Meshes<S>,
 > {
-    pub(crate) scene: &'a Scene<S, OBJECTS, LIGHTS, RAYS, USES>,
+    pub(crate) scene: &'a Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>,
     pub(crate) row: &'a Row<S>,
     pub(crate) centre: Vec3<S>,
     pub(crate) x: u32,
@@ -157,8 +160,14 @@ pub(crate) struct Pixel<
     pub(crate) depth: u32,
 }
 
-impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, const USES: u32>
-    Pixel<'_, S, OBJECTS, LIGHTS, RAYS, USES>
+impl<
+    S: Scalar,
+    const OBJECTS: usize,
+    const LIGHTS: usize,
+    const RAYS: usize,
+    const USES: u32,
+    M: Meshes<S>,
+> Pixel<'_, S, OBJECTS, LIGHTS, RAYS, USES, M>
 {
     /// The pixel's colour from its four corners (top left, top right, bottom left, bottom
     /// right): the mean of its cells weighted by area, in 16-bit fractions.

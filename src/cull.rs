@@ -20,7 +20,7 @@
 use crate::camera::{
     COORDINATE_LIMIT, Coordinate, Frame, ImagePlane, MAX_IMAGE_SIDE, coordinate, outwards,
 };
-use crate::desc::ShapeDesc;
+use crate::desc::{MeshesDesc, ShapeDesc};
 use crate::scalar::REACH_ERRORS;
 use crate::vec3::Vec3;
 
@@ -62,8 +62,14 @@ impl Bound {
     /// The bound of `shape` for a camera at `eye` of `frame`, a sphere or a triangle widened by
     /// [`REACH_ERRORS`] times `error` (the error with which a primary ray finds it).
     #[must_use]
-    pub(crate) fn of(shape: &ShapeDesc, eye: Vec3<f64>, error: f64, frame: &Frame) -> Self {
-        match (*shape, ball(shape, eye)) {
+    pub(crate) fn of(
+        shape: &ShapeDesc,
+        meshes: &MeshesDesc<'_>,
+        eye: Vec3<f64>,
+        error: f64,
+        frame: &Frame,
+    ) -> Self {
+        match (*shape, ball(shape, meshes, eye)) {
             (_, Some((centre, radius))) => Self::ball(centre, radius, error, frame),
             (ShapeDesc::Plane { point, normal, .. }, None) => {
                 match Vec3::from_f32(normal).direction() {
@@ -135,9 +141,14 @@ impl Bound {
     }
 }
 
-/// The ball that holds `shape`, its centre relative to `eye`: a sphere itself, a triangle's
-/// about its centroid through its farthest corner; `None` for a plane.
-pub(crate) fn ball(shape: &ShapeDesc, eye: Vec3<f64>) -> Option<(Vec3<f64>, f64)> {
+/// The ball that holds `shape` (a mesh's among `meshes`), its centre relative to `eye`: a
+/// sphere itself, a triangle's about its centroid through its farthest corner, a mesh's about
+/// its box's centre through its farthest corner; `None` for a plane.
+pub(crate) fn ball(
+    shape: &ShapeDesc,
+    meshes: &MeshesDesc<'_>,
+    eye: Vec3<f64>,
+) -> Option<(Vec3<f64>, f64)> {
     let from_eye = |p| Vec3::from_f32(p) - eye;
     match *shape {
         ShapeDesc::Sphere { center, radius } => Some((from_eye(center), f64::from(radius))),
@@ -148,6 +159,19 @@ pub(crate) fn ball(shape: &ShapeDesc, eye: Vec3<f64>) -> Option<(Vec3<f64>, f64)
             let radius = corners
                 .iter()
                 .map(|&corner| (corner - centre).length())
+                .fold(0.0, f64::max);
+            Some((centre, radius))
+        }
+        ShapeDesc::Mesh { root } => {
+            let node = meshes.nodes.get(root as usize)?;
+            let (low, high) = (from_eye(node.min), from_eye(node.max));
+            let centre = (low + high) * 0.5;
+            let corners = meshes
+                .triangles_of(root)
+                .iter()
+                .flat_map(|&t| meshes.corners(t));
+            let radius = corners
+                .map(|corner| (from_eye(corner) - centre).length())
                 .fold(0.0, f64::max);
             Some((centre, radius))
         }

@@ -7,8 +7,11 @@
 pub struct SceneDesc<'a> {
     /// Where the camera stands and looks, and its lens.
     pub camera: CameraDesc,
-    /// Spheres, planes and triangles, each with its material.
+    /// Spheres, planes, triangles and meshes, each with its material.
     pub objects: &'a [ObjectDesc],
+    /// The triangles and hierarchies of the scene's meshes ([`ShapeDesc::Mesh`]);
+    /// [`MeshesDesc::NONE`] for a scene without them.
+    pub meshes: MeshesDesc<'a>,
     /// Lights: points, or discs casting soft shadows.
     pub lights: &'a [LightDesc],
     /// Light that reaches every surface, shadowed or not (a fraction of the surface colour).
@@ -58,18 +61,104 @@ impl SceneDesc<'_> {
         self.samples == 1 && !self.adaptive_samples && (point_lights || self.shadow_samples == 1)
     }
 
-    /// Whether any object is a triangle (the triangle methods matter only then).
+    /// Whether any object is a triangle or a mesh (the triangle methods matter only then).
     #[must_use]
     pub const fn has_triangles(&self) -> bool {
         let mut rest = self.objects;
         while let [first, others @ ..] = rest {
-            if let ShapeDesc::Triangle { .. } = first.shape {
+            if let ShapeDesc::Triangle { .. } | ShapeDesc::Mesh { .. } = first.shape {
                 return true;
             }
             rest = others;
         }
         false
     }
+
+    /// Every object as the primitives it is made of, with its index: a mesh as each of its
+    /// triangles (with the mesh's material), every other object as itself. What the range
+    /// proof and the analyses bound: a mesh's triangle is traced as a triangle is.
+    pub fn primitives(&self) -> impl Iterator<Item = (usize, ObjectDesc)> + '_ {
+        self.objects
+            .iter()
+            .enumerate()
+            .flat_map(move |(i, object)| {
+                let mesh = match object.shape {
+                    ShapeDesc::Mesh { root } => self.meshes.triangles_of(root),
+                    _ => &[],
+                };
+                let whole = (!matches!(object.shape, ShapeDesc::Mesh { .. })).then_some(*object);
+                whole
+                    .into_iter()
+                    .chain(mesh.iter().map(move |&corners| ObjectDesc {
+                        shape: ShapeDesc::Triangle {
+                            vertices: self.meshes.corners(corners),
+                        },
+                        material: object.material,
+                    }))
+                    .map(move |primitive| (i, primitive))
+            })
+    }
+}
+
+/// The triangles of a scene's meshes, shared corners and a bounding-volume hierarchy over
+/// them: what [`ShapeDesc::Mesh`] objects refer to. Const-constructible, so that a firmware's
+/// scene keeps it in flash; `obscura::mesh::build_hierarchy` makes the hierarchy.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeshesDesc<'a> {
+    /// The corners, in world units.
+    pub vertices: &'a [[f32; 3]],
+    /// Each triangle's corners, as indices into `vertices`, in the order of the hierarchy's
+    /// leaves.
+    pub triangles: &'a [[u32; 3]],
+    /// The hierarchy's nodes, each subtree's root before its left subtree and that before its
+    /// right: a mesh's root is the node its object names.
+    pub nodes: &'a [NodeDesc],
+}
+
+impl MeshesDesc<'_> {
+    /// No meshes.
+    pub const NONE: MeshesDesc<'static> = MeshesDesc {
+        vertices: &[],
+        triangles: &[],
+        nodes: &[],
+    };
+
+    /// The triangles under node `root` (none where the node or its range is not there:
+    /// validation refuses such a mesh).
+    #[must_use]
+    pub fn triangles_of(&self, root: u32) -> &[[u32; 3]] {
+        self.nodes
+            .get(root as usize)
+            .and_then(|node| self.triangles.get(node.first as usize..node.end as usize))
+            .unwrap_or(&[])
+    }
+
+    /// The corners a triangle's indices name (the origin where an index is not there:
+    /// validation refuses such a mesh).
+    #[must_use]
+    pub fn corners(&self, indices: [u32; 3]) -> [[f32; 3]; 3] {
+        indices.map(|i| self.vertices.get(i as usize).copied().unwrap_or([0.0; 3]))
+    }
+}
+
+/// A node of a mesh's bounding-volume hierarchy: a box holding the triangles `first..end`,
+/// which are the node's own where it is a leaf (`right` 0), else its children's: the left one
+/// is the next node, the right one node `right`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NodeDesc {
+    /// The box's lowest corner.
+    pub min: [f32; 3],
+    /// The box's highest corner.
+    pub max: [f32; 3],
+    /// The first triangle under the node.
+    pub first: u32,
+    /// One past the last triangle under the node.
+    pub end: u32,
+    /// The right child's index, after the node's own; 0 for a leaf.
+    pub right: u32,
+    /// The axis (0, 1, 2 for x, y, z) the children were split along: a ray visits first the
+    /// child on the side it comes from.
+    pub axis: u8,
 }
 
 /// A camera: a pinhole, or a thin lens that blurs what is off its focal plane (depth of field).
@@ -166,6 +255,24 @@ pub enum ShapeDesc {
         /// The corners, in any order.
         vertices: [[f32; 3]; 3],
     },
+    /// A mesh of triangles ([`SceneDesc::meshes`]), each visible from both sides, found through
+    /// its bounding-volume hierarchy. A scene file names a mesh file instead, which its reader
+    /// loads into the scene's meshes.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    Mesh {
+        /// The index of the hierarchy's root in [`MeshesDesc::nodes`].
+        root: u32,
+    },
+}
+
+/// Whether a triangle with these corners has an area the tracer can tell from none: its edges'
+/// cross product above f32's epsilon times their lengths. The scene build refuses one without
+/// (a mesh's reader can leave such triangles out first).
+#[must_use]
+pub fn triangle_has_area(vertices: [[f32; 3]; 3]) -> bool {
+    let [a, b, c] = vertices.map(crate::vec3::Vec3::from_f32);
+    let (e1, e2) = (b - a, c - a);
+    e1.cross(e2).length() > f64::from(f32::EPSILON) * e1.length() * e2.length()
 }
 
 /// A checkerboard on a plane: squares alternate between the material's colour and `colour`.

@@ -62,8 +62,8 @@ pub use adaptive::{Corner, CornerRows, corner_rows};
 pub use camera::{Camera, MAX_IMAGE_SIDE};
 pub use color::{DisplayColor, Dither, Rgb};
 pub use desc::{
-    BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc,
-    ShapeDesc, Y_UP,
+    BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, MeshesDesc, NodeDesc,
+    ObjectDesc, SceneDesc, ShapeDesc, Y_UP,
 };
 /// The `fixed` crate, whose types give [`Fx`] its binary point: `Fx<fixed::types::I12F20>`.
 pub use fixed;
@@ -78,6 +78,7 @@ pub use scalar::names as formats;
 pub use scalar::{Bits, F32Approx, Fx, I16F16, I20F12, I32F32, Scalar};
 pub use scene::{Item, Remedy, Scene, SceneError};
 pub use shade::Sample;
+pub use shape::mesh;
 pub use uses::Uses;
 pub use vec3::Vec3;
 pub use words::WordsError;

@@ -12,6 +12,7 @@ use crate::ray::Ray;
 use crate::scalar::Scalar;
 use crate::scene::Scene;
 use crate::shade::{Task, Tracer};
+use crate::shape::mesh::Meshes;
 use crate::uses::Uses;
 use crate::vec3::Vec3;
 use core::fmt;
@@ -129,8 +130,9 @@ pub fn render_rows<
     const LIGHTS: usize,
     const RAYS: usize,
     const USES: u32,
+    M: Meshes<S>,
 >(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES>,
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>,
     camera: &Camera<S>,
     rows: Range<u32>,
     line: &mut [C],
@@ -157,7 +159,7 @@ where
         let row = camera
             .row(y)
             .ok_or(RenderError::RowsOutOfRange { end, height })?;
-        trace_pixels::<K, _, _, OBJECTS, LIGHTS, RAYS, USES>(
+        trace_pixels::<K, _, _, OBJECTS, LIGHTS, RAYS, USES, M>(
             scene,
             &row,
             y,
@@ -185,8 +187,8 @@ const _SAMPLE_SUMS_FIT: () = assert!(
 /// Over the tracer's slices and a ray stack rather than a scene of given capacities, and out of
 /// line: a firmware holds one copy per format however many scenes it draws.
 #[inline(never)]
-fn trace_into<S, C, const USES: u32>(
-    tracer: &Tracer<'_, S, USES>,
+fn trace_into<S, C, M, const USES: u32>(
+    tracer: &Tracer<'_, S, M, USES>,
     stack: &mut VecView<Task<S>>,
     row: &Row<S>,
     y: u32,
@@ -195,8 +197,9 @@ fn trace_into<S, C, const USES: u32>(
 ) where
     S: Scalar,
     C: DisplayColor,
+    M: Meshes<S>,
 {
-    let row = &row.narrowed(Tracer::<S, USES>::USES);
+    let row = &row.narrowed(Tracer::<S, M, USES>::USES);
     let samples = tracer.samples();
     let n = u32::from(samples);
     let sampled = samples > 1 || row.has_lens();
@@ -244,8 +247,9 @@ fn trace_pixels<
     const LIGHTS: usize,
     const RAYS: usize,
     const USES: u32,
+    M: Meshes<S>,
 >(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES>,
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>,
     row: &Row<S>,
     y: u32,
     dither: Dither,
@@ -278,8 +282,9 @@ fn buffers<
     const LIGHTS: usize,
     const RAYS: usize,
     const USES: u32,
+    M: Meshes<S>,
 >(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES>,
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>,
     camera: &'a Camera<S>,
     line: &'a mut [C],
     corners: &'a mut [Corner],
@@ -344,8 +349,9 @@ fn adaptive_row<
     const LIGHTS: usize,
     const RAYS: usize,
     const USES: u32,
+    M: Meshes<S>,
 >(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES>,
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>,
     row: &Row<S>,
     y: u32,
     dither: Dither,
@@ -459,8 +465,9 @@ pub fn trace_row<
     const LIGHTS: usize,
     const RAYS: usize,
     const USES: u32,
+    M: Meshes<S>,
 >(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES>,
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>,
     camera: &Camera<S>,
     y: u32,
     dither: Dither,
@@ -478,7 +485,14 @@ where
         end: y.saturating_add(1),
         height: camera.height(),
     })?;
-    trace_pixels::<K, _, _, OBJECTS, LIGHTS, RAYS, USES>(scene, &row, y, dither, line, &mut window);
+    trace_pixels::<K, _, _, OBJECTS, LIGHTS, RAYS, USES, M>(
+        scene,
+        &row,
+        y,
+        dither,
+        line,
+        &mut window,
+    );
     Ok(())
 }
 
@@ -545,8 +559,9 @@ pub fn render_frame<
     const LIGHTS: usize,
     const RAYS: usize,
     const USES: u32,
+    M: Meshes<S>,
 >(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES>,
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>,
     camera: &Camera<S>,
     presentation: Presentation,
     line: &mut [C],
@@ -567,7 +582,7 @@ where
         let row = camera
             .row(y)
             .ok_or(RenderError::RowsOutOfRange { end: y + 1, height })?;
-        trace_pixels::<K, _, _, OBJECTS, LIGHTS, RAYS, USES>(
+        trace_pixels::<K, _, _, OBJECTS, LIGHTS, RAYS, USES, M>(
             scene,
             &row,
             y,

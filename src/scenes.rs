@@ -1,8 +1,8 @@
 //! The built-in scenes, as const data that a firmware keeps in flash.
 
 use crate::desc::{
-    BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc,
-    ShapeDesc,
+    BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, MeshesDesc, ObjectDesc,
+    SceneDesc, ShapeDesc,
 };
 
 /// A built-in scene with its name and a line about it.
@@ -112,6 +112,7 @@ const WHITTED_LIGHTS: [LightDesc; 1] = [LightDesc::point([-5.0, 12.0, -8.0], [1.
 pub const WHITTED: SceneDesc<'static> = SceneDesc {
     camera: CameraDesc::pinhole([0.0, 3.0, -6.0], [-0.2, 1.0, 2.0], [0.0, 1.0, 0.0], 45.0),
     objects: &WHITTED_OBJECTS,
+    meshes: MeshesDesc::NONE,
     lights: &WHITTED_LIGHTS,
     ambient: [0.12, 0.12, 0.14],
     background: BackgroundDesc::Gradient {
@@ -210,6 +211,7 @@ const SHAPES_LIGHTS: [LightDesc; 2] = [
 pub const SHAPES: SceneDesc<'static> = SceneDesc {
     camera: CameraDesc::pinhole([0.0, 2.4, -4.5], [0.0, 0.8, 2.4], [0.0, 1.0, 0.0], 50.0),
     objects: &SHAPES_OBJECTS,
+    meshes: MeshesDesc::NONE,
     lights: &SHAPES_LIGHTS,
     ambient: [0.1, 0.1, 0.1],
     background: BackgroundDesc::Solid([0.08, 0.1, 0.14]),
@@ -293,6 +295,7 @@ const SOFT_LIGHTS: [LightDesc; 1] = [LightDesc {
 pub const SOFT: SceneDesc<'static> = SceneDesc {
     camera: CameraDesc::pinhole([0.0, 3.2, -5.5], [0.0, 0.6, 1.0], [0.0, 1.0, 0.0], 45.0),
     objects: &SOFT_OBJECTS,
+    meshes: MeshesDesc::NONE,
     lights: &SOFT_LIGHTS,
     ambient: [0.12, 0.12, 0.12],
     background: BackgroundDesc::Gradient {
@@ -359,6 +362,7 @@ pub const FOCUS: SceneDesc<'static> = SceneDesc {
         ..CameraDesc::pinhole([0.9, 1.3, -6.0], [0.0, 0.5, 2.5], [0.0, 1.0, 0.0], 45.0)
     },
     objects: &FOCUS_OBJECTS,
+    meshes: MeshesDesc::NONE,
     lights: &FOCUS_LIGHTS,
     ambient: [0.12, 0.12, 0.12],
     background: BackgroundDesc::Gradient {

@@ -12,7 +12,8 @@ use crate::pattern::{Pattern, SHADOW_PROBES, SampleId};
 use crate::ray::{Ray, Span};
 use crate::scalar::{RayKind, Scalar, Work};
 use crate::scene::{Object, Scene, Settings};
-use crate::shape::{Intersection, PerRay};
+use crate::shape::mesh::{Meshes, Search};
+use crate::shape::{Intersection, PerRay, Shape};
 use crate::uses::Uses;
 use crate::vec3::Vec3;
 use heapless::{Vec, VecView};
@@ -46,6 +47,8 @@ pub(crate) struct Task<S> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Leaving<S> {
     object: usize,
+    /// Which of a mesh's triangles (0 on other shapes).
+    part: u32,
     into: bool,
     tolerance: S,
 }
@@ -58,8 +61,14 @@ struct Hit<'a, S> {
     at: Intersection<S>,
 }
 
-impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, const USES: u32>
-    Scene<S, OBJECTS, LIGHTS, RAYS, USES>
+impl<
+    S: Scalar,
+    const OBJECTS: usize,
+    const LIGHTS: usize,
+    const RAYS: usize,
+    const USES: u32,
+    M: Meshes<S>,
+> Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>
 {
     /// Bytes of RAM the scene and the ray stack of one trace take: what the capacities cost.
     #[must_use]
@@ -76,20 +85,21 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, co
             .trace(primary, u32::MAX, stack.as_mut_view())
     }
 
-    /// The index of the first object `ray` hits, if any: what a primary ray sees, without
-    /// shading it.
+    /// The index of the first object `ray` hits, if any, and on a mesh the index of its
+    /// triangle (0 on other shapes): what a primary ray sees, without shading it.
     #[must_use]
-    pub fn first_hit(&self, ray: &Ray<S>) -> Option<usize> {
+    pub fn first_hit(&self, ray: &Ray<S>) -> Option<(usize, u32)> {
         self.tracer(SampleId::default())
             .nearest(ray, None, |_| true)
-            .map(|hit| hit.index)
+            .map(|hit| (hit.index, hit.at.part))
     }
 
     /// The scene as the tracer sees it, over slices: what the renderer's pixel loop takes, so
     /// that a firmware holds one copy of it per format however many scenes it draws.
-    pub(crate) fn tracer(&self, id: SampleId) -> Tracer<'_, S, USES> {
+    pub(crate) fn tracer(&self, id: SampleId) -> Tracer<'_, S, M, USES> {
         Tracer {
             objects: &self.objects,
+            meshes: &self.meshes,
             lights: &self.lights,
             cones: self.cones.as_flattened(),
             objects_capacity: OBJECTS,
@@ -102,8 +112,10 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, co
 /// The tracer proper, over slices: one copy per number format and set of parts ([`Uses`]),
 /// whatever the capacities.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Tracer<'a, S, const USES: u32> {
+pub(crate) struct Tracer<'a, S, M, const USES: u32> {
     objects: &'a [Object<S>],
+    /// The meshes' nodes and triangles.
+    meshes: &'a M,
     lights: &'a [Light<S>],
     /// Each light's cones ([`crate::occlusion`]), one per object: a run of
     /// `objects_capacity` for each light.
@@ -114,7 +126,7 @@ pub(crate) struct Tracer<'a, S, const USES: u32> {
     id: SampleId,
 }
 
-impl<S: Scalar, const USES: u32> Tracer<'_, S, USES> {
+impl<S: Scalar, M: Meshes<S>, const USES: u32> Tracer<'_, S, M, USES> {
     /// The parts the tracer has.
     pub(crate) const USES: Uses = Uses::from_bits(USES);
 
@@ -241,28 +253,43 @@ impl<S: Scalar, const USES: u32> Tracer<'_, S, USES> {
         self.settings.tolerance_base + self.settings.tolerance_per_unit * reach + object.tolerance
     }
 
-    /// Where `ray` meets `object` (number `index`), given the surface it leaves.
+    /// Where `ray` meets `object` (number `index`), given the surface it leaves; on a mesh
+    /// the nearest of its triangles, or with `any` the first found (a shadow ray's).
     #[inline(always)]
     fn meet(
         &self,
         ray: &Ray<S>,
         span: Span<S>,
-        index: usize,
-        object: &Object<S>,
+        (index, object): (usize, &Object<S>),
         from: Option<Leaving<S>>,
         per_ray: &mut PerRay<S>,
+        any: bool,
     ) -> Option<Intersection<S>> {
+        let excluded = |leaving: &Leaving<S>| {
+            leaving.object == index && self.methods().bias == BiasMethod::Exclude
+        };
+        // A ray leaving a mesh's triangle by exclusion meets the mesh's others.
+        let mesh = Self::has(Uses::MESHES) && matches!(object.shape, Shape::Mesh(_));
         match from {
-            Some(leaving)
-                if leaving.object == index && self.methods().bias == BiasMethod::Exclude =>
-            {
+            Some(leaving) if excluded(&leaving) && !mesh => {
                 object
                     .shape
                     .intersect_again(ray, span, &self.methods(), Self::USES, leaving.into)
             }
-            _ => object
-                .shape
-                .intersect(ray, span, &self.methods(), Self::USES, per_ray),
+            _ => {
+                let search = Search {
+                    meshes: self.meshes,
+                    slack: self.settings.box_slack,
+                    skip: from
+                        .filter(|leaving| mesh && excluded(leaving))
+                        .map(|l| l.part),
+                    any,
+                };
+                let methods = self.methods();
+                object
+                    .shape
+                    .intersect(ray, span, &methods, Self::USES, per_ray, &search)
+            }
         }
     }
 
@@ -287,7 +314,7 @@ impl<S: Scalar, const USES: u32> Tracer<'_, S, USES> {
                 continue;
             }
             S::note(Work::Test);
-            if let Some(at) = self.meet(ray, span, index, object, from, &mut per_ray) {
+            if let Some(at) = self.meet(ray, span, (index, object), from, &mut per_ray, false) {
                 S::note(Work::Met);
                 span.max = at.t;
                 nearest = Some(Hit { object, index, at });
@@ -309,7 +336,8 @@ impl<S: Scalar, const USES: u32> Tracer<'_, S, USES> {
         let shape = &hit.object.shape;
         let roots = self.methods().roots;
         let d = task.ray.dir;
-        let (point, normal) = shape.surface(&task.ray, &hit.at, roots);
+        let meshes = Self::has(Uses::MESHES).then_some(self.meshes);
+        let (point, normal) = shape.surface(&task.ray, &hit.at, roots, meshes);
         // Shade the side the ray arrived on: for a sphere hit from inside, that is the inside.
         let cos_in = -d.dot(normal);
         let entering = cos_in >= S::ZERO;
@@ -327,6 +355,7 @@ impl<S: Scalar, const USES: u32> Tracer<'_, S, USES> {
         let tolerance = self.tolerance(point, hit.object);
         let leaving = |into| Leaving {
             object: hit.index,
+            part: hit.at.part,
             into,
             tolerance,
         };
@@ -463,7 +492,7 @@ impl<S: Scalar, const USES: u32> Tracer<'_, S, USES> {
             }
             S::note(Work::Test);
             if self
-                .meet(ray, span, index, object, Some(from), &mut per_ray)
+                .meet(ray, span, (index, object), Some(from), &mut per_ray, true)
                 .is_some()
             {
                 S::note(Work::Met);
@@ -574,7 +603,8 @@ fn push<S>(stack: &mut VecView<Task<S>>, task: Task<S>) {
 mod tests {
     use super::*;
     use crate::desc::{
-        BackgroundDesc, CameraDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc, ShapeDesc,
+        BackgroundDesc, CameraDesc, LightDesc, MaterialDesc, MeshesDesc, ObjectDesc, SceneDesc,
+        ShapeDesc,
     };
     use crate::methods::{BiasMethod, Methods, SphereMethod};
     use crate::test_util::{for_each_format, v};
@@ -592,6 +622,7 @@ mod tests {
         SceneDesc {
             camera: CAMERA,
             objects,
+            meshes: MeshesDesc::NONE,
             lights,
             ambient: [ambient; 3],
             background: BackgroundDesc::Solid([0.2, 0.4, 0.6]),

@@ -10,6 +10,7 @@ use crate::scalar::Scalar;
 use crate::scene::{Object, Scene};
 use crate::shade::Task;
 use crate::shape::PerRay;
+use crate::shape::mesh::{Meshes, Search};
 use crate::uses::Uses;
 use heapless::Vec;
 
@@ -23,8 +24,9 @@ pub fn first_skipped_hit<
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,
+    M: Meshes<S>,
 >(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, { Uses::EVERYTHING.bits() }, M>,
     camera: &Camera<S>,
     y: u32,
 ) -> Option<(u32, usize)> {
@@ -39,11 +41,24 @@ pub fn first_skipped_hit<
         min: settings.tolerance_base,
         max: settings.ray_length,
     };
+    let search = Search {
+        meshes: &scene.meshes,
+        slack: settings.box_slack,
+        skip: None,
+        any: true,
+    };
     let meets = |object: &Object<S>, ray: &Ray<S>| {
         let mut per_ray = PerRay::new();
         object
             .shape
-            .intersect(ray, span, &settings.methods, Uses::EVERYTHING, &mut per_ray)
+            .intersect(
+                ray,
+                span,
+                &settings.methods,
+                Uses::EVERYTHING,
+                &mut per_ray,
+                &search,
+            )
             .is_some()
     };
     for (x, centre) in (0..).zip(row.rays()) {
@@ -74,8 +89,9 @@ pub fn first_skipped_shadow<
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,
+    M: Meshes<S>,
 >(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS>,
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, { Uses::EVERYTHING.bits() }, M>,
     camera: &Camera<S>,
 ) -> Option<(u32, u32, usize)> {
     let mut stack: Vec<Task<S>, RAYS> = Vec::new();

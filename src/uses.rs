@@ -39,10 +39,11 @@ impl Family for BiasMethod {
 }
 
 /// The parts with a name of their own, in the order [`Uses`]'s `Display` lists them.
-const PARTS: [(Uses, &str); 6] = [
+const PARTS: [(Uses, &str); 7] = [
     (Uses::SPHERES, "spheres"),
     (Uses::PLANES, "planes"),
     (Uses::TRIANGLES, "triangles"),
+    (Uses::MESHES, "meshes"),
     (Uses::AREA_LIGHTS, "area lights"),
     (Uses::SAMPLES, "several rays per pixel"),
     (Uses::LENS, "a lens"),
@@ -65,6 +66,8 @@ impl Uses {
     pub const SAMPLES: Self = Self(1 << 4);
     /// A camera's lens.
     pub const LENS: Self = Self(1 << 5);
+    /// Meshes of triangles, through their hierarchies.
+    pub const MESHES: Self = Self(1 << 6);
 
     /// The set whose bits are `bits` ([`Self::bits`]).
     #[must_use]

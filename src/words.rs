@@ -57,7 +57,7 @@ pub(crate) trait Words: Sized {
     /// Reads a value; where the words are not one, the reader is refused ([`Reader::refuse`])
     /// and the value is whatever they gave. No read fails on its own, so that reading costs
     /// a firmware little code: the whole is refused at the end.
-    fn take(input: &mut Reader<'_>) -> Self;
+    fn take<const IN_PLACE: bool>(input: &mut Reader<'_, IN_PLACE>) -> Self;
 }
 
 /// Where words go, summed on their way.
@@ -66,7 +66,12 @@ pub(crate) struct Writer<'a> {
     sum: u32,
 }
 
-impl Writer<'_> {
+impl<'a> Writer<'a> {
+    /// A writer to `sink` that sums for no one: what counts the words of a value.
+    pub(crate) fn counting(sink: &'a mut dyn FnMut(u32)) -> Self {
+        Self { sink, sum: 0 }
+    }
+
     /// Writes `word`.
     pub(crate) fn word(&mut self, word: u32) {
         self.sum = checksum(self.sum, word);
@@ -77,13 +82,25 @@ impl Writer<'_> {
 /// Where words come from, whether they have been found not to be what was read, and the parts
 /// of the tracer the value read may use ([`Uses`]: a kind of shape it leaves out is refused
 /// where its tag is read, so that no code to read it is linked).
-pub(crate) struct Reader<'a> {
+///
+/// `IN_PLACE` reads each word inline: what a mesh's node or triangle, read from flash each time
+/// the tracer tests it, is read by; a scene, read once, is read out of line.
+pub(crate) struct Reader<'a, const IN_PLACE: bool = false> {
     words: &'a [u32],
     refused: bool,
     parts: Uses,
 }
 
-impl Reader<'_> {
+impl<'a, const IN_PLACE: bool> Reader<'a, IN_PLACE> {
+    /// A reader of `words`, for a value that may use every part.
+    pub(crate) const fn over(words: &'a [u32]) -> Self {
+        Self {
+            words,
+            refused: false,
+            parts: Uses::EVERYTHING,
+        }
+    }
+
     /// Whether the value read may use `part`.
     #[inline(always)]
     pub(crate) const fn allows(&self, part: Uses) -> bool {
@@ -95,10 +112,25 @@ impl Reader<'_> {
         self.parts = parts;
     }
 
-    /// The next word; past the end, 0 and the reader refused. Out of line: reading a scene is
-    /// mostly calls of it, one per word, and a firmware's image is smaller so.
-    #[inline(never)]
+    /// The next word; past the end, 0 and the reader refused. Read inline by an `IN_PLACE`
+    /// reader, else out of line: reading a scene is mostly calls of it, one per word, and a
+    /// firmware's image is smaller so.
+    #[inline(always)]
     pub(crate) fn word(&mut self) -> u32 {
+        if IN_PLACE {
+            self.next()
+        } else {
+            self.next_out_of_line()
+        }
+    }
+
+    #[inline(never)]
+    fn next_out_of_line(&mut self) -> u32 {
+        self.next()
+    }
+
+    #[inline(always)]
+    fn next(&mut self) -> u32 {
         if let Some((&first, rest)) = self.words.split_first() {
             self.words = rest;
             first
@@ -147,11 +179,38 @@ fn tag<S: Bits>(what: &str) -> u32 {
 
 /// Writes `value`, which holds `what` in format `S`, to `sink`: its tag, its words, the checksum.
 pub(crate) fn write<S: Bits>(what: &str, value: &impl Words, sink: &mut dyn FnMut(u32)) {
+    write_with::<S>(what, sink, |out| value.put(out));
+}
+
+/// Writes what `put` writes, which holds `what` in format `S`, to `sink`: its tag, its words,
+/// the checksum.
+pub(crate) fn write_with<S: Bits>(
+    what: &str,
+    sink: &mut dyn FnMut(u32),
+    put: impl FnOnce(&mut Writer<'_>),
+) {
     let mut out = Writer { sink, sum: 0 };
     out.word(tag::<S>(what));
-    value.put(&mut out);
+    put(&mut out);
     let sum = out.sum;
     (out.sink)(sum);
+}
+
+/// The words [`write`] wrote of `what` in format `S`, between the tag and the checksum, where
+/// they are such words.
+pub(crate) fn body<'a, S: Bits>(
+    what: &'static str,
+    words: &'a [u32],
+) -> Result<&'a [u32], WordsError> {
+    let refused = WordsError {
+        what,
+        format: S::NAME,
+    };
+    let (&sum, body) = words.split_last().ok_or(refused)?;
+    if body.first() != Some(&tag::<S>(what)) || checksum_of(body) != sum {
+        return Err(refused);
+    }
+    Ok(body.get(1..).unwrap_or_default())
 }
 
 /// Reads what [`write`] wrote of `what` in format `S`. Out of line: with it inlined, a
@@ -162,15 +221,7 @@ pub(crate) fn read<S: Bits, T: Words>(what: &'static str, words: &[u32]) -> Resu
         what,
         format: S::NAME,
     };
-    let (&sum, body) = words.split_last().ok_or(refused)?;
-    if body.first() != Some(&tag::<S>(what)) || checksum_of(body) != sum {
-        return Err(refused);
-    }
-    let mut input = Reader {
-        words: body.get(1..).unwrap_or_default(),
-        refused: false,
-        parts: Uses::EVERYTHING,
-    };
+    let mut input = Reader::<false>::over(body::<S>(what, words)?);
     let value = T::take(&mut input);
     if input.refused || !input.words.is_empty() {
         Err(refused)
@@ -189,7 +240,7 @@ impl<S: Bits> Words for S {
         }
     }
 
-    fn take(input: &mut Reader<'_>) -> Self {
+    fn take<const IN_PLACE: bool>(input: &mut Reader<'_, IN_PLACE>) -> Self {
         let low = u64::from(input.word());
         let high = if S::WORDS == 2 {
             u64::from(input.word())
@@ -208,7 +259,7 @@ macro_rules! words_of_integer {
                 out.word(u32::from(*self));
             }
 
-            fn take(input: &mut Reader<'_>) -> Self {
+            fn take<const IN_PLACE: bool>(input: &mut Reader<'_, IN_PLACE>) -> Self {
                 Self::try_from(input.word()).unwrap_or_else(|_| {
                     input.refuse();
                     0
@@ -232,7 +283,7 @@ impl Words for i64 {
     }
 
     #[allow(clippy::cast_possible_wrap, reason = "the two words are the bits")]
-    fn take(input: &mut Reader<'_>) -> Self {
+    fn take<const IN_PLACE: bool>(input: &mut Reader<'_, IN_PLACE>) -> Self {
         let low = u64::from(input.word());
         (u64::from(input.word()) << 32 | low) as Self
     }
@@ -243,7 +294,7 @@ impl Words for bool {
         out.word(u32::from(*self));
     }
 
-    fn take(input: &mut Reader<'_>) -> Self {
+    fn take<const IN_PLACE: bool>(input: &mut Reader<'_, IN_PLACE>) -> Self {
         match input.word() {
             0 => false,
             1 => true,
@@ -263,7 +314,7 @@ impl<T: Words> Words for Option<T> {
         }
     }
 
-    fn take(input: &mut Reader<'_>) -> Self {
+    fn take<const IN_PLACE: bool>(input: &mut Reader<'_, IN_PLACE>) -> Self {
         bool::take(input).then(|| T::take(input))
     }
 }
@@ -275,7 +326,7 @@ impl<T: Words, const N: usize> Words for [T; N] {
         }
     }
 
-    fn take(input: &mut Reader<'_>) -> Self {
+    fn take<const IN_PLACE: bool>(input: &mut Reader<'_, IN_PLACE>) -> Self {
         core::array::from_fn(|_| T::take(input))
     }
 }
@@ -289,7 +340,7 @@ macro_rules! words_of_struct {
                 $($crate::words::Words::put(&self.$field, out);)*
             }
 
-            fn take(input: &mut $crate::words::Reader<'_>) -> Self {
+            fn take<const IN_PLACE: bool>(input: &mut $crate::words::Reader<'_, IN_PLACE>) -> Self {
                 Self {
                     $($field: $crate::words::Words::take(input),)*
                 }
@@ -332,7 +383,7 @@ macro_rules! words_of_enum {
             }
 
             #[allow(unused_assignments, reason = "the place after the last variant")]
-            fn take(input: &mut $crate::words::Reader<'_>) -> Self {
+            fn take<const IN_PLACE: bool>(input: &mut $crate::words::Reader<'_, IN_PLACE>) -> Self {
                 let tag = input.word();
                 let mut place = 0_u32;
                 $(
@@ -373,7 +424,7 @@ macro_rules! words_of_choice {
                 out.word(place.and_then(|p| u32::try_from(p).ok()).unwrap_or(u32::MAX));
             }
 
-            fn take(input: &mut Reader<'_>) -> Self {
+            fn take<const IN_PLACE: bool>(input: &mut Reader<'_, IN_PLACE>) -> Self {
                 let place = usize::try_from(input.word()).unwrap_or(usize::MAX);
                 Self::ALL.get(place).map_or_else(
                     || {

@@ -5,6 +5,7 @@ mod common;
 
 use common::{Frame, render};
 use embedded_graphics::pixelcolor::RgbColor;
+use obscura::MeshesDesc;
 use obscura::formats::I8f24;
 use obscura::{
     BackgroundDesc, CameraDesc, I16F16, MaterialDesc, Methods, ObjectDesc, Scalar, SceneDesc,
@@ -86,6 +87,7 @@ fn sampled(objects: &[ObjectDesc], samples: u16, adaptive_samples: bool) -> Scen
     SceneDesc {
         camera: CameraDesc::pinhole([0.0; 3], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 90.0),
         objects,
+        meshes: MeshesDesc::NONE,
         lights: &[],
         ambient: [1.0; 3],
         background: BackgroundDesc::Solid([0.0; 3]),

@@ -6,6 +6,7 @@ mod common;
 
 use common::{Frame, psnr, render};
 use embedded_graphics::pixelcolor::RgbColor;
+use obscura::MeshesDesc;
 use obscura::{
     BackgroundDesc, CameraDesc, CheckerDesc, I16F16, MaterialDesc, Methods, ObjectDesc, Scalar,
     Scene, SceneDesc, ShapeDesc, scenes,
@@ -67,6 +68,7 @@ fn floor_from(x: f32, z: f32) -> SceneDesc<'static> {
     SceneDesc {
         camera: CameraDesc::pinhole([x, HEIGHT, z], [x, 0.0, z], [0.0, 0.0, 1.0], 90.0),
         objects: &FLOOR,
+        meshes: MeshesDesc::NONE,
         lights: &[],
         ambient: [1.0; 3],
         background: BackgroundDesc::Solid([0.5; 3]),

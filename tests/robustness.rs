@@ -5,6 +5,7 @@
 
 mod common;
 
+use obscura::MeshesDesc;
 use obscura::methods::MethodName;
 use obscura::{
     BackgroundDesc, BiasMethod, CameraDesc, CheckerDesc, F32Approx, I16F16, I20F12, I32F32,
@@ -139,6 +140,7 @@ fn random_scenes_build_or_are_refused_and_render_without_panicking() {
                 r.wild_range(10.0, 120.0),
             ),
             objects: &objects,
+            meshes: MeshesDesc::NONE,
             lights: &lights,
             ambient: r.colour().map(|c| c * 0.3),
             background: BackgroundDesc::Gradient {

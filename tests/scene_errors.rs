@@ -1,6 +1,7 @@
 //! Every way a scene description can be refused, asserted by variant, with messages that say
 //! what is wrong and how to fix it.
 
+use obscura::MeshesDesc;
 use obscura::scalar::FormatSet;
 use obscura::{
     BackgroundDesc, CameraDesc, CheckerDesc, I16F16, Item, LightDesc, MaterialDesc, Methods,
@@ -25,6 +26,7 @@ fn scene<'a>(objects: &'a [ObjectDesc], lights: &'a [LightDesc]) -> SceneDesc<'a
     SceneDesc {
         camera: CAMERA,
         objects,
+        meshes: MeshesDesc::NONE,
         lights,
         ambient: [0.1; 3],
         background: BackgroundDesc::Solid([0.0, 0.0, 0.3]),

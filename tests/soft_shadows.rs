@@ -6,6 +6,7 @@ mod common;
 
 use common::render;
 use core::f64::consts::PI;
+use obscura::MeshesDesc;
 use obscura::pattern::SampleId;
 use obscura::{
     BackgroundDesc, BiasMethod, CameraDesc, I16F16, LightDesc, MaterialDesc, Methods, ObjectDesc,
@@ -60,6 +61,7 @@ fn floor_scene<'a>(
     SceneDesc {
         camera: CameraDesc::pinhole(EYE.map(|c| c as f32), [0.0; 3], [0.0, 1.0, 0.0], 40.0),
         objects,
+        meshes: MeshesDesc::NONE,
         lights,
         ambient: [0.0; 3],
         background: BackgroundDesc::Solid([0.0; 3]),

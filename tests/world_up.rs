@@ -3,6 +3,7 @@
 
 mod common;
 
+use obscura::MeshesDesc;
 use obscura::{
     BackgroundDesc, CameraDesc, I16F16, LightDesc, Methods, ObjectDesc, SceneDesc, ShapeDesc, Y_UP,
     scenes,
@@ -26,6 +27,7 @@ fn a_z_up_scene_draws_what_the_y_up_one_does() {
         .collect();
     let y_scene = SceneDesc {
         objects: &objects,
+        meshes: MeshesDesc::NONE,
         ..y_up
     };
     let turned: Vec<ObjectDesc> = objects
@@ -66,6 +68,7 @@ fn a_z_up_scene_draws_what_the_y_up_one_does() {
             ..y_up.camera
         },
         objects: &turned,
+        meshes: MeshesDesc::NONE,
         lights: &lights,
         background: BackgroundDesc::Gradient {
             horizon,

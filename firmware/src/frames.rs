@@ -10,7 +10,8 @@ use crate::stack;
 use core::fmt;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use obscura::{Bits, Camera, Corner, Presentation, RenderError, Scalar, Scene, render_frame};
+use obscura::mesh::MeshWords;
+use obscura::{Bits, Camera, Corner, Presentation, RenderError, Scene, Uses, render_frame};
 
 /// What goes wrong drawing a frame on `B`'s display.
 pub type FrameError<B> = RenderError<<<B as Backend>::Display as DrawTarget>::Error>;
@@ -34,14 +35,14 @@ pub trait Backend {
     /// # Errors
     /// When the display fails.
     fn draw_frame<
-        S: Scalar,
+        S: Bits,
         const OBJECTS: usize,
         const LIGHTS: usize,
         const RAYS: usize,
         const USES: u32,
     >(
         &mut self,
-        scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES>,
+        scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES, MeshWords<S>>,
         camera: &Camera<S>,
         presentation: Presentation,
     ) -> Result<(), FrameError<Self>> {
@@ -103,9 +104,10 @@ mod configured {
 }
 
 /// Draws the frame of `job`: the scene whose words are `scene` (written by the build from the
-/// scene it proved in format `S`), as the camera whose words are `camera` sees it; then reports
-/// the frame. The chip builds and proves nothing: it reads the scene back from its words. Out of
-/// line, so that each frame's scene lives on the stack only while it is drawn.
+/// scene it proved in format `S`), its meshes read in place from the words `meshes`, as the
+/// camera whose words are `camera` sees it; then reports the frame. The chip builds and proves
+/// nothing: it reads the scene back from its words. Out of line, so that each frame's scene
+/// lives on the stack only while it is drawn.
 #[inline(never)]
 pub(crate) fn draw<
     S: Bits,
@@ -118,18 +120,28 @@ pub(crate) fn draw<
     clock: &Clock,
     job: &Job<'_>,
     scene: &[u32],
+    meshes: &'static [u32],
     camera: &[u32],
 ) {
     // Hidden from the optimiser, so that no build folds a constant scene into the tracer: every
     // frame measures the same general code, whichever scenes and formats share the firmware.
-    let (scene, camera) = core::hint::black_box((scene, camera));
+    let (scene, meshes, camera) = core::hint::black_box((scene, meshes, camera));
     stack::paint();
+    // A tracer without meshes reads none: its scene has none to meet.
+    let meshes = if Uses::from_bits(USES).contains(Uses::MESHES) {
+        MeshWords::<S>::from_words(meshes)
+    } else {
+        Ok(MeshWords::default())
+    };
     let (scene, camera) = match (
-        Scene::<S, OBJECTS, LIGHTS, RAYS, USES>::from_words(scene),
+        Scene::<S, OBJECTS, LIGHTS, RAYS, USES, MeshWords<S>>::from_words(scene),
+        meshes,
         Camera::<S>::from_words(camera),
     ) {
-        (Ok(scene), Ok(camera)) => (scene, camera),
-        (Err(error), _) | (_, Err(error)) => return backend.failed(job, &error),
+        (Ok(scene), Ok(meshes), Ok(camera)) => (scene.with_meshes(meshes), camera),
+        (Err(error), _, _) | (_, Err(error), _) | (_, _, Err(error)) => {
+            return backend.failed(job, &error);
+        }
     };
     backend.begin(job);
     let (drawn, ticks) = clock.measure(|| backend.draw_frame(&scene, &camera, job.presentation));
@@ -140,7 +152,7 @@ pub(crate) fn draw<
             job,
             ticks,
             stack_bytes,
-            storage_bytes: Scene::<S, OBJECTS, LIGHTS, RAYS, USES>::storage_bytes(),
+            storage_bytes: Scene::<S, OBJECTS, LIGHTS, RAYS, USES, MeshWords<S>>::storage_bytes(),
             fixed_storage_bytes: Scene::<S, MAX_OBJECTS, MAX_LIGHTS, RAY_STACK>::storage_bytes(),
         }),
         Err(error) => backend.failed(job, &error),

@@ -51,6 +51,20 @@ pub enum Command {
     /// Try random scenes in every format and method: overflows, panics, analyze against the
     /// build, predictions against measurements; each failure written as a scene file.
     Fuzz(FuzzArgs),
+    /// Write the Utah teapot as a Wavefront OBJ mesh, tessellated from Newell's Bézier patches
+    /// (host/scenes/teapot.obj is --steps 3): a model of any size for a scene's `shape.mesh`.
+    Teapot(TeapotArgs),
+}
+
+/// What `teapot` writes.
+#[derive(Debug, Args)]
+pub struct TeapotArgs {
+    /// Quads along each side of each of the 32 patches: about 64·steps² triangles.
+    #[arg(long, default_value_t = crate::teapot::SHIPPED_STEPS, value_parser = clap::value_parser!(u16).range(1..=1000))]
+    pub steps: u16,
+    /// The OBJ file to write.
+    #[arg(short, long, default_value = "teapot.obj")]
+    pub output: PathBuf,
 }
 
 /// Serializes a value by its `Display`.

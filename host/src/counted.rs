@@ -1,7 +1,7 @@
 //! The operation counter: [`Counted`], a number format that computes exactly as the format it
 //! wraps (the same bits, the same branches) and tallies every product, quotient, root and sum
-//! the tracer forms, by the phase of a pixel's work it belongs to, and every object test
-//! ([`Work`]). From the tests it also tallies the floor of the intersection work: what a tracer
+//! the tracer forms, by the phase of a pixel's work it belongs to, and every object test and
+//! box test of a mesh's hierarchy ([`Work`]). From the tests it also tallies the floor of the intersection work: what a tracer
 //! that knew which object each ray meets would still do.
 //!
 //! What counts as one operation is the textbook's, whatever a format does inside: a product,
@@ -120,9 +120,8 @@ impl Phase {
         let file = file.strip_prefix("src/")?;
         Some(match file {
             "camera.rs" => Self::Camera,
-            "shape/sphere.rs" | "shape/plane.rs" | "shape/triangle.rs" | "shape/mod.rs" => {
-                Self::Tests
-            }
+            "shape/sphere.rs" | "shape/plane.rs" | "shape/triangle.rs" | "shape/mod.rs"
+            | "mesh/mod.rs" => Self::Tests,
             "shade.rs" | "light.rs" | "material.rs" => Self::Shading,
             "occlusion.rs" => Self::Cones,
             "render.rs" | "color.rs" | "adaptive.rs" => Self::Output,
@@ -162,8 +161,10 @@ pub struct Tally {
 pub struct Rays {
     /// Rays that searched the scene.
     pub rays: u64,
-    /// Object tests.
+    /// Object tests (a mesh's triangles each count one).
     pub tests: u64,
+    /// Box tests of a mesh's hierarchy.
+    pub boxes: u64,
     /// Tests that met their object.
     pub met: u64,
     /// The tests' operations.
@@ -227,6 +228,13 @@ impl Tally {
                 self.test = Operations::default();
                 if let Some(kind) = self.searching {
                     self.rays[kind_index(kind)].tests += 1;
+                }
+            }
+            Work::Node => {
+                self.in_test = true;
+                self.phase = Some(Phase::Tests);
+                if let Some(kind) = self.searching {
+                    self.rays[kind_index(kind)].boxes += 1;
                 }
             }
             Work::Met => {

@@ -27,6 +27,7 @@ mod quantized;
 mod regressions;
 mod render;
 mod stress;
+pub mod teapot;
 mod timing;
 
 use clap::Parser;

@@ -149,11 +149,19 @@ impl FrameCount {
             .enumerate()
         {
             let rays = &self.tally.rays[kind];
+            let per_ray = |n: u64| n as f64 / rays.rays.max(1) as f64;
+            // A mesh's hierarchy tests boxes besides its triangles.
+            let boxes = if rays.boxes > 0 {
+                format!(" and {:.2} box tests", per_ray(rays.boxes))
+            } else {
+                String::new()
+            };
             let _ = writeln!(
                 table,
-                "{name} rays per pixel {:.2}: {:.2} object tests each, {:.0} % of them meet their object",
+                "{name} rays per pixel {:.2}: {:.2} object tests{boxes} each, {:.0} % of them meet \
+                 their object",
                 per_pixel(rays.rays),
-                rays.tests as f64 / rays.rays.max(1) as f64,
+                per_ray(rays.tests),
                 100.0 * rays.met as f64 / rays.tests.max(1) as f64,
             );
         }

@@ -12,10 +12,11 @@ use indicatif::{ProgressBar, ProgressStyle};
 use obscura::pattern::{Pattern, SampleId};
 use obscura::skips::{first_skipped_hit, first_skipped_shadow};
 use obscura::{
-    Camera, Corner, Methods, Presentation, Ray, Rgb, RootMethod, Scalar, Scene, SceneDesc,
-    SceneError, corner_rows, render_frame, render_rows,
+    Camera, Corner, Methods, Presentation, Ray, Rgb, RootMethod, Scalar, SceneDesc, SceneError,
+    corner_rows, render_frame, render_rows,
 };
-use obscura_scene::{Format, FormatJob, MAX_LIGHTS, MAX_OBJECTS, RAY_STACK};
+pub use obscura_scene::HostScene;
+use obscura_scene::{Format, FormatJob};
 use rayon::prelude::*;
 use std::convert::Infallible;
 use std::io::IsTerminal;
@@ -53,9 +54,6 @@ pub fn prepare_reference(request: &Request<'_>) -> Result<Box<dyn AnyFormat>> {
 /// Rows a thread renders at a time: a band shares its corner rows between its rows (adaptive
 /// anti-aliasing traces one more corner row a band than in one pass over the frame).
 const BAND: usize = 8;
-
-/// A scene in format `S` with the capacities of a scene built at run time.
-pub type HostScene<S> = Scene<S, MAX_OBJECTS, MAX_LIGHTS, RAY_STACK>;
 
 /// A render request: a scene, an image size and the methods.
 #[derive(Clone, Copy, Debug)]
@@ -236,7 +234,7 @@ impl<S: Scalar> Prepared<S> {
             let row = checked::catch(|| {
                 self.primary_rays(y)
                     .into_iter()
-                    .map(|ray| self.scene.first_hit(&ray))
+                    .map(|ray| self.scene.first_hit(&ray).map(|(object, _)| object))
                     .collect::<Vec<_>>()
             });
             objects.extend(row.map_err(|overflowed| self.overflow_at(y..y + 1, overflowed))?);

@@ -374,7 +374,9 @@ fn a_format_predicted_useless_is_refused_unless_forced() {
     let output = obscura(&[&render[..], &["--force"]].concat());
     assert!(output.status.success(), "{}", stderr(&output));
     // The floor is the user's: whitted in i16f16, predicted about 30 dB, passes 20 and not 60.
-    let whitted = ["render", "whitted", "--format", "i16f16", "--size", "64x64", "-o", file];
+    let whitted = [
+        "render", "whitted", "--format", "i16f16", "--size", "64x64", "-o", file,
+    ];
     assert!(obscura(&whitted).status.success());
     let output = obscura(&[&whitted[..], &["--refuse-below", "60"]].concat());
     assert!(!output.status.success());

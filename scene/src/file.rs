@@ -3,9 +3,14 @@
 //! parsed and checked for vectors of three here; the core's scene build then checks what it
 //! says, and [`NamedScene::locate`] points its refusals at the file's line and column.
 
+use crate::mesh_file;
+use crate::meshes::OwnedMeshes;
+use crate::object::{FileObject, FileShape};
 use crate::owned::OwnedScene;
 use anyhow::{Context, Result, bail};
+use obscura::mesh::HierarchyError;
 use obscura::{Item, SceneError, scenes};
+use obscura::{ObjectDesc, ShapeDesc};
 use std::fmt;
 use std::io::Read;
 use std::ops::Range;
@@ -174,7 +179,77 @@ pub fn parse(path: &Path, text: &str) -> Result<OwnedScene> {
     if let Some((span, message)) = wrong_vector(table.get_ref(), "") {
         return Err(at(Some(span), message));
     }
-    toml::from_str(text).map_err(|e| at(e.span(), e.message().to_owned()))
+    let scene: OwnedScene<FileObject> =
+        toml::from_str(text).map_err(|e| at(e.span(), e.message().to_owned()))?;
+    read_meshes(path, scene, |i| {
+        let object = element(table.get_ref(), "objects", i)?;
+        let DeValue::Table(object) = object.get_ref() else {
+            return Some(object.span());
+        };
+        let shape = entry(object, "shape")?;
+        let DeValue::Table(shape) = shape.get_ref() else {
+            return Some(shape.span());
+        };
+        Some(entry(shape, "mesh")?.span())
+    })
+    .map_err(|(span, error)| match span {
+        Some(span) => error.context(Located::new(path, text, span)),
+        None => error.context(path.display().to_string()),
+    })
+}
+
+/// The scene with the mesh files its objects name read (relative to the scene file at `path`)
+/// into its meshes, each of their objects a [`ShapeDesc::Mesh`]. An error is placed at the span
+/// `place` gives for the object's index.
+fn read_meshes(
+    path: &Path,
+    scene: OwnedScene<FileObject>,
+    place: impl Fn(usize) -> Option<Range<usize>>,
+) -> Result<OwnedScene, (Option<Range<usize>>, anyhow::Error)> {
+    let directory = path.parent().unwrap_or(Path::new("."));
+    let mut meshes = OwnedMeshes::default();
+    let mut index = 0;
+    let mut scene = scene.map_objects(|object| {
+        let i = index;
+        index += 1;
+        let mesh = match object.shape {
+            FileShape::Shape(shape) => {
+                return Ok(ObjectDesc {
+                    shape,
+                    material: object.material,
+                });
+            }
+            FileShape::Mesh { mesh } => mesh,
+        };
+        let fail = |error: anyhow::Error| (place(i), error);
+        let loaded = mesh_file::load(directory, &mesh).map_err(fail)?;
+        let added = meshes
+            .add(&loaded.vertices, &loaded.triangles)
+            .map_err(|error| fail(anyhow::anyhow!(hierarchy_error(&mesh.file, error))))?;
+        Ok(ObjectDesc {
+            shape: ShapeDesc::Mesh { root: added.root },
+            material: object.material,
+        })
+    })?;
+    scene.meshes = meshes;
+    Ok(scene)
+}
+
+/// What is wrong with the triangles of mesh file `file`, and how to mend it.
+fn hierarchy_error(file: &str, error: HierarchyError) -> String {
+    match error {
+        HierarchyError::Count => format!(
+            "{file} has no triangle with an area (or more than 2³¹): give a mesh of triangles \
+             whose corners are not on one line"
+        ),
+        HierarchyError::NoSuchVertex { triangle } => format!(
+            "{file}: triangle {triangle} names a corner the file does not have: export the \
+             mesh again"
+        ),
+        HierarchyError::TooFewNodes { needed } => {
+            format!("{file}: its hierarchy needs {needed} nodes, which could not be made")
+        }
+    }
 }
 
 /// The first array of numbers in `table` whose length is not 3 (every vector and colour of a
@@ -603,6 +678,57 @@ mod tests {
             holds: obscura::scalar::FormatSet::default(),
         };
         assert_eq!(placed(MINIMAL, world), "scene.toml:2:15");
+    }
+
+    #[test]
+    fn a_mesh_file_is_read_beside_the_scene_and_its_mistakes_placed() {
+        let directory = std::env::temp_dir().join(format!("obscura-mesh-{}", std::process::id()));
+        std::fs::create_dir_all(&directory).unwrap();
+        // A cube of six quads.
+        let cube = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
+                    f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n";
+        std::fs::write(directory.join("cube.obj"), cube).unwrap();
+        let mesh =
+            r#"shape.mesh = { file = "cube.obj", scale = 2.0, translate = [0.0, 0.0, 3.0] }"#;
+        let text = MINIMAL.replace(
+            "shape.sphere = { center = [0.0, 1.0, 0.0], radius = 1.0 }",
+            mesh,
+        );
+        let path = directory.join("scene.toml");
+        let scene = super::parse(&path, &text).expect("reads the cube");
+        assert_eq!(scene.objects[0].shape, ShapeDesc::Mesh { root: 0 });
+        assert_eq!(scene.objects[0].material.shininess, 30);
+        assert_eq!(scene.meshes.triangles.len(), 12);
+        // Scaled, then moved: the box is [0, 2] × [0, 2] × [3, 5].
+        assert_eq!(scene.meshes.nodes[0].max, [2.0, 2.0, 5.0]);
+        assert!(
+            obscura::Scene::<
+                f32,
+                4,
+                4,
+                8,
+                { obscura::Uses::EVERYTHING.bits() },
+                crate::MeshVecs<f32>,
+            >::build(&scene.desc())
+            .is_ok()
+        );
+        // A file that is not there, and a key a mesh does not have: at the mesh's place.
+        let missing = text.replace("cube.obj", "sphere.obj");
+        let error = format!(
+            "{:#}",
+            super::parse(&path, &missing).expect_err("no such file")
+        );
+        assert!(
+            error.contains("scene.toml:6:22: ") && error.contains("sphere.obj"),
+            "{error}"
+        );
+        let typo = text.replace("scale", "scael");
+        let error = format!("{:#}", super::parse(&path, &typo).expect_err("no such key"));
+        assert!(
+            error.contains("scene.toml:6:") && error.contains("scael"),
+            "{error}"
+        );
+        let _ = std::fs::remove_dir_all(&directory);
     }
 
     #[test]

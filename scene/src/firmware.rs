@@ -10,12 +10,12 @@
 //! ([`FirmwareSettings::environment`]).
 
 use crate::{
-    FirmwareSettings, Format, FormatChoice, FormatJob, MAX_LIGHTS, MAX_OBJECTS, NamedScene,
-    RAY_STACK, Variants,
+    FirmwareSettings, Format, FormatChoice, FormatJob, HostScene, MAX_LIGHTS, MAX_OBJECTS,
+    NamedScene, RAY_STACK, Variants,
 };
 use anyhow::{Context, Result, bail};
 use obscura::scalar::Proven;
-use obscura::{Bits, Methods, Presentation, Scene, SceneDesc, SceneError, Uses};
+use obscura::{Bits, Methods, Presentation, SceneDesc, SceneError, Uses};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -246,7 +246,7 @@ impl Configuration {
                         out,
                         "    // The tracer's parts in {}: {uses}.\n    \
                          crate::frames::draw::<{}, {}, {}, {}, {:#010x}>(\n        backend,\n        \
-                         clock,\n        {job},\n        {},\n        {},\n    );",
+                         clock,\n        {job},\n        {},\n        {},\n        {},\n    );",
                         frame.format,
                         frame.format.rust_type(),
                         desc.objects.len(),
@@ -254,6 +254,7 @@ impl Configuration {
                         usize::from(desc.max_depth) + 1,
                         uses.bits(),
                         words_source(&words.scene),
+                        words_source(&words.meshes),
                         words_source(&words.camera),
                     );
                 }
@@ -309,6 +310,8 @@ fn refused(named: &NamedScene, format: Format, refusal: SceneError) -> anyhow::E
 pub struct Words {
     /// The scene's words.
     pub scene: Vec<u32>,
+    /// Its meshes' words ([`obscura::mesh::MeshWords`]), which the firmware reads in place.
+    pub meshes: Vec<u32>,
     /// The camera's words, at the display's size.
     pub camera: Vec<u32>,
     /// What of the tracer the scene and the camera use ([`Uses`]).
@@ -346,14 +349,16 @@ struct Prove<'a>(&'a SceneDesc<'a>, Methods);
 impl FormatJob for Prove<'_> {
     type Output = Result<Words, SceneError>;
     fn run<S: Bits>(self) -> Self::Output {
-        let scene = Scene::<S, MAX_OBJECTS, MAX_LIGHTS, RAY_STACK>::build_with(self.0, self.1)?;
+        let scene = HostScene::<S>::build_with(self.0, self.1)?;
         let camera = scene.camera(SIDE, SIDE)?;
         let mut words = Words {
             scene: Vec::new(),
+            meshes: Vec::new(),
             camera: Vec::new(),
             uses: scene.uses().union(camera.uses()),
         };
         scene.write_words(&mut |word| words.scene.push(word));
+        scene.write_mesh_words(&mut |word| words.meshes.push(word));
         camera.write_words(&mut |word| words.camera.push(word));
         Ok(words)
     }
@@ -445,8 +450,8 @@ mod tests {
         let desc = configuration.scenes[0].scene.desc();
         for frame in &frames {
             let words = frame.proven.as_ref().unwrap();
-            let scene = Scene::<f32, 8, 4, 8>::build_with(&desc, frame.methods).unwrap();
-            assert_eq!(Scene::from_words(&words.scene), Ok(scene.clone()));
+            let scene = obscura::Scene::<f32, 8, 4, 8>::build_with(&desc, frame.methods).unwrap();
+            assert_eq!(obscura::Scene::from_words(&words.scene), Ok(scene.clone()));
             let camera = scene.camera(SIDE, SIDE).unwrap();
             assert_eq!(obscura::Camera::from_words(&words.camera), Ok(camera));
         }

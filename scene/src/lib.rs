@@ -19,11 +19,15 @@
 mod file;
 pub mod firmware;
 mod format;
+mod mesh_file;
+mod meshes;
+mod object;
 mod owned;
 mod settings;
 
 pub use file::{Located, MAX_FILE_BYTES, NamedScene, load, parse};
 pub use format::{Format, FormatJob};
+pub use meshes::{Added, MeshVecs, OwnedMeshes};
 pub use owned::OwnedScene;
 pub use settings::{
     FirmwareSettings, FormatChoice, FrameSettings, MethodSettings, PresentationSettings, Sampling,
@@ -37,6 +41,17 @@ pub const MAX_OBJECTS: usize = 64;
 pub const MAX_LIGHTS: usize = 16;
 /// The ray stack of a scene built at run time: ray trees up to 15 levels deep.
 pub const RAY_STACK: usize = 16;
+
+/// A scene built at run time in format `S`, of the capacities above, its meshes in `Vec`s: the
+/// harness's scenes, and the proof of a firmware's.
+pub type HostScene<S> = obscura::Scene<
+    S,
+    MAX_OBJECTS,
+    MAX_LIGHTS,
+    RAY_STACK,
+    { obscura::Uses::EVERYTHING.bits() },
+    MeshVecs<S>,
+>;
 
 /// An error as the `obscura` command and the firmware's build print it: `error: ` and its
 /// chain, and where it is at a place in a scene file, that line with the place marked.

@@ -2,18 +2,23 @@
 //! can make scenes at run time (scene files, stress cases, rescaled copies) and lend them to
 //! the core.
 
+use crate::meshes::OwnedMeshes;
 use obscura::{BackgroundDesc, CameraDesc, LightDesc, ObjectDesc, SceneDesc, ShapeDesc};
 use serde::{Deserialize, Serialize};
 
 /// A scene description with owned lists; what a scene file holds (lights, ambient light,
-/// background and depth may be left out).
+/// background and depth may be left out), its objects `O` as the core's, or as a file gives
+/// them (naming mesh files, which [`crate::load`] reads into [`OwnedScene::meshes`]).
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
-pub struct OwnedScene {
+pub struct OwnedScene<O = ObjectDesc> {
     /// See [`SceneDesc::camera`].
     pub camera: CameraDesc,
     /// See [`SceneDesc::objects`].
-    pub objects: Vec<ObjectDesc>,
+    pub objects: Vec<O>,
+    /// See [`SceneDesc::meshes`]: not in a file, which names mesh files instead.
+    #[serde(skip)]
+    pub meshes: OwnedMeshes,
     /// See [`SceneDesc::lights`].
     #[serde(default)]
     pub lights: Vec<LightDesc>,
@@ -70,12 +75,40 @@ fn ray_count<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<u16, D
     })
 }
 
+impl<O> OwnedScene<O> {
+    /// The scene with other objects, as `object` makes them of its own.
+    pub fn map_objects<T, E>(
+        self,
+        object: impl FnMut(O) -> Result<T, E>,
+    ) -> Result<OwnedScene<T>, E> {
+        Ok(OwnedScene {
+            camera: self.camera,
+            objects: self
+                .objects
+                .into_iter()
+                .map(object)
+                .collect::<Result<_, _>>()?,
+            meshes: self.meshes,
+            lights: self.lights,
+            ambient: self.ambient,
+            background: self.background,
+            far: self.far,
+            max_depth: self.max_depth,
+            samples: self.samples,
+            adaptive_samples: self.adaptive_samples,
+            shadow_samples: self.shadow_samples,
+            adaptive_shadows: self.adaptive_shadows,
+        })
+    }
+}
+
 impl OwnedScene {
     /// A copy of `desc`.
     pub fn from_desc(desc: &SceneDesc<'_>) -> Self {
         Self {
             camera: desc.camera,
             objects: desc.objects.to_vec(),
+            meshes: OwnedMeshes::from_desc(&desc.meshes),
             lights: desc.lights.to_vec(),
             ambient: desc.ambient,
             background: desc.background,
@@ -93,6 +126,7 @@ impl OwnedScene {
         SceneDesc {
             camera: self.camera,
             objects: &self.objects,
+            meshes: self.meshes.desc(),
             lights: &self.lights,
             ambient: self.ambient,
             background: self.background,
@@ -150,6 +184,7 @@ impl OwnedScene {
                     ShapeDesc::Triangle { vertices } => ShapeDesc::Triangle {
                         vertices: vertices.map(&position),
                     },
+                    mesh @ ShapeDesc::Mesh { .. } => mesh,
                 };
                 ObjectDesc { shape, ..*object }
             })
@@ -185,6 +220,7 @@ impl OwnedScene {
                 ..self.camera
             },
             objects,
+            meshes: self.meshes.moved(&position),
             lights,
             background,
             far: length(self.far),

@@ -283,8 +283,10 @@ pub(crate) fn quantize_by_floor<S: Scalar>(v: S, levels: u8, threshold: S) -> u8
 pub enum Work {
     /// A ray of this kind starts searching the scene.
     Search(RayKind),
-    /// The search tests an object.
+    /// The search tests an object, or a triangle of a mesh.
     Test,
+    /// The search tests a box of a mesh's hierarchy.
+    Node,
     /// The object just tested is met: the nearest so far, or an occluder of a shadow ray.
     Met,
 }

@@ -142,6 +142,18 @@ pub enum SceneError {
         /// Which object.
         item: Item,
     },
+    /// A mesh's triangles or hierarchy are not what [`crate::shape::mesh::build_hierarchy`] makes
+    /// ([`crate::MeshesDesc`]). Build the hierarchy again from the triangles.
+    MalformedMesh {
+        /// Which object (the scene, for the meshes' triangles as a whole).
+        item: Item,
+        /// What is wrong.
+        what: &'static str,
+    },
+    /// The scene has meshes, and this build keeps none: its [`crate::Scene`]'s mesh storage is
+    /// [`crate::mesh::NoMeshes`]. Build it with a storage that holds them
+    /// ([`crate::mesh::MeshStorage`]).
+    MeshesNotHeld,
     /// The camera's up vector is parallel to its view direction, so "up" on the image is
     /// undefined. Choose an up vector that is not along the line from eye to target.
     UpParallelToView,
@@ -252,12 +264,16 @@ impl SceneError {
             | Self::OutOfBounds { item, .. }
             | Self::TooShort { item, .. }
             | Self::DegenerateTriangle { item }
+            | Self::MalformedMesh { item, .. }
             | Self::OutsideWorld { item, .. }
             | Self::OutOfRange { item, .. }
             | Self::BelowResolution { item, .. } => Some(item),
             Self::UpParallelToView | Self::LensTouches { .. } => Some(Item::Camera),
             Self::DepthExceedsStack { .. } => Some(Item::Scene),
-            Self::TooMany { .. } | Self::MethodUnavailable { .. } | Self::ImageSize { .. } => None,
+            Self::TooMany { .. }
+            | Self::MeshesNotHeld
+            | Self::MethodUnavailable { .. }
+            | Self::ImageSize { .. } => None,
         }
     }
 
@@ -278,6 +294,8 @@ impl SceneError {
             Self::LensTouches { .. } => Some("aperture"),
             Self::DepthExceedsStack { .. } => Some("max_depth"),
             Self::TooMany { .. }
+            | Self::MeshesNotHeld
+            | Self::MalformedMesh { .. }
             | Self::OutsideWorld { .. }
             | Self::MethodUnavailable { .. }
             | Self::ImageSize { .. } => None,
@@ -324,6 +342,15 @@ impl fmt::Display for SceneError {
                 f,
                 "{item}: the triangle's corners lie on one line, so it has no area; move a \
                  corner off that line or leave the triangle out"
+            ),
+            SceneError::MalformedMesh { item, what } => write!(
+                f,
+                "{item}: the mesh is malformed: {what}; build its hierarchy again from its \
+                 triangles (obscura::mesh::build_hierarchy)"
+            ),
+            SceneError::MeshesNotHeld => f.write_str(
+                "the scene has meshes, and this build keeps none: give its Scene a mesh storage \
+                 (obscura::mesh::MeshStorage)",
             ),
             SceneError::UpParallelToView => f.write_str(
                 "the camera: the up vector is parallel to the view direction; choose an up \

@@ -22,6 +22,7 @@ use crate::methods::{Methods, RootMethod};
 use crate::occlusion::Cone;
 use crate::scalar::REACH_ERRORS;
 use crate::scalar::{Bits, FormatInfo, FormatSet, Scalar};
+use crate::shape::mesh::{MeshStorage, Meshes, NoMeshes, Node};
 use crate::shape::{CHECKER_PERIOD, Checker, Plane, Shape, Sphere, Triangle};
 use crate::uses::Uses;
 use crate::vec3::Vec3;
@@ -81,8 +82,11 @@ pub struct Scene<
     const LIGHTS: usize,
     const RAYS: usize,
     const USES: u32 = { Uses::EVERYTHING.bits() },
+    M = NoMeshes,
 > {
     pub(crate) objects: Vec<Object<S>, OBJECTS>,
+    /// The meshes' nodes and triangles ([`crate::shape::mesh`]).
+    pub(crate) meshes: M,
     pub(crate) lights: Vec<Light<S>, LIGHTS>,
     /// For each light, each object's cone ([`crate::occlusion`]).
     pub(crate) cones: Vec<[Cone<S>; OBJECTS], LIGHTS>,
@@ -103,6 +107,8 @@ pub(crate) struct Settings<S> {
     pub(crate) tolerance_base: S,
     /// How much it grows per unit of a surface point's largest coordinate (or radius).
     pub(crate) tolerance_per_unit: S,
+    /// The widening of a mesh's box test ([`crate::shape::mesh::slack`]).
+    pub(crate) box_slack: S,
     /// See [`WEIGHT_CUTOFF`].
     pub(crate) min_weight: S,
     pub(crate) max_depth: u8,
@@ -121,6 +127,7 @@ crate::words::words_of_struct!(Settings<S> {
     ray_length,
     tolerance_base,
     tolerance_per_unit,
+    box_slack,
     min_weight,
     max_depth,
     samples,
@@ -129,8 +136,8 @@ crate::words::words_of_struct!(Settings<S> {
     methods
 });
 
-impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
-    Scene<S, OBJECTS, LIGHTS, RAYS>
+impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, M: MeshStorage<S>>
+    Scene<S, OBJECTS, LIGHTS, RAYS, { Uses::EVERYTHING.bits() }, M>
 {
     /// Validates `desc`, proves that format `S` holds it (see [`range`]) and converts it, to be
     /// traced by the lecture's methods ([`Methods::LECTURE`]).
@@ -180,8 +187,14 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize>
     }
 }
 
-impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, const USES: u32>
-    Scene<S, OBJECTS, LIGHTS, RAYS, USES>
+impl<
+    S: Scalar,
+    const OBJECTS: usize,
+    const LIGHTS: usize,
+    const RAYS: usize,
+    const USES: u32,
+    M: Meshes<S>,
+> Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>
 {
     /// The camera for an image of `width × height` pixels.
     ///
@@ -214,6 +227,7 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, co
                 Shape::Sphere(_) => Uses::SPHERES,
                 Shape::Plane(_) => Uses::PLANES,
                 Shape::Triangle(_) => Uses::TRIANGLES,
+                Shape::Mesh(_) => Uses::MESHES,
             })
         });
         let area_lights = self.lights.iter().any(|light| light.shadow_rays > 1);
@@ -225,8 +239,14 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, co
     }
 }
 
-impl<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, const USES: u32>
-    Scene<S, OBJECTS, LIGHTS, RAYS, USES>
+impl<
+    S: Bits,
+    const OBJECTS: usize,
+    const LIGHTS: usize,
+    const RAYS: usize,
+    const USES: u32,
+    M: Meshes<S> + Default,
+> Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>
 {
     /// Writes the scene as words ([`crate::words`]) to `sink`: what a firmware's build keeps as
     /// constants of a scene it has built, and so proven, on the host. Only the objects and
@@ -246,10 +266,36 @@ impl<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, cons
     pub fn from_words(words: &[u32]) -> Result<Self, WordsError> {
         words::read::<S, Self>("scene", words)
     }
+
+    /// Writes the scene's meshes as words to `sink`, as [`MeshWords`](crate::mesh::MeshWords) reads them: what a
+    /// firmware's build keeps in flash beside the scene's words ([`Self::write_words`]), which
+    /// do not hold them.
+    pub fn write_mesh_words(&self, sink: &mut dyn FnMut(u32)) {
+        crate::shape::mesh::write_words::<S>(&self.meshes, sink);
+    }
+
+    /// The scene with its meshes in `meshes`: a scene read from words ([`Self::from_words`])
+    /// with the meshes written beside it ([`Self::write_mesh_words`], read by [`MeshWords`](crate::mesh::MeshWords)).
+    pub fn with_meshes<N: Meshes<S>>(self, meshes: N) -> Scene<S, OBJECTS, LIGHTS, RAYS, USES, N> {
+        Scene {
+            objects: self.objects,
+            meshes,
+            lights: self.lights,
+            cones: self.cones,
+            settings: self.settings,
+            frame: self.frame,
+        }
+    }
 }
 
-impl<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, const USES: u32> Words
-    for Scene<S, OBJECTS, LIGHTS, RAYS, USES>
+impl<
+    S: Bits,
+    const OBJECTS: usize,
+    const LIGHTS: usize,
+    const RAYS: usize,
+    const USES: u32,
+    M: Meshes<S> + Default,
+> Words for Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>
 {
     fn put(&self, out: &mut Writer<'_>) {
         let count = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
@@ -272,7 +318,7 @@ impl<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, cons
 
     /// Refuses the parts `USES` leaves out where they are read: a kind of shape at its tag
     /// ([`Reader::allow_only`]), a method, an area light or several rays per pixel once read.
-    fn take(input: &mut Reader<'_>) -> Self {
+    fn take<const IN_PLACE: bool>(input: &mut Reader<'_, IN_PLACE>) -> Self {
         let parts = Uses::from_bits(USES);
         input.allow_only(parts);
         let mut objects = Vec::new();
@@ -309,6 +355,7 @@ impl<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, cons
         }
         Self {
             objects,
+            meshes: M::default(),
             lights,
             cones,
             settings,
@@ -349,6 +396,11 @@ fn camera<S: Scalar>(
         remedy: corner.remedy,
         holds: FormatSet::of(|f| range::fits(corner.value, f.range)),
     })
+}
+
+/// How many triangles storage `M` holds.
+fn meshes_capacity<S, M: MeshStorage<S>>() -> usize {
+    M::default().capacity()
 }
 
 fn capacity(what: &'static str, count: usize, capacity: usize) -> Result<(), SceneError> {
@@ -401,16 +453,17 @@ impl<S: Scalar> Converter<S> {
         })
     }
 
-    fn scene<const O: usize, const L: usize, const R: usize>(
+    fn scene<const O: usize, const L: usize, const R: usize, M: MeshStorage<S>>(
         &self,
         desc: &SceneDesc<'_>,
-    ) -> Result<Scene<S, O, L, R>, SceneError> {
+    ) -> Result<Scene<S, O, L, R, { Uses::EVERYTHING.bits() }, M>, SceneError> {
         // `build` checked both lengths against the capacities.
         let too_many = |what, count, capacity| SceneError::TooMany {
             what,
             count,
             capacity,
         };
+        let meshes = self.meshes(desc)?;
         let mut objects = Vec::new();
         for (i, object) in desc.objects.iter().enumerate() {
             let object = self.object(Item::Object(i), &object.shape, &object.material, desc)?;
@@ -426,7 +479,7 @@ impl<S: Scalar> Converter<S> {
                 .map_err(|_| too_many("lights", desc.lights.len(), L))?;
             let mut of_light = [Cone::Everywhere; O];
             for (cone, object) in of_light.iter_mut().zip(desc.objects) {
-                *cone = self.cone(Item::Light(i), light, &object.shape, desc.camera.eye)?;
+                *cone = self.cone(Item::Light(i), light, &object.shape, desc)?;
             }
             cones
                 .push(of_light)
@@ -434,6 +487,7 @@ impl<S: Scalar> Converter<S> {
         }
         Ok(Scene {
             objects,
+            meshes,
             lights,
             cones,
             settings: self.settings(desc)?,
@@ -471,13 +525,14 @@ impl<S: Scalar> Converter<S> {
         item: Item,
         light: &LightDesc,
         shape: &ShapeDesc,
-        eye: [f32; 3],
+        desc: &SceneDesc<'_>,
     ) -> Result<Cone<S>, SceneError> {
         let position = Vec3::from_f32(light.position) - self.eye;
         // A shadow ray starts within the world (or its slack beyond it) and ends at the light.
         let longest = self.world + self.slack + position.length();
-        let ball = range::finding_error::<S>(shape, &self.methods, eye, longest)
-            .zip(cull::ball(shape, self.eye))
+        let ball = self
+            .finding_error(shape, desc, longest)
+            .zip(cull::ball(shape, &desc.meshes, self.eye))
             .map(|(error, (centre, radius))| (centre, radius + REACH_ERRORS * error));
         Cone::of(ball, position, f64::from(light.radius), longest)
             .ok_or_else(|| self.out_of_range(item, "a shadow cone's axis", position))
@@ -528,6 +583,14 @@ impl<S: Scalar> Converter<S> {
                 Item::Scene,
                 "the surface tolerance",
                 tolerance_per_unit,
+            )?,
+            box_slack: self.scalar(
+                Item::Scene,
+                "the widening of a mesh's box test",
+                crate::shape::mesh::slack(
+                    |magnitude| S::resolution(magnitude),
+                    range::box_magnitude(self.world, self.slack),
+                ),
             )?,
             min_weight: S::ratio(1, WEIGHT_CUTOFF),
             max_depth: desc.max_depth,
@@ -584,34 +647,28 @@ impl<S: Scalar> Converter<S> {
                     checker,
                 ))
             }
-            ShapeDesc::Triangle {
-                vertices: [a, b, c],
-            } => {
-                let (a64, b64, c64) = (Vec3::from_f32(a), Vec3::from_f32(b), Vec3::from_f32(c));
-                // Validation guarantees a non-zero area.
-                let n = (b64 - a64)
-                    .cross(c64 - a64)
-                    .direction()
-                    .ok_or(SceneError::DegenerateTriangle { item })?;
-                let corners = [
-                    self.point(item, "shape.triangle.vertices", a)?,
-                    self.point(item, "shape.triangle.vertices", b)?,
-                    self.point(item, "shape.triangle.vertices", c)?,
-                ];
-                // Möller–Trumbore's smallest determinant: below it 1/det, or a numerator over
-                // it, would leave the format.
-                let origin = self.world + self.slack;
-                let multiples = range::reciprocal_multiples(origin, self.eye, [a64, b64, c64]);
-                let min_det = multiples * range::RANGE_HEADROOM / S::RANGE;
-                tolerance = range::error_with(
-                    &range::triangle_tolerance_terms([a, b, c], self.eye),
-                    &self.tolerances,
-                );
-                Shape::Triangle(Triangle::new(
-                    corners,
-                    self.vector(item, "triangle normal", n)?,
-                    self.scalar(item, "the smallest determinant", min_det)?,
-                ))
+            ShapeDesc::Triangle { vertices } => {
+                let (triangle, own) = self.triangle(item, vertices)?;
+                tolerance = own;
+                Shape::Triangle(triangle)
+            }
+            ShapeDesc::Mesh { root } => {
+                // Every triangle's own tolerance at its largest.
+                tolerance = desc
+                    .meshes
+                    .triangles_of(root)
+                    .iter()
+                    .map(|&corners| {
+                        range::error_with(
+                            &range::triangle_tolerance_terms(
+                                desc.meshes.corners(corners),
+                                self.eye,
+                            ),
+                            &self.tolerances,
+                        )
+                    })
+                    .fold(0.0, f64::max);
+                Shape::Mesh(root)
             }
         };
         // Only a transmissive surface refracts: another's index of refraction is never read.
@@ -637,11 +694,114 @@ impl<S: Scalar> Converter<S> {
             material,
             tolerance: self.scalar(item, "the surface tolerance", tolerance)?,
             // A primary ray may be judged to meet the object this far beyond it (if bounded).
-            bound: range::finding_error::<S>(shape_desc, &self.methods, desc.camera.eye, 0.0)
+            bound: self
+                .finding_error(shape_desc, desc, 0.0)
                 .map_or(Bound::Everywhere, |error| {
-                    Bound::of(shape_desc, self.eye, error, &self.frame)
+                    Bound::of(shape_desc, &desc.meshes, self.eye, error, &self.frame)
                 }),
         })
+    }
+
+    /// [`range::finding_error`] of a shape of `desc`; of a mesh, its triangles' largest.
+    fn finding_error(&self, shape: &ShapeDesc, desc: &SceneDesc<'_>, beyond: f64) -> Option<f64> {
+        let eye = desc.camera.eye;
+        match *shape {
+            ShapeDesc::Mesh { root } => {
+                desc.meshes
+                    .triangles_of(root)
+                    .iter()
+                    .try_fold(0.0, |largest: f64, &corners| {
+                        let vertices = desc.meshes.corners(corners);
+                        let triangle = ShapeDesc::Triangle { vertices };
+                        range::finding_error::<S>(&triangle, &self.methods, eye, beyond)
+                            .map(|error| largest.max(error))
+                    })
+            }
+            _ => range::finding_error::<S>(shape, &self.methods, eye, beyond),
+        }
+    }
+
+    /// A triangle with these corners, and its own part of the surface tolerance
+    /// ([`Object::tolerance`]).
+    fn triangle(
+        &self,
+        item: Item,
+        [a, b, c]: [[f32; 3]; 3],
+    ) -> Result<(Triangle<S>, f64), SceneError> {
+        let (a64, b64, c64) = (Vec3::from_f32(a), Vec3::from_f32(b), Vec3::from_f32(c));
+        // Validation guarantees a non-zero area.
+        let n = (b64 - a64)
+            .cross(c64 - a64)
+            .direction()
+            .ok_or(SceneError::DegenerateTriangle { item })?;
+        let corners = [
+            self.point(item, "shape.triangle.vertices", a)?,
+            self.point(item, "shape.triangle.vertices", b)?,
+            self.point(item, "shape.triangle.vertices", c)?,
+        ];
+        // Möller–Trumbore's smallest determinant: below it 1/det, or a numerator over
+        // it, would leave the format.
+        let origin = self.world + self.slack;
+        let multiples = range::reciprocal_multiples(origin, self.eye, [a64, b64, c64]);
+        let min_det = multiples * range::RANGE_HEADROOM / S::RANGE;
+        let tolerance = range::error_with(
+            &range::triangle_tolerance_terms([a, b, c], self.eye),
+            &self.tolerances,
+        );
+        let triangle = Triangle::new(
+            corners,
+            self.vector(item, "triangle normal", n)?,
+            self.scalar(item, "the smallest determinant", min_det)?,
+        );
+        Ok((triangle, tolerance))
+    }
+
+    /// The meshes of `desc` in storage `M`: every triangle and node, in their order. An error
+    /// names the first mesh object whose triangles hold the one at fault. Out of line, as
+    /// [`Self::object`] is.
+    #[inline(never)]
+    fn meshes<M: MeshStorage<S>>(&self, desc: &SceneDesc<'_>) -> Result<M, SceneError> {
+        let mut meshes = M::default();
+        let pool = &desc.meshes;
+        if !pool.triangles.is_empty() && meshes.capacity() == 0 {
+            return Err(SceneError::MeshesNotHeld);
+        }
+        let full = || SceneError::TooMany {
+            what: "mesh triangles",
+            count: pool.triangles.len(),
+            capacity: meshes_capacity::<S, M>(),
+        };
+        let item = |triangle: usize| {
+            let object = desc.objects.iter().position(|object| match object.shape {
+                ShapeDesc::Mesh { root } => pool.nodes.get(root as usize).is_some_and(|node| {
+                    (node.first as usize..node.end as usize).contains(&triangle)
+                }),
+                _ => false,
+            });
+            object.map_or(Item::Scene, Item::Object)
+        };
+        for (i, &corners) in pool.triangles.iter().enumerate() {
+            let (triangle, _) = self.triangle(item(i), pool.corners(corners))?;
+            if !meshes.push_triangle(triangle) {
+                return Err(full());
+            }
+        }
+        for node in pool.nodes {
+            let (low, high) = (Vec3::from_f32(node.min), Vec3::from_f32(node.max));
+            let item = item(node.first as usize);
+            let node = Node {
+                centre: self.vector(item, "a mesh's box", (low + high) * 0.5 - self.eye)?,
+                half: self.vector(item, "a mesh's box", (high - low) * 0.5)?,
+                first: node.first,
+                end: node.end,
+                right: node.right,
+                axis: node.axis,
+            };
+            if !meshes.push_node(node) {
+                return Err(full());
+            }
+        }
+        Ok(meshes)
     }
 
     /// The checkerboard's axes: the world axis least aligned with the normal, made

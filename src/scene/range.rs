@@ -294,9 +294,8 @@ const MIRROR: f64 = 3.0;
 pub fn origin_slack(desc: &SceneDesc<'_>, methods: &Methods, format: &FormatInfo) -> f64 {
     let world = f64::from(desc.far);
     let smallest_radius = desc
-        .objects
-        .iter()
-        .filter_map(|object| match object.shape {
+        .primitives()
+        .filter_map(|(_, object)| match object.shape {
             ShapeDesc::Sphere { radius, .. } => Some(f64::from(radius)),
             _ => None,
         })
@@ -311,9 +310,8 @@ pub fn origin_slack(desc: &SceneDesc<'_>, methods: &Methods, format: &FormatInfo
                 + SURFACE_TOLERANCE_STEPS * world * format.unit_error
         })
         + desc
-            .objects
-            .iter()
-            .filter_map(|object| match object.shape {
+            .primitives()
+            .filter_map(|(_, object)| match object.shape {
                 ShapeDesc::Triangle { vertices } => Some(error_with(
                     &triangle_tolerance_terms(vertices, Vec3::from_f32(desc.camera.eye)),
                     format,
@@ -328,6 +326,15 @@ pub fn origin_slack(desc: &SceneDesc<'_>, methods: &Methods, format: &FormatInfo
         0.0
     };
     tolerance + rounding + quotient
+}
+
+/// The largest magnitude of a mesh's box test ([`crate::shape::mesh`]) in a world of radius `world`
+/// whose rays start up to `slack` beyond it: a ray's midpoint up to its length's half from its
+/// origin, 2(R + s) from the eye, less a box's centre, whose coordinates validation keeps
+/// within R (√3·R); the products of that with a unit direction are no larger.
+#[must_use]
+pub fn box_magnitude(world: f64, slack: f64) -> f64 {
+    ray_length(world, slack) + 3.0_f64.sqrt() * world
 }
 
 /// The longest a ray is followed in a world of radius `world` whose rays start up to `slack`
@@ -378,87 +385,97 @@ pub fn magnitudes<'a>(
             Remedy::LessLight,
         ),
     ];
-    let objects =
-        desc.objects
-            .iter()
-            .enumerate()
-            .flat_map(move |(i, object)| {
-                let item = Item::Object(i);
-                let shape: [Option<(&'static str, f64, Remedy)>; 3] = match object.shape {
-                    ShapeDesc::Sphere { center, radius } => {
-                        let (c, r) = (distance(center, eye), f64::from(radius));
-                        let f = origin + c;
-                        let square = match methods.sphere {
-                            SphereMethod::Quadratic => ("b² − c in the quadratic", f * f + r * r),
-                            SphereMethod::Stable => ("|o − c|² in the stable form", f * f),
-                        };
-                        [
-                            Some((square.0, square.1, Remedy::ShrinkWorld)),
-                            Some((
-                                "the sphere's roots, |b| + √(b² + r²)",
-                                f + (f * f + r * r).sqrt(),
-                                Remedy::ShrinkWorld,
-                            )),
-                            Some((
-                                "a hit point less the sphere's centre",
-                                along + c,
-                                Remedy::ShrinkWorld,
-                            )),
-                        ]
-                    }
-                    ShapeDesc::Plane { checker, .. } => [
-                        Some((
-                            "a hit less the eye's foot on the plane",
-                            along + world,
-                            Remedy::ShrinkWorld,
-                        )),
-                        checker.map(|checker| {
-                            let size = f64::from(checker.size);
-                            (
-                                "a checker coordinate",
-                                checker_reach(origin, world) / size + CHECKER_PERIOD,
-                                Remedy::LargerSquares,
-                            )
-                        }),
-                        None,
-                    ],
-                    ShapeDesc::Triangle { vertices } => {
-                        let corners = vertices.map(Vec3::from_f32);
-                        let eye = Vec3::from_f32(eye);
-                        let (quantity, value) =
-                            triangle_magnitude(methods.triangle, origin, eye, corners);
-                        // Möller–Trumbore takes a determinant below numerators/range (or
-                        // 1/range, where 1/det itself would not fit) for a ray parallel to the
-                        // triangle: the primary rays' must stay above it, or it misses a
-                        // triangle it faces.
-                        let seen = (methods.triangle == TriangleMethod::MollerTrumbore)
-                            .then(|| smallest_determinant(eye, aperture, corners))
-                            .flatten()
-                            .map(|det| {
-                                (
-                                    "Möller–Trumbore's numerators (or 1) over a primary ray's \
-                                     determinant",
-                                    reciprocal_multiples(origin, eye, corners) / det,
-                                    Remedy::LargerTriangle,
-                                )
-                            });
-                        [Some((quantity, value, Remedy::ShrinkWorld)), seen, None]
-                    }
+    let meshes = desc
+        .objects
+        .iter()
+        .any(|object| matches!(object.shape, ShapeDesc::Mesh { .. }))
+        .then(|| {
+            scene(
+                "a ray's midpoint less a mesh's box's centre",
+                box_magnitude(world, slack),
+                Remedy::ShrinkWorld,
+            )
+        });
+    let objects = desc.primitives().flat_map(move |(i, object)| {
+        let item = Item::Object(i);
+        let shape: [Option<(&'static str, f64, Remedy)>; 3] = match object.shape {
+            ShapeDesc::Sphere { center, radius } => {
+                let (c, r) = (distance(center, eye), f64::from(radius));
+                let f = origin + c;
+                let square = match methods.sphere {
+                    SphereMethod::Quadratic => ("b² − c in the quadratic", f * f + r * r),
+                    SphereMethod::Stable => ("|o − c|² in the stable form", f * f),
                 };
-                let refraction = (object.material.transmission > 0.0).then(|| {
-                    let ior = f64::from(object.material.ior);
-                    ("η² in Snell's law", ior * ior + 1.0, Remedy::LowerIor)
-                });
-                shape.into_iter().chain([refraction]).flatten().map(
-                    move |(quantity, value, remedy)| Magnitude {
-                        item,
-                        quantity,
-                        value,
-                        remedy,
-                    },
-                )
-            });
-    global.into_iter().chain(objects)
+                [
+                    Some((square.0, square.1, Remedy::ShrinkWorld)),
+                    Some((
+                        "the sphere's roots, |b| + √(b² + r²)",
+                        f + (f * f + r * r).sqrt(),
+                        Remedy::ShrinkWorld,
+                    )),
+                    Some((
+                        "a hit point less the sphere's centre",
+                        along + c,
+                        Remedy::ShrinkWorld,
+                    )),
+                ]
+            }
+            ShapeDesc::Plane { checker, .. } => [
+                Some((
+                    "a hit less the eye's foot on the plane",
+                    along + world,
+                    Remedy::ShrinkWorld,
+                )),
+                checker.map(|checker| {
+                    let size = f64::from(checker.size);
+                    (
+                        "a checker coordinate",
+                        checker_reach(origin, world) / size + CHECKER_PERIOD,
+                        Remedy::LargerSquares,
+                    )
+                }),
+                None,
+            ],
+            // Its triangles are bounded one by one ([`SceneDesc::primitives`]).
+            ShapeDesc::Mesh { .. } => [None, None, None],
+            ShapeDesc::Triangle { vertices } => {
+                let corners = vertices.map(Vec3::from_f32);
+                let eye = Vec3::from_f32(eye);
+                let (quantity, value) = triangle_magnitude(methods.triangle, origin, eye, corners);
+                // Möller–Trumbore takes a determinant below numerators/range (or
+                // 1/range, where 1/det itself would not fit) for a ray parallel to the
+                // triangle: the primary rays' must stay above it, or it misses a
+                // triangle it faces.
+                let seen = (methods.triangle == TriangleMethod::MollerTrumbore)
+                    .then(|| smallest_determinant(eye, aperture, corners))
+                    .flatten()
+                    .map(|det| {
+                        (
+                            "Möller–Trumbore's numerators (or 1) over a primary ray's \
+                                     determinant",
+                            reciprocal_multiples(origin, eye, corners) / det,
+                            Remedy::LargerTriangle,
+                        )
+                    });
+                [Some((quantity, value, Remedy::ShrinkWorld)), seen, None]
+            }
+        };
+        let refraction = (object.material.transmission > 0.0).then(|| {
+            let ior = f64::from(object.material.ior);
+            ("η² in Snell's law", ior * ior + 1.0, Remedy::LowerIor)
+        });
+        shape
+            .into_iter()
+            .chain([refraction])
+            .flatten()
+            .map(move |(quantity, value, remedy)| Magnitude {
+                item,
+                quantity,
+                value,
+                remedy,
+            })
+    });
+    global.into_iter().chain(meshes).chain(objects)
 }
 
 /// The farthest a point of a plane's surface is from its checkerboard's origin: the point
@@ -565,7 +582,8 @@ fn locating(shape: &ShapeDesc, methods: &Methods, from: f64, eye: [f32; 3]) -> T
             tolerance_terms(from, Some(r))
                 .plus(discriminant_error(methods.sphere, r, from + r).times(0.5 / r))
         }
-        ShapeDesc::Plane { .. } => tolerance_terms(from, None),
+        // Its triangles are located one by one ([`SceneDesc::primitives`]).
+        ShapeDesc::Plane { .. } | ShapeDesc::Mesh { .. } => tolerance_terms(from, None),
         ShapeDesc::Triangle { vertices } => {
             let [a, b, c] = vertices.map(Vec3::from_f32);
             let (e1, e2) = (b - a, c - a);
@@ -602,6 +620,8 @@ pub(crate) fn finding_error<S: Scalar>(
         + match *shape {
             ShapeDesc::Sphere { center, radius } => distance(center, eye) + f64::from(radius),
             ShapeDesc::Plane { point, .. } => distance(point, eye),
+            // A mesh's is its triangles' largest, which its scene build takes.
+            ShapeDesc::Mesh { .. } => return None,
             ShapeDesc::Triangle { .. } if methods.triangle == TriangleMethod::MollerTrumbore => {
                 return None;
             }
@@ -633,20 +653,16 @@ pub fn features<'a>(
 ) -> impl Iterator<Item = Feature> + 'a {
     let world = f64::from(desc.far);
     let eye = desc.camera.eye;
-    let objects = desc
-        .objects
-        .iter()
-        .enumerate()
-        .flat_map(move |(i, object)| {
-            // Built when asked for, one at a time, so that the iterator holds no array of
-            // features: on a microcontroller a scene is built on the stack the tracer needs.
-            (0..OBJECT_FEATURES).filter_map(move |k| {
-                object_features(desc, methods, i, object)
-                    .into_iter()
-                    .nth(k)
-                    .flatten()
-            })
-        });
+    let objects = desc.primitives().flat_map(move |(i, object)| {
+        // Built when asked for, one at a time, so that the iterator holds no array of
+        // features: on a microcontroller a scene is built on the stack the tracer needs.
+        (0..OBJECT_FEATURES).filter_map(move |k| {
+            object_features(desc, methods, i, &object)
+                .into_iter()
+                .nth(k)
+                .flatten()
+        })
+    });
     let lights = desc.lights.iter().enumerate().flat_map(move |(i, light)| {
         let item = Item::Light(i);
         let intensity = light.colour.iter().copied().fold(0.0_f32, f32::max);
@@ -666,11 +682,11 @@ pub fn features<'a>(
         // point within its radius.
         let position = Vec3::from_f32(light.position);
         let reach = world + distance(light.position, eye) + f64::from(light.radius);
-        let clear = desc.objects.iter().map(move |object| Feature {
+        let clear = desc.primitives().map(move |(_, object)| Feature {
             item,
             quantity: "its distance from a surface (less its radius), against the error with \
                        which a shadow ray finds the surface",
-            value: clearance(object, position) - f64::from(light.radius),
+            value: clearance(&object, position) - f64::from(light.radius),
             terms: locating(&object.shape, methods, reach, eye),
             steps: SIDE_STEPS,
             remedy: Remedy::MoveLight,
@@ -847,6 +863,8 @@ fn object_features(
                 product,
             ]
         }
+        // A mesh's triangles are features one by one ([`SceneDesc::primitives`]).
+        ShapeDesc::Mesh { .. } => [None, None, None, None],
     }
 }
 
@@ -1131,6 +1149,8 @@ pub fn clearance(object: &ObjectDesc, point: Vec3<f64>) -> f64 {
         ShapeDesc::Triangle { vertices } => {
             distance_to_triangle(point, vertices.map(Vec3::from_f32))
         }
+        // Its triangles are measured one by one ([`SceneDesc::primitives`]).
+        ShapeDesc::Mesh { .. } => f64::INFINITY,
     }
 }
 

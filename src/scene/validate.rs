@@ -4,8 +4,12 @@
 use super::error::{Item, SceneError};
 use super::range::{self, distance};
 use crate::camera::Frame;
-use crate::desc::{BackgroundDesc, CameraDesc, LightDesc, MaterialDesc, SceneDesc, ShapeDesc};
+use crate::desc::{
+    BackgroundDesc, CameraDesc, LightDesc, MaterialDesc, MeshesDesc, SceneDesc, ShapeDesc,
+    triangle_has_area,
+};
 use crate::pattern::MAX_SAMPLES;
+use crate::shape::mesh::MAX_DEPTH;
 use crate::vec3::Vec3;
 
 /// What `samples` and `shadow_samples` must be, in words: from 1 to [`MAX_SAMPLES`].
@@ -49,13 +53,19 @@ pub(super) fn validate(desc: &SceneDesc<'_>) -> Result<Frame, SceneError> {
     inside_world(Item::Camera, frame.aperture, desc.far)?;
     let eye = Vec3::from_f32(desc.camera.eye);
     for (i, object) in desc.objects.iter().enumerate() {
+        material(Item::Object(i), &object.material)?;
+        if let ShapeDesc::Mesh { root } = object.shape {
+            hierarchy(Item::Object(i), &desc.meshes, root, desc)?;
+        }
+    }
+    mesh_corners(desc)?;
+    for (i, object) in desc.primitives() {
         let item = Item::Object(i);
-        material(item, &object.material)?;
         let reach = shape(item, &object.shape, desc.camera.eye)?;
         inside_world(item, reach, desc.far)?;
         // Every lens point must be on the eye's side of every surface (the eye itself must
         // be clear of them by the format's error: the range proof's).
-        let clearance = range::clearance(object, eye);
+        let clearance = range::clearance(&object, eye);
         if frame.aperture > 0.0 && frame.aperture >= clearance {
             return Err(SceneError::LensTouches {
                 object: i,
@@ -195,13 +205,13 @@ fn shape(item: Item, shape: &ShapeDesc, eye: [f32; 3]) -> Result<f64, SceneError
             let to_eye = Vec3::from_f32(eye) - Vec3::from_f32(point);
             Ok(n.dot(to_eye).abs())
         }
+        // Checked triangle by triangle ([`SceneDesc::primitives`]), never as a whole.
+        ShapeDesc::Mesh { .. } => Ok(0.0),
         ShapeDesc::Triangle { vertices } => {
             for v in &vertices {
                 finite(item, "shape.triangle.vertices", v)?;
             }
-            let [a, b, c] = vertices.map(Vec3::from_f32);
-            let (e1, e2) = (b - a, c - a);
-            if e1.cross(e2).length() <= f64::from(f32::EPSILON) * e1.length() * e2.length() {
+            if !triangle_has_area(vertices) {
                 return Err(SceneError::DegenerateTriangle { item });
             }
             Ok(vertices
@@ -209,6 +219,98 @@ fn shape(item: Item, shape: &ShapeDesc, eye: [f32; 3]) -> Result<f64, SceneError
                 .map(|&v| distance(v, eye))
                 .fold(0.0, f64::max))
         }
+    }
+}
+
+/// Checks the hierarchy of the mesh of object `item` under node `root`: each node's triangles
+/// within the scene's, its children after it and splitting its triangles between them, its box
+/// finite, within the world's bounds about the eye, holding its children's boxes and a leaf's
+/// triangles, and no node deeper than [`MAX_DEPTH`] below the root.
+fn hierarchy(
+    item: Item,
+    meshes: &MeshesDesc<'_>,
+    root: u32,
+    desc: &SceneDesc<'_>,
+) -> Result<(), SceneError> {
+    let malformed = |what: &'static str| SceneError::MalformedMesh { item, what };
+    let far = f64::from(desc.far);
+    let eye = Vec3::from_f32(desc.camera.eye).to_f64();
+    let node_at = |index: u32| meshes.nodes.get(index as usize);
+    let mut waiting: heapless::Vec<(u32, usize), { MAX_DEPTH + 2 }> = heapless::Vec::new();
+    let _ = waiting.push((root, 0));
+    while let Some((index, depth)) = waiting.pop() {
+        let node = node_at(index).ok_or(malformed("a node it names is not among the nodes"))?;
+        if depth > MAX_DEPTH {
+            return Err(malformed(
+                "its hierarchy is deeper than obscura::mesh::MAX_DEPTH",
+            ));
+        }
+        let corners = [node.min, node.max];
+        let within = corners
+            .iter()
+            .flatten()
+            .zip(eye.iter().cycle())
+            .all(|(&x, &e)| x.is_finite() && (f64::from(x) - e).abs() <= far);
+        let ordered = node
+            .min
+            .iter()
+            .zip(node.max)
+            .all(|(&low, high)| low <= high);
+        if !within || !ordered {
+            return Err(malformed(
+                "a box is not finite, not ordered or beyond the world",
+            ));
+        }
+        let holds = |p: [f32; 3]| {
+            p.iter()
+                .zip(node.min.iter().zip(&node.max))
+                .all(|(x, (low, high))| low <= x && x <= high)
+        };
+        if node.first >= node.end || node.end as usize > meshes.triangles.len() {
+            return Err(malformed(
+                "a node's triangles are none or not among the triangles",
+            ));
+        }
+        if node.right == 0 {
+            let inside = meshes
+                .triangles_of(index)
+                .iter()
+                .all(|&t| meshes.corners(t).into_iter().all(holds));
+            if !inside {
+                return Err(malformed("a leaf's box does not hold its triangles"));
+            }
+            continue;
+        }
+        let left = index.saturating_add(1);
+        let (Some(l), Some(r)) = (node_at(left), node_at(node.right)) else {
+            return Err(malformed("a node it names is not among the nodes"));
+        };
+        let split =
+            node.right > left && l.first == node.first && l.end == r.first && r.end == node.end;
+        if !split || ![l.min, l.max, r.min, r.max].into_iter().all(holds) {
+            return Err(malformed(
+                "a node's children do not split its triangles within its box",
+            ));
+        }
+        let _ = waiting.push((node.right, depth + 1));
+        let _ = waiting.push((left, depth + 1));
+    }
+    Ok(())
+}
+
+/// Checks that every corner of every mesh triangle is one of the meshes' vertices.
+fn mesh_corners(desc: &SceneDesc<'_>) -> Result<(), SceneError> {
+    let meshes = &desc.meshes;
+    match meshes
+        .triangles
+        .iter()
+        .position(|t| t.iter().any(|&i| meshes.vertices.get(i as usize).is_none()))
+    {
+        Some(_) => Err(SceneError::MalformedMesh {
+            item: Item::Scene,
+            what: "a triangle names a corner that is not among the vertices",
+        }),
+        None => Ok(()),
     }
 }
 

@@ -1,6 +1,7 @@
 //! The geometric primitives, one file each, and [`Shape`], which dispatches between them by
 //! the chosen [`Methods`].
 
+pub mod mesh;
 mod plane;
 mod sphere;
 mod triangle;
@@ -15,9 +16,11 @@ use crate::ray::{Ray, Span};
 use crate::scalar::Scalar;
 use crate::uses::Uses;
 use crate::vec3::Vec3;
+use mesh::{Meshes, Search};
 
-/// Where a ray meets a shape: the distance along it, and on a triangle the barycentric
-/// coordinates of the point, a + u·e1 + v·e2 = (1 − u − v)·a + u·b + v·c (zero on the others).
+/// Where a ray meets a shape: the distance along it, on a triangle the barycentric
+/// coordinates of the point, a + u·e1 + v·e2 = (1 − u − v)·a + u·b + v·c (zero on the others),
+/// and on a mesh which of its triangles.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Intersection<S> {
     /// The distance along the ray.
@@ -26,6 +29,8 @@ pub struct Intersection<S> {
     pub u: S,
     /// The weight of a triangle's third vertex.
     pub v: S,
+    /// The index of a mesh's triangle met (0 on other shapes).
+    pub part: u32,
 }
 
 impl<S: Scalar> Intersection<S> {
@@ -37,6 +42,7 @@ impl<S: Scalar> Intersection<S> {
             t,
             u: S::ZERO,
             v: S::ZERO,
+            part: 0,
         }
     }
 }
@@ -50,27 +56,32 @@ pub enum Shape<S> {
     Plane(Plane<S>),
     /// A triangle.
     Triangle(Triangle<S>),
+    /// A mesh: the index of its hierarchy's root among the scene's nodes ([`crate::shape::mesh`]).
+    Mesh(u32),
 }
 
 crate::words::words_of_enum!(Shape<S> {
     Sphere(sphere) if Uses::SPHERES,
     Plane(plane) if Uses::PLANES,
-    Triangle(triangle) if Uses::TRIANGLES
+    Triangle(triangle) if Uses::TRIANGLES,
+    Mesh(root) if Uses::MESHES
 });
 
 impl<S: Scalar> Shape<S> {
     /// The nearest point in `span` at which `ray` meets the shape; `per_ray` carries what the
-    /// tests of this ray against several shapes share. A kind of shape `uses` leaves out is
-    /// met nowhere: no scene of a tracer without it has one ([`crate::Uses`]).
+    /// tests of this ray against several shapes share, `meshes` where a mesh's triangles are
+    /// and what its search may skip. A kind of shape `uses` leaves out is met nowhere: no
+    /// scene of a tracer without it has one ([`crate::Uses`]).
     #[inline(always)]
     #[must_use]
-    pub fn intersect(
+    pub fn intersect<M: Meshes<S>>(
         &self,
         ray: &Ray<S>,
         span: Span<S>,
         methods: &Methods,
         uses: Uses,
         per_ray: &mut PerRay<S>,
+        meshes: &Search<'_, S, M>,
     ) -> Option<Intersection<S>> {
         match self {
             Self::Sphere(sphere) if uses.contains(Uses::SPHERES) => sphere
@@ -82,7 +93,12 @@ impl<S: Scalar> Shape<S> {
             Self::Triangle(triangle) if uses.contains(Uses::TRIANGLES) => {
                 triangle.intersect_sharing(ray, span, methods.triangle, methods.roots, per_ray)
             }
-            Self::Sphere(_) | Self::Plane(_) | Self::Triangle(_) => None,
+            Self::Mesh(root) if uses.contains(Uses::MESHES) => {
+                meshes.run(*root, ray, span, |triangle, span| {
+                    triangle.intersect_sharing(ray, span, methods.triangle, methods.roots, per_ray)
+                })
+            }
+            Self::Sphere(_) | Self::Plane(_) | Self::Triangle(_) | Self::Mesh(_) => None,
         }
     }
 
@@ -103,14 +119,15 @@ impl<S: Scalar> Shape<S> {
             Self::Sphere(sphere) if into && uses.contains(Uses::SPHERES) => sphere
                 .exit(ray, span, methods.sphere, methods.roots)
                 .map(Intersection::at),
-            Self::Sphere(_) | Self::Plane(_) | Self::Triangle(_) => None,
+            Self::Sphere(_) | Self::Plane(_) | Self::Triangle(_) | Self::Mesh(_) => None,
         }
     }
 
     /// The surface point of a hit of `ray`, and the unit normal there (outward for a sphere).
     /// Secondary rays start from the surface itself, not from wherever the rounding of o + t·d
     /// put the hit: on a sphere the point nearest it, on a plane its projection, on a triangle
-    /// the point of its barycentric coordinates.
+    /// the point of its barycentric coordinates (on a mesh, of its triangle in `meshes`, which a
+    /// tracer without meshes does not give).
     #[inline]
     #[must_use]
     pub fn surface(
@@ -118,11 +135,17 @@ impl<S: Scalar> Shape<S> {
         ray: &Ray<S>,
         hit: &Intersection<S>,
         roots: RootMethod,
+        meshes: Option<&impl Meshes<S>>,
     ) -> (Vec3<S>, Vec3<S>) {
+        let on = |triangle: &Triangle<S>| (triangle.at(hit.u, hit.v), triangle.normal());
         match self {
             Self::Sphere(sphere) => sphere.surface(ray.at(hit.t), roots),
             Self::Plane(plane) => (plane.project(ray.at(hit.t)), plane.normal()),
-            Self::Triangle(triangle) => (triangle.at(hit.u, hit.v), triangle.normal()),
+            Self::Triangle(triangle) => on(triangle),
+            // The search found the triangle there, so it is there (in a tracer with meshes).
+            Self::Mesh(_) => meshes
+                .and_then(|meshes| meshes.triangle(hit.part))
+                .map_or_else(|| (ray.at(hit.t), -ray.dir), |triangle| on(&triangle)),
         }
     }
 
@@ -132,12 +155,12 @@ impl<S: Scalar> Shape<S> {
     pub fn surface_colour(&self, point: Vec3<S>, material_colour: Rgb<S>) -> Rgb<S> {
         match self {
             Self::Plane(plane) => plane.pattern_colour(point).unwrap_or(material_colour),
-            Self::Sphere(_) | Self::Triangle(_) => material_colour,
+            Self::Sphere(_) | Self::Triangle(_) | Self::Mesh(_) => material_colour,
         }
     }
 
     /// Whether the shape encloses a volume, so that a ray can be inside it and refraction
-    /// bends rays in and out. Planes and triangles are thin sheets.
+    /// bends rays in and out. Planes, triangles and meshes are thin sheets.
     #[inline]
     #[must_use]
     pub const fn is_solid(&self) -> bool {

@@ -121,7 +121,8 @@ impl<S: Scalar> Triangle<S> {
             return None;
         }
         let t = roots.div(s.dot(self.e1_cross_e2), det);
-        span.contains(t).then_some(Intersection { t, u, v })
+        span.contains(t)
+            .then_some(Intersection { t, u, v, part: 0 })
     }
 
     /// Möller and Trumbore (1997): with p = d × e2, det = e1·p, s = o − a and q = s × e1,
@@ -149,7 +150,8 @@ impl<S: Scalar> Triangle<S> {
             return None;
         }
         let t = self.e2.dot(q) * inverse;
-        span.contains(t).then_some(Intersection { t, u, v })
+        span.contains(t)
+            .then_some(Intersection { t, u, v, part: 0 })
     }
 
     /// Woop, Benthin and Wald (2013). The vertices are moved to the ray's origin and sheared so
@@ -189,6 +191,7 @@ impl<S: Scalar> Triangle<S> {
             t,
             u: roots.div(v_edge, det),
             v: roots.div(w_edge, det),
+            part: 0,
         })
     }
 

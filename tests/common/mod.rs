@@ -62,7 +62,7 @@ pub fn render<S: Scalar>(
     let objects = (0..height)
         .filter_map(|y| camera.row(y))
         .flat_map(|row| row.rays())
-        .map(|ray| scene.first_hit(&ray))
+        .map(|ray| scene.first_hit(&ray).map(|(object, _)| object))
         .collect();
     (frame, objects)
 }

@@ -35,7 +35,8 @@ use embedded_hal_bus::spi::ExclusiveDevice;
 use mipidsi::interface::SpiInterface;
 use mipidsi::models::ST7789;
 use mipidsi::options::ColorInversion;
-use obscura::{Camera, Corner, Presentation, RenderError, Scalar, Scene, send_row, trace_row};
+use obscura::mesh::MeshWords;
+use obscura::{Bits, Camera, Corner, Presentation, RenderError, Scene, send_row, trace_row};
 use obscura_firmware::SIDE;
 use obscura_firmware::clock::Clock;
 use obscura_firmware::frames::{self, Backend, CORNER_ROWS, FrameError, Job, Report};
@@ -213,14 +214,14 @@ impl<D: DrawTarget<Color = Rgb565, Error: fmt::Debug>> Backend for Pico<D> {
     /// Shares the rows with core 1: of each pair in the frame's order, core 1 traces the second
     /// while this core traces and sends the first; then this core sends core 1's.
     fn draw_frame<
-        S: Scalar,
+        S: Bits,
         const OBJECTS: usize,
         const LIGHTS: usize,
         const RAYS: usize,
         const USES: u32,
     >(
         &mut self,
-        scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES>,
+        scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES, MeshWords<S>>,
         camera: &Camera<S>,
         presentation: Presentation,
     ) -> Result<(), FrameError<Self>> {

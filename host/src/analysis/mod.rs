@@ -491,7 +491,7 @@ pub fn extents(desc: &SceneDesc<'_>) -> Extents {
         }
     };
     let (mut smallest_radius, mut shortest_edge, mut smallest_square) = (None, None, None);
-    for (i, object) in desc.objects.iter().enumerate() {
+    for (i, object) in desc.primitives() {
         match object.shape {
             ShapeDesc::Sphere { center, radius } => {
                 let (c, r) = (Vec3::from_f32(center), f64::from(radius));
@@ -513,13 +513,14 @@ pub fn extents(desc: &SceneDesc<'_>) -> Extents {
                     smallest(&mut smallest_square, f64::from(checker.size), i);
                 }
             }
+            // Never a primitive: its triangles are.
+            ShapeDesc::Mesh { .. } => {}
         }
     }
     // A lens's rays start up to its aperture nearer.
     let nearest = desc
-        .objects
-        .iter()
-        .map(|object| range::clearance(object, eye) - f64::from(desc.camera.aperture))
+        .primitives()
+        .map(|(_, object)| range::clearance(&object, eye) - f64::from(desc.camera.aperture))
         .fold(f64::INFINITY, f64::min);
     Extents {
         objects: desc.objects.len(),
@@ -541,7 +542,7 @@ fn bits(desc: &SceneDesc<'_>, methods: Methods) -> Vec<Bits> {
         Item::Object(i) => desc.objects.get(i).map(|o| match o.shape {
             ShapeDesc::Sphere { .. } => "sphere",
             ShapeDesc::Plane { .. } => "plane",
-            ShapeDesc::Triangle { .. } => "triangle",
+            ShapeDesc::Triangle { .. } | ShapeDesc::Mesh { .. } => "triangle",
         }),
         _ => None,
     };

@@ -14,7 +14,7 @@ use crate::analysis::{self, Analysis, Pick, pick};
 use crate::cli::{AutoArgs, Command, RefusalArgs, SceneArgs};
 use crate::cost::Machine;
 use crate::output::say;
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
 use obscura::Methods;
 use obscura::scenes;
 use obscura_scene::{Format, FormatChoice, NamedScene, OwnedScene, Sampling};
@@ -44,6 +44,20 @@ pub fn run(command: Command) -> Result<()> {
         Command::Chart(args) => chart::run(&args),
         Command::Stress(args) => stress::run(&args),
         Command::Fuzz(args) => fuzz::run(&args),
+        Command::Teapot(args) => {
+            let steps = usize::from(args.steps);
+            let (vertices, triangles) = crate::teapot::teapot(steps);
+            std::fs::write(&args.output, crate::teapot::teapot_obj(steps))
+                .with_context(|| format!("cannot write {}", args.output.display()))?;
+            say!(
+                "wrote the teapot at {} steps a patch to {}: {} triangles on {} vertices",
+                args.steps,
+                args.output.display(),
+                triangles.len(),
+                vertices.len()
+            )?;
+            Ok(())
+        }
     }
 }
 

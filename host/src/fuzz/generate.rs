@@ -8,7 +8,7 @@ use obscura::{
     BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, ObjectDesc, ShapeDesc, Vec3,
     Y_UP,
 };
-use obscura_scene::OwnedScene;
+use obscura_scene::{OwnedMeshes, OwnedScene};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 
@@ -158,6 +158,7 @@ impl Generator {
         let scene = OwnedScene {
             camera: CameraDesc::pinhole(f32s(eye), f32s(look_at), f32s(up), vfov as f32),
             objects,
+            meshes: OwnedMeshes::default(),
             lights,
             ambient: self.bright().map(|c| c * 0.3),
             background,
@@ -243,6 +244,8 @@ impl Generator {
                 .iter()
                 .map(|&v| (Vec3::from_f32(v) - eye).length())
                 .fold(0.0, f64::max),
+            // The generator's scenes have none.
+            ShapeDesc::Mesh { .. } => 0.0,
         };
         let lights = scene
             .lights
@@ -277,6 +280,7 @@ impl Generator {
                     ShapeDesc::Triangle { vertices } => ShapeDesc::Triangle {
                         vertices: vertices.map(out),
                     },
+                    mesh @ ShapeDesc::Mesh { .. } => mesh,
                 };
             }
         }
@@ -453,6 +457,8 @@ impl Generator {
                     let n = scale(n, 1.0 / norm(n).max(1e-30));
                     add(on, scale(n, unit * self.log_uniform(1e-7, 1.0)))
                 }
+                // The generator's scenes have none.
+                ShapeDesc::Mesh { .. } => eye,
             },
             None => add(
                 eye,

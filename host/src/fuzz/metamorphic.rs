@@ -136,7 +136,7 @@ pub fn nudge_is_small(scene: &OwnedScene, width: u32, height: u32) -> bool {
         ShapeDesc::Sphere { center, radius } => {
             (Vec3::from_f32(center) - eye).length() < f64::from(radius)
         }
-        ShapeDesc::Plane { .. } | ShapeDesc::Triangle { .. } => false,
+        ShapeDesc::Plane { .. } | ShapeDesc::Triangle { .. } | ShapeDesc::Mesh { .. } => false,
     });
     if area_lights(scene) || enclosed {
         return false;
@@ -144,9 +144,9 @@ pub fn nudge_is_small(scene: &OwnedScene, width: u32, height: u32) -> bool {
     let nudge = (Vec3::from_f32(scene.camera.eye.map(f32::next_up)) - eye).length();
     let pixel = pixel_angle(&scene.desc(), width, height);
     let nearest = scene
-        .objects
-        .iter()
-        .map(|object| {
+        .desc()
+        .primitives()
+        .map(|(_, object)| {
             let plane = match object.shape {
                 ShapeDesc::Triangle { vertices } => {
                     let [a, b, c] = vertices.map(Vec3::from_f32);
@@ -155,9 +155,11 @@ pub fn nudge_is_small(scene: &OwnedScene, width: u32, height: u32) -> bool {
                         .direction()
                         .map_or(0.0, |n| n.dot(eye - a).abs())
                 }
-                ShapeDesc::Sphere { .. } | ShapeDesc::Plane { .. } => f64::INFINITY,
+                ShapeDesc::Sphere { .. } | ShapeDesc::Plane { .. } | ShapeDesc::Mesh { .. } => {
+                    f64::INFINITY
+                }
             };
-            range::clearance(object, eye).min(plane)
+            range::clearance(&object, eye).min(plane)
         })
         .fold(f64::INFINITY, f64::min);
     // Squares narrower than a pixel at the world's edge alias there: every pixel has edges
@@ -169,7 +171,8 @@ pub fn nudge_is_small(scene: &OwnedScene, width: u32, height: u32) -> bool {
         } => f64::from(checker.size) < f64::from(scene.far) * pixel,
         ShapeDesc::Plane { checker: None, .. }
         | ShapeDesc::Sphere { .. }
-        | ShapeDesc::Triangle { .. } => false,
+        | ShapeDesc::Triangle { .. }
+        | ShapeDesc::Mesh { .. } => false,
     });
     !fine_squares && nudge < NUDGE_PIXELS * pixel * nearest
 }

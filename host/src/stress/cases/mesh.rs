@@ -1,5 +1,6 @@
-//! A closed mesh of triangles sharing edges (an octahedron), and rays aimed from outside at its
-//! edges and vertices, each bound to enter it there: the rays that slip through (and meet
+//! A closed mesh of triangles sharing edges (an octahedron, as eight triangles and as one mesh
+//! through its hierarchy), and rays aimed from outside at its edges and vertices, each bound
+//! to enter it there: the rays that slip through (and meet
 //! only the far side, or nothing) are cracks. They must
 //! be none for the watertight test; for the others the count is reported, their known weakness.
 
@@ -9,8 +10,8 @@ use crate::render::HostScene;
 use crate::stress::{Case, Outcome, Row};
 use anyhow::Result;
 use obscura::methods::MethodName;
-use obscura::{Methods, ObjectDesc, Ray, Scalar, ShapeDesc, TriangleMethod, Vec3};
-use obscura_scene::FormatJob;
+use obscura::{Methods, ObjectDesc, Ray, Scalar, SceneDesc, ShapeDesc, TriangleMethod, Vec3};
+use obscura_scene::{FormatJob, OwnedMeshes};
 
 pub const CASE: Case = Case {
     name: "mesh",
@@ -20,6 +21,12 @@ pub const CASE: Case = Case {
     y_label: "rays slipping through (%)",
     run: |format| format.run::<Checked, _>(Job),
 };
+
+/// The rows' names of the triangle methods, in the order of [`TriangleMethod::ALL`]: the
+/// octahedron's faces as eight triangles, and as one mesh through its hierarchy.
+const TRIANGLES: &[&str] = &["cramer", "moller-trumbore", "watertight"];
+/// See [`TRIANGLES`].
+const IN_A_MESH: &[&str] = &["cramer, mesh", "moller-trumbore, mesh", "watertight, mesh"];
 
 /// Points along each edge a ray is aimed at, as fractions of it (0 is a vertex).
 const ALONG: usize = 64;
@@ -89,17 +96,43 @@ impl FormatJob for Job {
                     material: MATTE,
                 })
                 .collect();
-            let desc = bare(&objects, (distance + 4.0) as f32);
+            // The same faces as one mesh, through its hierarchy.
+            let mut meshes = OwnedMeshes::default();
+            let corners_f32: Vec<[f32; 3]> = corners.iter().map(|c| c.map(|x| x as f32)).collect();
+            let faces_u32: Vec<[u32; 3]> = faces.iter().map(|f| f.map(|i| i as u32)).collect();
+            let root = meshes
+                .add(&corners_f32, &faces_u32)
+                .map_err(|error| anyhow::anyhow!("the octahedron as a mesh: {error:?}"))?
+                .root;
+            let mesh = [ObjectDesc {
+                shape: ShapeDesc::Mesh { root },
+                material: MATTE,
+            }];
+            let far = (distance + 4.0) as f32;
+            let forms = [
+                (bare(&objects, far), TRIANGLES),
+                (
+                    SceneDesc {
+                        meshes: meshes.desc(),
+                        ..bare(&mesh, far)
+                    },
+                    IN_A_MESH,
+                ),
+            ];
             let edges: Vec<(usize, usize)> = (0..6)
                 .flat_map(|i| (i + 1..6).map(move |j| (i, j)))
                 .filter(|&(i, j)| i / 2 != j / 2)
                 .collect();
-            for &(method, name) in TriangleMethod::ALL {
+            for ((desc, &name), &(method, _)) in forms
+                .iter()
+                .flat_map(|(desc, names)| names.iter().map(move |name| (desc, name)))
+                .zip(TriangleMethod::ALL.iter().cycle())
+            {
                 let methods = Methods {
                     triangle: method,
                     ..Methods::LECTURE
                 };
-                let scene = match HostScene::<S>::build_with(&desc, methods) {
+                let scene = match HostScene::<S>::build_with(desc, methods) {
                     Ok(scene) => scene,
                     Err(error) => {
                         rows.push(refused(S::NAME, name, distance, &error));
@@ -111,8 +144,10 @@ impl FormatJob for Job {
                     for u in (0..ALONG).map(|k| k as f64 / ALONG as f64) {
                         // The faces around the point: those with both ends of the edge, or
                         // with its first corner where the point is that corner.
-                        let at_target =
-                            |face: [usize; 3]| face.contains(&i) && (u == 0.0 || face.contains(&j));
+                        let at_target = |face: [u32; 3]| {
+                            let has = |corner: usize| face.iter().any(|&c| c as usize == corner);
+                            has(i) && (u == 0.0 || has(j))
+                        };
                         let target: [f64; 3] = std::array::from_fn(|k| {
                             corners[i][k] + u * (corners[j][k] - corners[i][k])
                         });
@@ -138,9 +173,17 @@ impl FormatJob for Job {
                             };
                             // It must enter through a face at the point aimed at; one that
                             // meets only the far side has slipped through a crack.
-                            let entered = scene
-                                .first_hit(&Ray::new(o, d))
-                                .is_some_and(|face| at_target(faces[face]));
+                            let entered =
+                                scene
+                                    .first_hit(&Ray::new(o, d))
+                                    .is_some_and(|(object, part)| {
+                                        match desc.objects[object].shape {
+                                            ShapeDesc::Mesh { .. } => {
+                                                at_target(desc.meshes.triangles[part as usize])
+                                            }
+                                            _ => at_target(faces_u32[object]),
+                                        }
+                                    });
                             tally.record(entered, true, || false);
                         }
                     }

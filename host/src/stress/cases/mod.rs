@@ -16,7 +16,9 @@ use super::check::{ImageCheck, image};
 use super::{Case, Outcome, Row};
 use crate::render::HostScene;
 use anyhow::Context as _;
-use obscura::{BackgroundDesc, CameraDesc, MaterialDesc, Methods, Scalar, SceneDesc, SceneError};
+use obscura::{
+    BackgroundDesc, CameraDesc, MaterialDesc, MeshesDesc, Methods, Scalar, SceneDesc, SceneError,
+};
 
 /// Every case, in the order they run.
 pub static CASES: [Case; 11] = [
@@ -45,6 +47,7 @@ fn bare<'a>(objects: &'a [obscura::ObjectDesc], far: f32) -> SceneDesc<'a> {
     SceneDesc {
         camera: CAMERA,
         objects,
+        meshes: MeshesDesc::NONE,
         lights: &[],
         ambient: [0.2; 3],
         background: BackgroundDesc::Solid([0.0; 3]),

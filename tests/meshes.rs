@@ -1,0 +1,270 @@
+//! Meshes: a mesh traces as its triangles do (its hierarchy skips no triangle a ray meets), in
+//! every format, and a hierarchy that is not what `build_hierarchy` makes is refused.
+
+use obscura::mesh::{MeshStorage, Meshes, Node, build_hierarchy};
+use obscura::pattern::SampleId;
+use obscura::shape::Triangle;
+use obscura::{
+    BackgroundDesc, CameraDesc, I16F16, LightDesc, MaterialDesc, MeshesDesc, NodeDesc, ObjectDesc,
+    Scalar, Scene, SceneDesc, SceneError, ShapeDesc, Uses,
+};
+
+/// A scene's meshes in `Vec`s, as a desktop keeps them.
+#[derive(Clone, Debug, PartialEq)]
+struct Vecs<S> {
+    nodes: Vec<Node<S>>,
+    triangles: Vec<Triangle<S>>,
+}
+
+impl<S> Default for Vecs<S> {
+    fn default() -> Self {
+        Self {
+            nodes: Vec::new(),
+            triangles: Vec::new(),
+        }
+    }
+}
+
+impl<S: Copy> Meshes<S> for Vecs<S> {
+    fn node(&self, index: u32) -> Option<Node<S>> {
+        self.nodes.get(index as usize).copied()
+    }
+    fn triangle(&self, index: u32) -> Option<Triangle<S>> {
+        self.triangles.get(index as usize).copied()
+    }
+}
+
+impl<S: Copy> MeshStorage<S> for Vecs<S> {
+    fn capacity(&self) -> usize {
+        usize::MAX
+    }
+    fn push_node(&mut self, node: Node<S>) -> bool {
+        self.nodes.push(node);
+        true
+    }
+    fn push_triangle(&mut self, triangle: Triangle<S>) -> bool {
+        self.triangles.push(triangle);
+        true
+    }
+}
+
+type MeshScene<S> = Scene<S, 48, 2, 4, { Uses::EVERYTHING.bits() }, Vecs<S>>;
+
+/// An octahedron about (0, 1, 4) with each face cut into four, pushed out onto a sphere of
+/// radius 1: 32 triangles sharing their edges.
+fn ball() -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
+    let mut vertices: Vec<[f64; 3]> = vec![
+        [1.0, 0.0, 0.0],
+        [-1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, -1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [0.0, 0.0, -1.0],
+    ];
+    let faces = [
+        [0, 2, 4],
+        [2, 1, 4],
+        [1, 3, 4],
+        [3, 0, 4],
+        [2, 0, 5],
+        [1, 2, 5],
+        [3, 1, 5],
+        [0, 3, 5],
+    ];
+    let mut middle = |a: usize, b: usize| {
+        let m: [f64; 3] = std::array::from_fn(|k| vertices[a][k] + vertices[b][k]);
+        let length = m.iter().map(|c| c * c).sum::<f64>().sqrt();
+        vertices.push(m.map(|c| c / length));
+        vertices.len() - 1
+    };
+    let mut triangles = Vec::new();
+    for [a, b, c] in faces {
+        let (ab, bc, ca) = (middle(a, b), middle(b, c), middle(c, a));
+        triangles.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+    }
+    let at = [0.0, 1.0, 4.0];
+    let vertices = vertices
+        .iter()
+        .map(|v| std::array::from_fn(|k| (v[k] + at[k]) as f32))
+        .collect();
+    let triangles = triangles.iter().map(|t| t.map(|i| i as u32)).collect();
+    (vertices, triangles)
+}
+
+const MATERIAL: MaterialDesc = MaterialDesc {
+    colour: [0.8, 0.4, 0.2],
+    diffuse: 0.8,
+    specular: 0.5,
+    shininess: 20,
+    reflection: 0.2,
+    transmission: 0.0,
+    ior: 1.0,
+};
+
+/// A floor, and a light above: the ball shadows the floor and the floor shows in the ball.
+fn scene<'a>(objects: &'a [ObjectDesc], meshes: MeshesDesc<'a>) -> SceneDesc<'a> {
+    const LIGHTS: &[LightDesc] = &[LightDesc::point([-3.0, 6.0, 0.0], [1.0; 3])];
+    SceneDesc {
+        camera: CameraDesc::pinhole([0.3, 1.6, 0.0], [0.0, 1.0, 4.0], [0.0, 1.0, 0.0], 40.0),
+        objects,
+        meshes,
+        lights: LIGHTS,
+        ambient: [0.1; 3],
+        background: BackgroundDesc::Solid([0.2, 0.3, 0.5]),
+        far: 20.0,
+        max_depth: 2,
+        samples: 1,
+        adaptive_samples: false,
+        shadow_samples: 1,
+        adaptive_shadows: false,
+    }
+}
+
+const FLOOR: ObjectDesc = ObjectDesc {
+    shape: ShapeDesc::Plane {
+        point: [0.0, 0.0, 0.0],
+        normal: [0.0, 1.0, 0.0],
+        checker: None,
+    },
+    material: MaterialDesc::matte([0.7; 3]),
+};
+
+/// The ball as a mesh, with its hierarchy (its nodes and reordered triangles).
+fn mesh() -> (Vec<[f32; 3]>, Vec<[u32; 3]>, Vec<NodeDesc>) {
+    let (vertices, mut triangles) = ball();
+    let mut nodes = vec![NodeDesc::default(); 2 * triangles.len() - 1];
+    let made = build_hierarchy(&vertices, &mut triangles, &mut nodes).expect("a hierarchy");
+    nodes.truncate(made);
+    (vertices, triangles, nodes)
+}
+
+/// Every pixel's colour of a 48 × 48 image of `desc` in format `S`.
+fn image<S: Scalar>(desc: &SceneDesc<'_>) -> Vec<[f64; 3]> {
+    let scene = MeshScene::<S>::build(desc).expect("the scene builds");
+    let camera = scene.camera(48, 48).expect("a camera");
+    (0..48)
+        .flat_map(|y| {
+            let row = camera.row(y).expect("a row");
+            let scene = &scene;
+            (0..).zip(row.rays()).map(move |(x, ray)| {
+                let id = SampleId { x, y, sample: 0 };
+                scene.trace(ray, id).colour.to_f64()
+            })
+        })
+        .collect()
+}
+
+/// The pixels of `a` and `b` that differ by more than `levels` of an 8-bit channel.
+fn differing(a: &[[f64; 3]], b: &[[f64; 3]], levels: f64) -> usize {
+    a.iter()
+        .zip(b)
+        .filter(|(p, q)| {
+            p.iter()
+                .zip(q.iter())
+                .any(|(x, y)| (x - y).abs() * 255.0 > levels)
+        })
+        .count()
+}
+
+#[test]
+fn a_mesh_traces_as_its_triangles_do() {
+    let (vertices, triangles, nodes) = mesh();
+    let meshes = MeshesDesc {
+        vertices: &vertices,
+        triangles: &triangles,
+        nodes: &nodes,
+    };
+    let as_mesh = [
+        FLOOR,
+        ObjectDesc {
+            shape: ShapeDesc::Mesh { root: 0 },
+            material: MATERIAL,
+        },
+    ];
+    let as_triangles: Vec<ObjectDesc> = std::iter::once(FLOOR)
+        .chain(triangles.iter().map(|&t| ObjectDesc {
+            shape: ShapeDesc::Triangle {
+                vertices: meshes.corners(t),
+            },
+            material: MATERIAL,
+        }))
+        .collect();
+    let (mesh_scene, triangle_scene) = (
+        scene(&as_mesh, meshes),
+        scene(&as_triangles, MeshesDesc::NONE),
+    );
+    // The same picture: the hierarchy skips no triangle a ray meets, in any format. Only the
+    // surface tolerance differs (a mesh's is its triangles' largest), which moves where
+    // secondary rays start by a few steps of the format: f32's colours by 2·10⁻⁴ of a level.
+    for (name, mesh, triangles) in [
+        (
+            "f64",
+            image::<f64>(&mesh_scene),
+            image::<f64>(&triangle_scene),
+        ),
+        (
+            "f32",
+            image::<f32>(&mesh_scene),
+            image::<f32>(&triangle_scene),
+        ),
+        (
+            "i16f16",
+            image::<I16F16>(&mesh_scene),
+            image::<I16F16>(&triangle_scene),
+        ),
+    ] {
+        let background = mesh.iter().filter(|&&p| p == mesh[0]).count();
+        assert!(
+            background < mesh.len() / 2,
+            "{name}: the ball fills the image"
+        );
+        // A hundredth of a level: a triangle missed would change a pixel by many.
+        let off = differing(&mesh, &triangles, 0.01);
+        assert_eq!(off, 0, "{name}: {off} pixels differ");
+    }
+}
+
+#[test]
+fn a_hierarchy_that_does_not_hold_its_triangles_is_refused() {
+    let (vertices, triangles, nodes) = mesh();
+    let objects = [ObjectDesc {
+        shape: ShapeDesc::Mesh { root: 0 },
+        material: MATERIAL,
+    }];
+    let refused = |nodes: &[NodeDesc]| {
+        let meshes = MeshesDesc {
+            vertices: &vertices,
+            triangles: &triangles,
+            nodes,
+        };
+        match MeshScene::<f32>::build(&scene(&objects, meshes)) {
+            Err(SceneError::MalformedMesh { what, .. }) => what,
+            other => panic!("{other:?}"),
+        }
+    };
+    // A leaf's box shrunk off one of its triangles.
+    let mut shrunk = nodes.clone();
+    let leaf = shrunk.iter_mut().find(|n| n.right == 0).expect("a leaf");
+    leaf.max[0] = leaf.min[0];
+    assert!(refused(&shrunk).contains("leaf's box"));
+    // Children that do not split their parent's triangles.
+    let mut split = nodes.clone();
+    split[1].end -= 1;
+    assert!(refused(&split).contains("children"));
+    // A root that is not a node.
+    let mut rootless = nodes.clone();
+    rootless.truncate(0);
+    assert!(refused(&rootless).contains("not among the nodes"));
+    // A corner that is not a vertex.
+    let mut corners = triangles.clone();
+    corners[0][0] = 999;
+    let meshes = MeshesDesc {
+        vertices: &vertices,
+        triangles: &corners,
+        nodes: &nodes,
+    };
+    assert!(matches!(
+        MeshScene::<f32>::build(&scene(&objects, meshes)),
+        Err(SceneError::MalformedMesh { .. })
+    ));
+}
