@@ -134,6 +134,12 @@ cargo run --release --locked -p obscura-host -- firmware --target m4f --scene wh
 cargo run --release --locked -p obscura-host -- firmware --target m0 --scene whitted \
     --format i16f16 --samples 4 --adaptive-samples true
 
+step "firmware under QEMU, a mesh through its hierarchy in flash, bit for bit against the host"
+cargo run --release --locked -p obscura-host -- firmware --target m4f --scene host/scenes/teapot.toml \
+    --format f32
+cargo run --release --locked -p obscura-host -- firmware --target m0 --scene host/scenes/teapot.toml \
+    --format i10f22
+
 step "firmware under QEMU (m4f), soft shadows from a disc light, bit for bit against the host"
 cargo run --release --locked -p obscura-host -- firmware --target m4f --scene soft --format i16f16
 

@@ -213,6 +213,12 @@ impl Generator {
             scene.samples = if self.chance(0.5) { 4 } else { 16 };
             scene.adaptive_samples = true;
         }
+        // A sixth with a mesh (drawn after the rest, which stays what it was): a closed ball of
+        // 8 or 32 triangles, its corners jittered or not, or a soup of triangles, now and then
+        // with corners collapsed into triangles without area (left out), of any size.
+        if self.chance(1.0 / 6.0) {
+            self.mesh(&mut scene, eye, forward, vfov, unit);
+        }
         // An eighth of the scenes on a grid of a power of two about an eighth of their unit:
         // every position a multiple of the cell, every plane facing along an axis with squares
         // of one to eight cells, so that eyes and lights stand on squares' edges and the scene
@@ -227,6 +233,77 @@ impl Generator {
             self.at_the_edge(&mut scene);
         }
         Generated { scene, size }
+    }
+
+    /// Adds a mesh to `scene` (see [`Self::scene`]), widening the world to hold it.
+    fn mesh(
+        &mut self,
+        scene: &mut OwnedScene,
+        eye: [f64; 3],
+        forward: [f64; 3],
+        vfov: f64,
+        unit: f64,
+    ) {
+        let spread = (vfov.to_radians() / 2.0).min(1.5) * self.uniform(0.0, 1.5);
+        let distance = unit * self.log_uniform(1e-3, 10.0);
+        let centre = add(eye, scale(self.near(forward, spread), distance));
+        let size = if self.chance(0.1) {
+            distance * self.log_uniform(1e-7, 1e-4)
+        } else {
+            distance * self.log_uniform(1e-3, 3.0)
+        };
+        let (mut corners, triangles) = if self.chance(0.2) {
+            // A soup: triangles anywhere within `size` of the centre.
+            let n = 1 + self.below(40);
+            let corners: Vec<[f64; 3]> = (0..3 * n).map(|_| self.direction()).collect();
+            let triangles = (0..n as u32)
+                .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
+                .collect();
+            (corners, triangles)
+        } else {
+            ball(self.chance(0.5))
+        };
+        let jitter = if self.chance(0.5) {
+            self.log_uniform(1e-6, 0.3)
+        } else {
+            0.0
+        };
+        let axes = [self.direction(), self.direction()];
+        for corner in &mut corners {
+            let noise = scale(self.direction(), jitter);
+            let p = add(*corner, noise);
+            // Turned by a random reflection-free map of the unit sphere into the scene.
+            let [u, v] = axes;
+            let w = cross(u, v);
+            *corner = add(
+                centre,
+                scale(
+                    add(add(scale(u, p[0]), scale(v, p[1])), scale(w, p[2])),
+                    size,
+                ),
+            );
+        }
+        let mut triangles: Vec<[u32; 3]> = triangles;
+        if self.chance(0.2) {
+            for triangle in triangles.iter_mut().take(1 + self.below(4)) {
+                triangle[2] = triangle[1];
+            }
+        }
+        let vertices: Vec<[f32; 3]> = corners.iter().map(|&c| f32s(c)).collect();
+        let Ok(added) = scene.meshes.add(&vertices, &triangles) else {
+            return;
+        };
+        let extent = corners
+            .iter()
+            .map(|&c| norm(sub(c, eye)))
+            .fold(0.0, f64::max);
+        if extent >= f64::from(scene.far) {
+            scene.far = (extent * self.uniform(1.01, 2.0)) as f32;
+        }
+        scene.objects.push(ObjectDesc {
+            shape: ShapeDesc::Mesh { root: added.root },
+            material: self.material(),
+        });
     }
 
     /// `scene` with the world's edge at one of its objects (see [`Self::scene`]): the object
@@ -244,7 +321,7 @@ impl Generator {
                 .iter()
                 .map(|&v| (Vec3::from_f32(v) - eye).length())
                 .fold(0.0, f64::max),
-            // The generator's scenes have none.
+            // A mesh is not moved to the edge: it stays where it is (k is infinite).
             ShapeDesc::Mesh { .. } => 0.0,
         };
         let lights = scene
@@ -457,7 +534,7 @@ impl Generator {
                     let n = scale(n, 1.0 / norm(n).max(1e-30));
                     add(on, scale(n, unit * self.log_uniform(1e-7, 1.0)))
                 }
-                // The generator's scenes have none.
+                // Meshes are added after the lights.
                 ShapeDesc::Mesh { .. } => eye,
             },
             None => add(
@@ -506,6 +583,45 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 
 fn norm(a: [f64; 3]) -> f64 {
     (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
+}
+
+/// A closed ball about the origin of radius 1: an octahedron of 8 triangles, or with `finer`
+/// each cut into four and pushed out onto the sphere (32), anticlockwise from outside.
+fn ball(finer: bool) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    let mut corners = vec![
+        [1.0, 0.0, 0.0],
+        [-1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, -1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [0.0, 0.0, -1.0],
+    ];
+    let faces: [[u32; 3]; 8] = [
+        [0, 2, 4],
+        [2, 1, 4],
+        [1, 3, 4],
+        [3, 0, 4],
+        [2, 0, 5],
+        [1, 2, 5],
+        [3, 1, 5],
+        [0, 3, 5],
+    ];
+    if !finer {
+        return (corners, faces.to_vec());
+    }
+    let mut middle = |a: u32, b: u32| {
+        let m = add(corners[a as usize], corners[b as usize]);
+        corners.push(scale(m, 1.0 / norm(m)));
+        (corners.len() - 1) as u32
+    };
+    let triangles = faces
+        .iter()
+        .flat_map(|&[a, b, c]| {
+            let (ab, bc, ca) = (middle(a, b), middle(b, c), middle(c, a));
+            [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]
+        })
+        .collect();
+    (corners, triangles)
 }
 
 #[cfg(test)]
