@@ -138,7 +138,10 @@ pub(crate) fn draw<
         meshes,
         Camera::<S>::from_words(camera),
     ) {
-        (Ok(scene), Ok(meshes), Ok(camera)) => (scene.with_meshes(meshes), camera),
+        (Ok(mut scene), Ok(meshes), Ok(camera)) => {
+            scene.set_meshes(meshes);
+            (scene, camera)
+        }
         (Err(error), _, _) | (_, Err(error), _) | (_, _, Err(error)) => {
             return backend.failed(job, &error);
         }

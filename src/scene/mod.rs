@@ -274,17 +274,11 @@ impl<
         crate::shape::mesh::write_words::<S>(&self.meshes, sink);
     }
 
-    /// The scene with its meshes in `meshes`: a scene read from words ([`Self::from_words`])
-    /// with the meshes written beside it ([`Self::write_mesh_words`], read by [`MeshWords`](crate::mesh::MeshWords)).
-    pub fn with_meshes<N: Meshes<S>>(self, meshes: N) -> Scene<S, OBJECTS, LIGHTS, RAYS, USES, N> {
-        Scene {
-            objects: self.objects,
-            meshes,
-            lights: self.lights,
-            cones: self.cones,
-            settings: self.settings,
-            frame: self.frame,
-        }
+    /// Gives the scene its meshes: a scene read from words ([`Self::from_words`]) with the
+    /// meshes written beside it ([`Self::write_mesh_words`], read by
+    /// [`MeshWords`](crate::mesh::MeshWords)). In place: a firmware's scene is not copied.
+    pub fn set_meshes(&mut self, meshes: M) {
+        self.meshes = meshes;
     }
 }
 
