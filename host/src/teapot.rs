@@ -1,9 +1,9 @@
 //! The Utah teapot, the mesh that ships with obscura (`host/scenes/teapot.obj`, drawn by
 //! `host/scenes/teapot.toml`): this module owns Martin Newell's data for it, 32 bicubic Bézier
 //! patches over 306 control points, its tessellation into a triangle mesh ([`teapot`]) and the
-//! mesh written as Wavefront OBJ ([`obj`], [`teapot_obj`]). The shipped file is generated
-//! here, never edited: a test checks that it is what [`teapot_obj`] makes of
-//! [`SHIPPED_STEPS`].
+//! mesh written as Wavefront OBJ ([`teapot_obj`], through [`obscura_scene::obj_text`]). The
+//! shipped file is generated here, never edited: a test checks that it is what
+//! [`teapot_obj`] makes of [`SHIPPED_STEPS`].
 
 use std::collections::HashMap;
 
@@ -562,19 +562,8 @@ pub fn teapot(steps: usize) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
     (mesh.vertices, mesh.triangles)
 }
 
-/// The mesh as Wavefront OBJ text: a `v x y z` line per vertex (each coordinate the shortest
-/// text that reads back as the same f32), then an `f a b c` line per triangle (1-based).
-#[must_use]
-pub fn obj(vertices: &[[f32; 3]], triangles: &[[u32; 3]]) -> String {
-    let vertex_lines = vertices.iter().map(|[x, y, z]| format!("v {x} {y} {z}\n"));
-    let face_lines = triangles.iter().map(|triangle| {
-        let [a, b, c] = triangle.map(|corner| u64::from(corner) + 1);
-        format!("f {a} {b} {c}\n")
-    });
-    vertex_lines.chain(face_lines).collect()
-}
-
-/// The teapot tessellated with `steps` ([`teapot`]) as Wavefront OBJ text ([`obj`]) after a
+/// The teapot tessellated with `steps` ([`teapot`]) as Wavefront OBJ text
+/// ([`obscura_scene::obj_text`]) after a
 /// comment line saying what made it: with [`SHIPPED_STEPS`], `host/scenes/teapot.obj`.
 #[must_use]
 pub fn teapot_obj(steps: usize) -> String {
@@ -583,7 +572,7 @@ pub fn teapot_obj(steps: usize) -> String {
     format!(
         "# The Utah teapot: Newell's 32 Bézier patches, each tessellated into {steps} × {steps} \
          quads by obscura_host::teapot\n{}",
-        obj(&vertices, &triangles)
+        obscura_scene::obj_text(&vertices, &triangles)
     )
 }
 

@@ -27,6 +27,7 @@ mod settings;
 
 pub use file::{Located, MAX_FILE_BYTES, NamedScene, load, parse};
 pub use format::{Format, FormatJob};
+pub use mesh_file::obj_text;
 pub use meshes::{Added, MeshVecs, OwnedMeshes};
 pub use owned::OwnedScene;
 pub use settings::{

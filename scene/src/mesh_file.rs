@@ -45,6 +45,18 @@ pub(crate) struct MeshFile {
     pub(crate) translate: [f32; 3],
 }
 
+impl MeshFile {
+    /// The file `file`, placed as it is.
+    pub(crate) fn at(file: String) -> Self {
+        Self {
+            file,
+            scale: 1.0,
+            rotate_degrees: [0.0; 3],
+            translate: [0.0; 3],
+        }
+    }
+}
+
 /// [`MeshFile::scale`]'s default: the file's own size.
 const fn one() -> f32 {
     1.0
@@ -1286,6 +1298,19 @@ fn product(a: &Matrix, b: &Matrix) -> Matrix {
     let [[b00, b01, b02], [b10, b11, b12], [b20, b21, b22]] = *b;
     let columns = [[b00, b10, b20], [b01, b11, b21], [b02, b12, b22]];
     a.map(|row| columns.map(|column| dot(row, column)))
+}
+
+/// A mesh as Wavefront OBJ text: a `v x y z` line per vertex (each coordinate the shortest
+/// text that reads back as the same f32), then an `f a b c` line per triangle (1-based), which
+/// a scene's `shape.mesh` reads back exactly.
+#[must_use]
+pub fn obj_text(vertices: &[[f32; 3]], triangles: &[[u32; 3]]) -> String {
+    let vertex_lines = vertices.iter().map(|[x, y, z]| format!("v {x} {y} {z}\n"));
+    let face_lines = triangles.iter().map(|triangle| {
+        let [a, b, c] = triangle.map(|corner| u64::from(corner) + 1);
+        format!("f {a} {b} {c}\n")
+    });
+    vertex_lines.chain(face_lines).collect()
 }
 
 #[cfg(test)]

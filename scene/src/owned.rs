@@ -2,7 +2,9 @@
 //! can make scenes at run time (scene files, stress cases, rescaled copies) and lend them to
 //! the core.
 
+use crate::mesh_file::MeshFile;
 use crate::meshes::OwnedMeshes;
+use crate::object::{FileObject, FileShape};
 use obscura::{BackgroundDesc, CameraDesc, LightDesc, ObjectDesc, SceneDesc, ShapeDesc};
 use serde::{Deserialize, Serialize};
 
@@ -137,6 +139,37 @@ impl OwnedScene {
             shadow_samples: self.shadow_samples,
             adaptive_shadows: self.adaptive_shadows,
         }
+    }
+
+    /// The scene as the files that say it: the scene file's TOML, whose mesh objects name
+    /// the files `{stem}-mesh-{k}.obj` (k counting the mesh objects from 0), and each of those
+    /// as its name and OBJ text ([`crate::obj_text`]). Read back ([`crate::load`]), the mesh
+    /// files give the same triangles, though their hierarchies are built again.
+    ///
+    /// # Errors
+    /// When a value cannot be written as TOML.
+    pub fn files(&self, stem: &str) -> Result<(String, Vec<(String, String)>), toml::ser::Error> {
+        let mut meshes = Vec::new();
+        let file_form = self.clone().map_objects(|object| {
+            let shape = match object.shape {
+                ShapeDesc::Mesh { root } => {
+                    let file = format!("{stem}-mesh-{}.obj", meshes.len());
+                    let desc = self.meshes.desc();
+                    let text = crate::obj_text(desc.vertices, desc.triangles_of(root));
+                    meshes.push((file.clone(), text));
+                    FileShape::Mesh {
+                        mesh: MeshFile::at(file),
+                    }
+                }
+                shape => FileShape::Shape(shape),
+            };
+            Ok::<_, std::convert::Infallible>(FileObject {
+                shape,
+                material: object.material,
+            })
+        });
+        let Ok(file_form) = file_form;
+        Ok((toml::to_string(&file_form)?, meshes))
     }
 
     /// The scene scaled by `s` about the eye: every position moved to eye + s·(p − eye), every

@@ -213,12 +213,6 @@ impl Generator {
             scene.samples = if self.chance(0.5) { 4 } else { 16 };
             scene.adaptive_samples = true;
         }
-        // A sixth with a mesh (drawn after the rest, which stays what it was): a closed ball of
-        // 8 or 32 triangles, its corners jittered or not, or a soup of triangles, now and then
-        // with corners collapsed into triangles without area (left out), of any size.
-        if self.chance(1.0 / 6.0) {
-            self.mesh(&mut scene, eye, forward, vfov, unit);
-        }
         // An eighth of the scenes on a grid of a power of two about an eighth of their unit:
         // every position a multiple of the cell, every plane facing along an axis with squares
         // of one to eight cells, so that eyes and lights stand on squares' edges and the scene
@@ -231,6 +225,12 @@ impl Generator {
         // it, or just beyond it, where the world cuts a small disc from a plane.
         if self.chance(1.0 / 6.0) {
             self.at_the_edge(&mut scene);
+        }
+        // A twelfth with a mesh (drawn after the rest, which stays what it was): a closed ball of
+        // 8 or 32 triangles, its corners jittered or not, or a soup of triangles, now and then
+        // with corners collapsed into triangles without area (left out), of any size.
+        if self.chance(1.0 / 12.0) {
+            self.mesh(&mut scene, eye, forward, vfov, unit);
         }
         Generated { scene, size }
     }
@@ -245,12 +245,16 @@ impl Generator {
         unit: f64,
     ) {
         let spread = (vfov.to_radians() / 2.0).min(1.5) * self.uniform(0.0, 1.5);
-        let distance = unit * self.log_uniform(1e-3, 10.0);
+        // Within the world the scene has (now and then beyond it, which widens it).
+        let far = f64::from(scene.far);
+        let distance = (unit * self.log_uniform(1e-3, 10.0)).min(far * self.uniform(0.1, 0.9));
         let centre = add(eye, scale(self.near(forward, spread), distance));
         let size = if self.chance(0.1) {
             distance * self.log_uniform(1e-7, 1e-4)
+        } else if self.chance(0.9) {
+            (far - distance) * self.log_uniform(0.05, 0.9)
         } else {
-            distance * self.log_uniform(1e-3, 3.0)
+            distance * self.log_uniform(0.05, 3.0)
         };
         let (mut corners, triangles) = if self.chance(0.2) {
             // A soup: triangles anywhere within `size` of the centre.
@@ -268,11 +272,17 @@ impl Generator {
         } else {
             0.0
         };
-        let axes = [self.direction(), self.direction()];
+        // Turned (most of the time), or skewed by a random linear map.
+        let axes = if self.chance(0.7) {
+            let u = self.direction();
+            let v = cross(u, self.direction());
+            [u, scale(v, 1.0 / norm(v).max(1e-30))]
+        } else {
+            [self.direction(), self.direction()]
+        };
         for corner in &mut corners {
             let noise = scale(self.direction(), jitter);
             let p = add(*corner, noise);
-            // Turned by a random reflection-free map of the unit sphere into the scene.
             let [u, v] = axes;
             let w = cross(u, v);
             *corner = add(
@@ -321,8 +331,16 @@ impl Generator {
                 .iter()
                 .map(|&v| (Vec3::from_f32(v) - eye).length())
                 .fold(0.0, f64::max),
-            // A mesh is not moved to the edge: it stays where it is (k is infinite).
-            ShapeDesc::Mesh { .. } => 0.0,
+            // Its farthest corner: it counts for the farthest thing in the scene.
+            ShapeDesc::Mesh { root } => {
+                let meshes = scene.meshes.desc();
+                meshes
+                    .triangles_of(root)
+                    .iter()
+                    .flat_map(|&t| meshes.corners(t))
+                    .map(|v| (Vec3::from_f32(v) - eye).length())
+                    .fold(0.0, f64::max)
+            }
         };
         let lights = scene
             .lights
@@ -357,6 +375,7 @@ impl Generator {
                     ShapeDesc::Triangle { vertices } => ShapeDesc::Triangle {
                         vertices: vertices.map(out),
                     },
+                    // A mesh stays where it is (its corners are shared in the scene's meshes).
                     mesh @ ShapeDesc::Mesh { .. } => mesh,
                 };
             }
@@ -653,6 +672,7 @@ mod tests {
         assert!(kinds(|s| matches!(s, ShapeDesc::Sphere { .. })) > 100);
         assert!(kinds(|s| matches!(s, ShapeDesc::Plane { .. })) > 100);
         assert!(kinds(|s| matches!(s, ShapeDesc::Triangle { .. })) > 100);
+        assert!(kinds(|s| matches!(s, ShapeDesc::Mesh { .. })) > 25);
         let count = |f: fn(&OwnedScene) -> bool| scenes.iter().filter(|g| f(&g.scene)).count();
         assert!(count(|s| s.samples > 1) > 75);
         assert!(count(|s| s.lights.iter().any(|l| l.radius > 0.0)) > 75);

@@ -709,14 +709,20 @@ fn scaled_prediction(
 /// see it again.
 fn write_reproducer(dir: &Path, scene: &OwnedScene, finding: &Finding) -> Result<PathBuf> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    let name = format!(
-        "fuzz-{}-{}-{}.toml",
+    let stem = format!(
+        "fuzz-{}-{}-{}",
         finding.seed,
         finding.format,
         finding.methods.to_string().replace([',', '='], "-")
     );
-    let path = dir.join(name);
-    let body = toml::to_string(scene).context("the scene cannot be written as TOML")?;
+    let path = dir.join(format!("{stem}.toml"));
+    let (body, meshes) = scene
+        .files(&stem)
+        .context("the scene cannot be written as TOML")?;
+    for (file, text) in meshes {
+        let mesh = dir.join(file);
+        std::fs::write(&mesh, text).with_context(|| format!("cannot write {}", mesh.display()))?;
+    }
     let header = format!(
         "# obscura fuzz: scene {} in {} by {} at {}x{}\n# {}\n# obscura compare {} --format {} --size {}x{} {}\n\n",
         finding.seed,
@@ -770,6 +776,30 @@ mod tests {
             "{text}"
         );
         let loaded = obscura_scene::load(path.to_str().unwrap()).unwrap();
-        assert_eq!(loaded.scene, generated.scene);
+        // The scene, and its mesh's triangles (the hierarchy is built again, and may order
+        // them otherwise).
+        let without_meshes = |scene: &OwnedScene| OwnedScene {
+            meshes: obscura_scene::OwnedMeshes::default(),
+            ..scene.clone()
+        };
+        assert_eq!(
+            without_meshes(&loaded.scene),
+            without_meshes(&generated.scene)
+        );
+        let corners = |scene: &OwnedScene| {
+            let meshes = scene.meshes.desc();
+            let mut corners: Vec<_> = meshes
+                .triangles
+                .iter()
+                .map(|&t| meshes.corners(t).map(|c| c.map(f32::to_bits)))
+                .collect();
+            corners.sort_unstable();
+            corners
+        };
+        assert!(
+            !generated.scene.meshes.triangles.is_empty(),
+            "scene 11 has a mesh"
+        );
+        assert_eq!(corners(&loaded.scene), corners(&generated.scene));
     }
 }
