@@ -27,6 +27,16 @@ pub fn all_cores() -> usize {
     std::thread::available_parallelism().map_or(1, std::num::NonZero::get)
 }
 
+/// The threads a render of the harness's own may take: every core, or one within a thread
+/// pool's task (the fuzzer's, the analyses'), whose pool keeps the cores busy already.
+pub fn threads_here() -> usize {
+    if rayon::current_thread_index().is_some() {
+        1
+    } else {
+        all_cores()
+    }
+}
+
 /// `methods` with exact roots and quotients: what a format without fast roots (f64, f32)
 /// computes by the same methods.
 pub fn exact_roots(methods: Methods) -> Methods {
@@ -229,17 +239,7 @@ impl<S: Scalar> Prepared<S> {
     /// # Errors
     /// As [`Self::render`].
     pub fn object_map(&self) -> Result<Vec<Option<usize>>> {
-        let mut objects = Vec::new();
-        for y in 0..self.camera.height() {
-            let row = checked::catch(|| {
-                self.primary_rays(y)
-                    .into_iter()
-                    .map(|ray| self.scene.first_hit(&ray).map(|(object, _)| object))
-                    .collect::<Vec<_>>()
-            });
-            objects.extend(row.map_err(|overflowed| self.overflow_at(y..y + 1, overflowed))?);
-        }
-        Ok(objects)
+        self.per_pixel(|_, _, ray| self.scene.first_hit(&ray).map(|(object, _)| object))
     }
 }
 
@@ -284,17 +284,29 @@ impl<S: Scalar> Prepared<S> {
     /// # Errors
     /// As [`Self::render`].
     pub fn met_map(&self) -> Result<Vec<u64>> {
-        let mut met = Vec::new();
-        for y in 0..self.camera.height() {
-            let row = checked::catch(|| {
-                (0..)
-                    .zip(self.primary_rays(y))
-                    .map(|(x, ray)| self.scene.trace(ray, SampleId { x, y, sample: 0 }).met)
-                    .collect::<Vec<_>>()
-            });
-            met.extend(row.map_err(|overflowed| self.overflow_at(y..y + 1, overflowed))?);
+        self.per_pixel(|x, y, ray| self.scene.trace(ray, SampleId { x, y, sample: 0 }).met)
+    }
+
+    /// `of` each pixel's primary ray (its column, its row and the ray), row by row, the rows
+    /// shared out among the threads of the pool it runs in; the first row where a number
+    /// wraps is the error.
+    fn per_pixel<T: Send>(&self, of: impl Fn(u32, u32, Ray<S>) -> T + Sync) -> Result<Vec<T>> {
+        let rows: Vec<Result<Vec<T>, Overflowed>> = (0..self.camera.height())
+            .into_par_iter()
+            .map(|y| {
+                checked::catch(|| {
+                    (0..)
+                        .zip(self.primary_rays(y))
+                        .map(|(x, ray)| of(x, y, ray))
+                        .collect()
+                })
+            })
+            .collect();
+        let mut all = Vec::new();
+        for (y, row) in (0..).zip(rows) {
+            all.extend(row.map_err(|overflowed| self.overflow_at(y..y + 1, overflowed))?);
         }
-        Ok(met)
+        Ok(all)
     }
 }
 

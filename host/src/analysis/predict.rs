@@ -37,7 +37,7 @@ use super::extents;
 use crate::checked::Checked;
 use crate::metrics::accuracy;
 use crate::quantized::{COSINE_STEPS, Quantized};
-use crate::render::{Prepared, Request, all_cores, exact_roots};
+use crate::render::{Prepared, Request, exact_roots, threads_here};
 use anyhow::Result;
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use image::RgbImage;
@@ -99,7 +99,7 @@ impl Reference {
     /// When f64 cannot build the scene.
     pub fn render(request: &Request<'_>) -> Result<Self> {
         let prepared = Prepared::<f64>::new(request)?;
-        let image = prepared.render(all_cores(), None)?;
+        let image = prepared.render(threads_here(), None)?;
         let objects = prepared.object_map()?;
         let met = prepared.met_map()?;
         let samples = request.desc.samples;
@@ -310,7 +310,7 @@ fn predict_in<S: Scalar>(
         methods: exact_roots(methods),
     })?;
     let measured = accuracy(
-        &constants.render(1, None)?,
+        &constants.render(threads_here(), None)?,
         &reference.image,
         &constants.object_map()?,
         &reference.objects,
