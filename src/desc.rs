@@ -113,6 +113,10 @@ pub struct MeshesDesc<'a> {
     /// The hierarchy's nodes, each subtree's root before its left subtree and that before its
     /// right: a mesh's root is the node its object names.
     pub nodes: &'a [NodeDesc],
+    /// A unit normal at each vertex, for a surface shaded as smooth (the normal interpolated
+    /// across each triangle from its corners'), or none at all: then, and on a triangle with
+    /// a corner whose normal is zero, the triangle's own normal shades it.
+    pub normals: &'a [[f32; 3]],
 }
 
 impl MeshesDesc<'_> {
@@ -121,6 +125,7 @@ impl MeshesDesc<'_> {
         vertices: &[],
         triangles: &[],
         nodes: &[],
+        normals: &[],
     };
 
     /// The triangles under node `root` (none where the node or its range is not there:
@@ -138,6 +143,19 @@ impl MeshesDesc<'_> {
     #[must_use]
     pub fn corners(&self, indices: [u32; 3]) -> [[f32; 3]; 3] {
         indices.map(|i| self.vertices.get(i as usize).copied().unwrap_or([0.0; 3]))
+    }
+
+    /// The normals at the corners a triangle's indices name, where the meshes have normals and
+    /// each of the three is nonzero; else the triangle is shaded flat.
+    #[must_use]
+    pub fn corner_normals(&self, indices: [u32; 3]) -> Option<[[f32; 3]; 3]> {
+        let normals = indices.map(|i| self.normals.get(i as usize).copied());
+        match normals {
+            [Some(a), Some(b), Some(c)] if [a, b, c].iter().all(|n| *n != [0.0; 3]) => {
+                Some([a, b, c])
+            }
+            _ => None,
+        }
     }
 }
 

@@ -31,6 +31,9 @@
 )]
 #![cfg_attr(not(test), deny(clippy::indexing_slicing, clippy::unreachable))]
 
+#[cfg(feature = "alloc")]
+extern crate alloc;
+
 pub mod adaptive;
 pub mod camera;
 pub mod color;

@@ -347,8 +347,19 @@ impl<S: Scalar, M: Meshes<S>, const USES: u32> Tracer<'_, S, M, USES> {
             (-normal, -cos_in)
         };
         let two = S::from_int(2);
-        // The mirror direction serves both the reflected ray and the Phong highlight.
+        // The mirror direction serves the reflected ray and the Phong highlight, the latter
+        // about the shading normal where a smooth mesh's differs from the surface's: the
+        // rays leave about the surface's own, never into it.
         let mirror = d.add_scaled(facing, two * cos_in);
+        let smooth = if Self::has(Uses::MESHES) {
+            shape.smooth_normal(&hit.at, roots, meshes)
+        } else {
+            None
+        };
+        let (shading, shading_mirror) = smooth.map_or((facing, mirror), |n| {
+            let n = if n.dot(facing) < S::ZERO { -n } else { n };
+            (n, d.add_scaled(n, -two * d.dot(n)))
+        });
         // Rays leave on the side the ray arrived on (shadow, reflection), or the other
         // (transmission); the epsilon method starts them a tolerance off the surface.
         let solid = shape.is_solid();
@@ -371,7 +382,7 @@ impl<S: Scalar, M: Meshes<S>, const USES: u32> Tracer<'_, S, M, USES> {
         let mut local = self.settings.ambient * surface;
         for light in self.lights {
             let (l, distance) = (light.position - above).normalized_with_length(roots);
-            let lambert = facing.dot(l);
+            let lambert = shading.dot(l);
             if lambert <= S::ZERO {
                 continue;
             }
@@ -387,7 +398,7 @@ impl<S: Scalar, M: Meshes<S>, const USES: u32> Tracer<'_, S, M, USES> {
                 continue;
             }
             let mut reflected = surface.scale(material.diffuse * lambert);
-            let highlight = mirror.dot(l);
+            let highlight = shading_mirror.dot(l);
             if material.specular > S::ZERO && highlight > S::ZERO {
                 // The cosine of two unit vectors, which rounding can lift a few steps above 1,
                 // where the power would multiply the excess by the exponent: clamped, it loses

@@ -1,54 +1,16 @@
 //! Meshes: a mesh traces as its triangles do (its hierarchy skips no triangle a ray meets), in
-//! every format, and a hierarchy that is not what `build_hierarchy` makes is refused.
+//! every format; a smooth mesh (normals at its vertices) shades as the surface it approximates;
+//! and a hierarchy that is not what `build_hierarchy` makes, or normals that are not unit, are
+//! refused.
 
-use obscura::mesh::{MeshStorage, Meshes, Node, build_hierarchy};
+use obscura::mesh::{MeshVecs, build_hierarchy};
 use obscura::pattern::SampleId;
-use obscura::shape::Triangle;
 use obscura::{
     BackgroundDesc, CameraDesc, I16F16, LightDesc, MaterialDesc, MeshesDesc, NodeDesc, ObjectDesc,
     Scalar, Scene, SceneDesc, SceneError, ShapeDesc, Uses,
 };
 
-/// A scene's meshes in `Vec`s, as a desktop keeps them.
-#[derive(Clone, Debug, PartialEq)]
-struct Vecs<S> {
-    nodes: Vec<Node<S>>,
-    triangles: Vec<Triangle<S>>,
-}
-
-impl<S> Default for Vecs<S> {
-    fn default() -> Self {
-        Self {
-            nodes: Vec::new(),
-            triangles: Vec::new(),
-        }
-    }
-}
-
-impl<S: Copy> Meshes<S> for Vecs<S> {
-    fn node(&self, index: u32) -> Option<Node<S>> {
-        self.nodes.get(index as usize).copied()
-    }
-    fn triangle(&self, index: u32) -> Option<Triangle<S>> {
-        self.triangles.get(index as usize).copied()
-    }
-}
-
-impl<S: Copy> MeshStorage<S> for Vecs<S> {
-    fn capacity(&self) -> usize {
-        usize::MAX
-    }
-    fn push_node(&mut self, node: Node<S>) -> bool {
-        self.nodes.push(node);
-        true
-    }
-    fn push_triangle(&mut self, triangle: Triangle<S>) -> bool {
-        self.triangles.push(triangle);
-        true
-    }
-}
-
-type MeshScene<S> = Scene<S, 48, 2, 4, { Uses::EVERYTHING.bits() }, Vecs<S>>;
+type MeshScene<S> = Scene<S, 48, 2, 4, { Uses::EVERYTHING.bits() }, MeshVecs<S>>;
 
 /// A ball of radius 1 about (0, 1, 4) by latitude and longitude: 4 bands of 6 quads, the
 /// poles' bands fans of 6, 36 triangles sharing their edges.
@@ -159,6 +121,7 @@ fn a_mesh_traces_as_its_triangles_do() {
         vertices: &vertices,
         triangles: &triangles,
         nodes: &nodes,
+        normals: &[],
     };
     let as_mesh = [
         FLOOR,
@@ -223,6 +186,131 @@ fn a_mesh_traces_as_its_triangles_do() {
     }
 }
 
+/// The ball's own normals at its vertices: from its centre, (0, 1, 4), out.
+fn ball_normals(vertices: &[[f32; 3]]) -> Vec<[f32; 3]> {
+    vertices
+        .iter()
+        .map(|&[x, y, z]| {
+            let n = [f64::from(x), f64::from(y) - 1.0, f64::from(z) - 4.0];
+            let length = n.iter().map(|c| c * c).sum::<f64>().sqrt();
+            n.map(|c| (c / length) as f32)
+        })
+        .collect()
+}
+
+#[test]
+fn a_smooth_mesh_shades_as_the_surface_it_approximates() {
+    let (vertices, triangles, nodes) = mesh();
+    let normals = ball_normals(&vertices);
+    let flat = MeshesDesc {
+        vertices: &vertices,
+        triangles: &triangles,
+        nodes: &nodes,
+        normals: &[],
+    };
+    let smooth = MeshesDesc {
+        normals: &normals,
+        ..flat
+    };
+    // Matte and specular, no mirror: what the normal shades is all there is to see.
+    let material = MaterialDesc {
+        reflection: 0.0,
+        ..MATERIAL
+    };
+    let mesh = [
+        FLOOR,
+        ObjectDesc {
+            shape: ShapeDesc::Mesh { root: 0 },
+            material,
+        },
+    ];
+    let ball = [
+        FLOOR,
+        ObjectDesc {
+            shape: ShapeDesc::Sphere {
+                center: [0.0, 1.0, 4.0],
+                radius: 1.0,
+            },
+            material,
+        },
+    ];
+    let sphere = image::<f64>(&scene(&ball, MeshesDesc::NONE));
+    // The mean difference from the sphere, in levels, where the primary ray meets the ball in
+    // both pictures.
+    let apart = |image: &[Pixel]| {
+        let both: Vec<f64> = image
+            .iter()
+            .zip(&sphere)
+            .filter(|((_, hit), (_, there))| {
+                matches!(hit, Some((1, _))) && matches!(there, Some((1, _)))
+            })
+            .map(|((colour, _), (colour_there, _))| {
+                colour
+                    .iter()
+                    .zip(colour_there)
+                    .map(|(a, b)| (a - b).abs() * 255.0)
+                    .fold(0.0, f64::max)
+            })
+            .collect();
+        assert!(both.len() > image.len() / 5, "the ball fills the image");
+        both.iter().sum::<f64>() / both.len() as f64
+    };
+    let flat_apart = apart(&image::<f64>(&scene(&mesh, flat)));
+    let smooth_image = image::<f64>(&scene(&mesh, smooth));
+    let smooth_apart = apart(&smooth_image);
+    // Of 36 triangles, the ball's hits are up to a sixth of its radius inside the sphere's and
+    // its interpolated normals a few degrees off the sphere's there: the smooth picture is not
+    // the sphere's, but less than half as far from it as the facets'.
+    assert!(
+        smooth_apart < flat_apart / 2.0,
+        "smooth {smooth_apart:.1} levels from the sphere, flat {flat_apart:.1}"
+    );
+    // A 32-bit split shades it as f64 does, within a level or two where the hit is the same.
+    for (i, ((colour, hit), (colour_there, hit_there))) in image::<I16F16>(&scene(&mesh, smooth))
+        .iter()
+        .zip(&smooth_image)
+        .enumerate()
+    {
+        if hit == hit_there {
+            let off = colour
+                .iter()
+                .zip(colour_there)
+                .map(|(a, b)| (a - b).abs() * 255.0)
+                .fold(0.0, f64::max);
+            assert!(off < 2.0, "i16f16, pixel {i}: {off} levels from f64");
+        }
+    }
+}
+
+#[test]
+fn normals_that_are_not_one_unit_normal_per_vertex_are_refused() {
+    let (vertices, triangles, nodes) = mesh();
+    let objects = [ObjectDesc {
+        shape: ShapeDesc::Mesh { root: 0 },
+        material: MATERIAL,
+    }];
+    let refused = |normals: &[[f32; 3]]| {
+        let meshes = MeshesDesc {
+            vertices: &vertices,
+            triangles: &triangles,
+            nodes: &nodes,
+            normals,
+        };
+        match MeshScene::<f32>::build(&scene(&objects, meshes)) {
+            Err(SceneError::MalformedMesh { what, .. }) => Some(what),
+            Ok(_) => None,
+            Err(other) => panic!("{other:?}"),
+        }
+    };
+    let mut normals = ball_normals(&vertices);
+    assert_eq!(refused(&normals), None);
+    normals[3] = [0.0; 3];
+    assert_eq!(refused(&normals), None, "a vertex without a normal");
+    assert!(refused(&normals[1..]).is_some_and(|what| what.contains("one per vertex")));
+    normals[3] = [0.0, 2.0, 0.0];
+    assert!(refused(&normals).is_some_and(|what| what.contains("length")));
+}
+
 #[test]
 fn a_hierarchy_that_does_not_hold_its_triangles_is_refused() {
     let (vertices, triangles, nodes) = mesh();
@@ -235,6 +323,7 @@ fn a_hierarchy_that_does_not_hold_its_triangles_is_refused() {
             vertices: &vertices,
             triangles: &triangles,
             nodes,
+            normals: &[],
         };
         match MeshScene::<f32>::build(&scene(&objects, meshes)) {
             Err(SceneError::MalformedMesh { what, .. }) => what,
@@ -261,6 +350,7 @@ fn a_hierarchy_that_does_not_hold_its_triangles_is_refused() {
         vertices: &vertices,
         triangles: &corners,
         nodes: &nodes,
+        normals: &[],
     };
     assert!(matches!(
         MeshScene::<f32>::build(&scene(&objects, meshes)),

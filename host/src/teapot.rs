@@ -1,10 +1,11 @@
 //! The Utah teapot, the mesh that ships with obscura (`host/scenes/teapot.obj`, drawn by
 //! `host/scenes/teapot.toml`): this module owns Martin Newell's data for it, 32 bicubic Bézier
 //! patches over 306 control points, its tessellation into a triangle mesh ([`teapot`]) and the
-//! mesh written as Wavefront OBJ ([`teapot_obj`], through [`obscura_scene::obj_text`]). The
+//! mesh written as Wavefront OBJ ([`Teapot::obj_text`], through [`obscura_scene::obj_text`]). The
 //! shipped file is generated here, never edited: a test checks that it is what
-//! [`teapot_obj`] makes of [`SHIPPED_STEPS`].
+//! [`Teapot::obj_text`] makes of [`SHIPPED_STEPS`].
 
+use obscura_scene::CornerNormals;
 use std::collections::HashMap;
 
 /// The steps per patch of the teapot that ships with obscura (`host/scenes/teapot.obj`): 3,
@@ -422,6 +423,17 @@ impl Parameter {
         }
     }
 
+    /// The derivatives by `t` of [`Self::weights`].
+    fn slopes(self) -> [f64; 4] {
+        let Self { t, rest } = self;
+        [
+            -3.0 * rest * rest,
+            3.0 * rest * (rest - 2.0 * t),
+            3.0 * t * (2.0 * rest - t),
+            3.0 * t * t,
+        ]
+    }
+
     /// The cubic Bernstein weights of the four control points here. With `t` and `rest`
     /// swapped they come out exactly reversed.
     fn weights(self) -> [f64; 4] {
@@ -444,6 +456,43 @@ fn cubic(controls: [Point; 4], at: Parameter) -> Point {
     let ends = sum(scaled(first, w_first), scaled(last, w_last));
     let middles = sum(scaled(second, w_second), scaled(third, w_third));
     sum(ends, middles)
+}
+
+/// The sum of `controls` weighted by `weights`.
+fn weighted(controls: [Point; 4], weights: [f64; 4]) -> Point {
+    controls
+        .into_iter()
+        .zip(weights)
+        .fold([0.0; 3], |total, (point, weight)| {
+            sum(total, scaled(point, weight))
+        })
+}
+
+/// The patch's outward normal at step `across`, `down` of `steps`, not normalised: the cross
+/// product of its derivatives along its rows and down its columns (zero at a pole, where a
+/// row shrinks to a point).
+fn patch_normal(controls: &Controls, across: usize, down: usize, steps: usize) -> Point {
+    let (u, v) = (Parameter::at(across, steps), Parameter::at(down, steps));
+    let rows = |weights: [f64; 4]| controls.map(|row| weighted(row, weights));
+    let along_rows = weighted(rows(u.slopes()), v.weights());
+    let down_columns = weighted(rows(u.weights()), v.slopes());
+    cross(along_rows, down_columns)
+}
+
+/// `a`·`b`.
+fn dot(a: Point, b: Point) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// `a` × `b`.
+fn cross([ax, ay, az]: Point, [bx, by, bz]: Point) -> Point {
+    [ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx]
+}
+
+/// `point` scaled to length 1, or `None` where it is (nearly) zero.
+fn unit(point: Point) -> Option<Point> {
+    let length = point.iter().map(|c| c * c).sum::<f64>().sqrt();
+    (length > 1e-9).then(|| scaled(point, 1.0 / length))
 }
 
 /// `point` times `factor`.
@@ -485,7 +534,12 @@ fn patch_point(controls: &Controls, across: usize, down: usize, steps: usize) ->
     }
 }
 
-/// A mesh as it is built: each distinct vertex once, and the triangles over them.
+/// Where the surfaces at a vertex turn by more than this cosine's angle (60°), they meet at
+/// a crease, and the vertex has a normal for each side.
+const CREASE_COS: f64 = 0.5;
+
+/// A mesh as it is built: each distinct vertex once, the triangles over them, and at each
+/// triangle's corner the normal of the patch it came from there.
 #[derive(Debug, Default)]
 struct MeshBuilder {
     /// The vertices, in the order they were first met.
@@ -494,6 +548,8 @@ struct MeshBuilder {
     indices: HashMap<[u32; 3], u32>,
     /// The triangles, anticlockwise seen from outside.
     triangles: Vec<[u32; 3]>,
+    /// The patch's unit normal at each triangle's corners (`None` at a pole).
+    corners: Vec<[Option<Point>; 3]>,
 }
 
 impl MeshBuilder {
@@ -511,12 +567,61 @@ impl MeshBuilder {
             })
     }
 
+    /// The unit normals at the triangles' corners, and each corner's among them. The normals
+    /// the patches give at a vertex (or the triangle's own, at a pole, where a patch has none,
+    /// and where the triangle turns from the patch's by more than 60°) are grouped, each within 60° of its group's first, and a group's mean is its corners'
+    /// normal: one normal where the surface is smooth, one per side of a crease (where the
+    /// spout's lip folds, where the handle's end touches the body).
+    fn corner_normals(&self) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
+        let position = |index: u32| self.vertices[index as usize].map(f64::from);
+        // Each group's first normal and sum; each vertex's groups.
+        let mut groups: Vec<(Point, Point)> = Vec::new();
+        let mut at_vertex: Vec<Vec<usize>> = vec![Vec::new(); self.vertices.len()];
+        let mut corner_groups = Vec::with_capacity(self.triangles.len());
+        for (&triangle, corners) in self.triangles.iter().zip(&self.corners) {
+            let [a, b, c] = triangle.map(position);
+            let face = unit(cross(sum(b, scaled(a, -1.0)), sum(c, scaled(a, -1.0))));
+            let mut group_of = |vertex: u32, normal: Option<Point>| {
+                // The patch's normal, unless the triangle's chord turns from it by more than
+                // a crease's angle (at the spout's tip, where the lip curls within a step).
+                let normal = match (normal, face) {
+                    (Some(normal), Some(face)) if dot(normal, face) > CREASE_COS => normal,
+                    (normal, face) => face.or(normal).unwrap_or([0.0, 0.0, 1.0]),
+                };
+                let near = at_vertex[vertex as usize]
+                    .iter()
+                    .copied()
+                    .find(|&group| dot(groups[group].0, normal) > CREASE_COS);
+                let group = near.unwrap_or_else(|| {
+                    groups.push((normal, [0.0; 3]));
+                    at_vertex[vertex as usize].push(groups.len() - 1);
+                    groups.len() - 1
+                });
+                groups[group].1 = sum(groups[group].1, normal);
+                u32::try_from(group).unwrap_or(u32::MAX)
+            };
+            let [p, q, r] = triangle;
+            let [np, nq, nr] = *corners;
+            corner_groups.push([group_of(p, np), group_of(q, nq), group_of(r, nr)]);
+        }
+        let normals = groups
+            .iter()
+            .map(|&(first, total)| unit(total).unwrap_or(first).map(|c| c as f32))
+            .collect();
+        (normals, corner_groups)
+    }
+
     /// The patch tessellated with `steps` × `steps` quads, two triangles each.
     fn add_patch(&mut self, controls: &Controls, steps: usize) {
-        let grid: Vec<Vec<u32>> = (0..=steps)
+        let grid: Vec<Vec<(u32, Option<Point>)>> = (0..=steps)
             .map(|down| {
                 (0..=steps)
-                    .map(|across| self.vertex(patch_point(controls, across, down, steps)))
+                    .map(|across| {
+                        (
+                            self.vertex(patch_point(controls, across, down, steps)),
+                            unit(patch_normal(controls, across, down, steps)),
+                        )
+                    })
                     .collect()
             })
             .collect();
@@ -529,14 +634,16 @@ impl MeshBuilder {
         }
     }
 
-    /// The quad with these corners (in the order of the patch's rows, then back along the next
-    /// row: anticlockwise from outside, for every patch of Newell's) as two triangles, leaving
-    /// out one that has two corners the same (at a pole).
-    fn add_quad(&mut self, [first, second, third, fourth]: [u32; 4]) {
-        for triangle in [[first, second, third], [first, third, fourth]] {
-            let [a, b, c] = triangle;
+    /// The quad with these corners and the patch's normals there (in the order of the
+    /// patch's rows, then back along the next row: anticlockwise from outside, for every patch
+    /// of Newell's) as two triangles, leaving out one that has two corners the same (at a
+    /// pole).
+    fn add_quad(&mut self, [first, second, third, fourth]: [(u32, Option<Point>); 4]) {
+        for corners in [[first, second, third], [first, third, fourth]] {
+            let [a, b, c] = corners.map(|(index, _)| index);
             if a != b && b != c && c != a {
-                self.triangles.push(triangle);
+                self.triangles.push([a, b, c]);
+                self.corners.push(corners.map(|(_, normal)| normal));
             }
         }
     }
@@ -553,27 +660,56 @@ impl MeshBuilder {
 ///
 /// `steps` is taken as at least 1 and at most 8000 (beyond that the `u32` indices run out).
 #[must_use]
-pub fn teapot(steps: usize) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
+pub fn teapot(steps: usize) -> Teapot {
     let steps = steps.clamp(1, MOST_STEPS);
     let mut mesh = MeshBuilder::default();
     for controls in PATCHES.iter().filter_map(control_points) {
         mesh.add_patch(&controls, steps);
     }
-    (mesh.vertices, mesh.triangles)
+    let (normals, corner_normals) = mesh.corner_normals();
+    Teapot {
+        steps,
+        vertices: mesh.vertices,
+        triangles: mesh.triangles,
+        normals,
+        corner_normals,
+    }
 }
 
-/// The teapot tessellated with `steps` ([`teapot`]) as Wavefront OBJ text
-/// ([`obscura_scene::obj_text`]) after a
-/// comment line saying what made it: with [`SHIPPED_STEPS`], `host/scenes/teapot.obj`.
-#[must_use]
-pub fn teapot_obj(steps: usize) -> String {
-    let steps = steps.clamp(1, MOST_STEPS);
-    let (vertices, triangles) = teapot(steps);
-    format!(
-        "# The Utah teapot: Newell's 32 Bézier patches, each tessellated into {steps} × {steps} \
-         quads by obscura_host::teapot\n{}",
-        obscura_scene::obj_text(&vertices, &triangles)
-    )
+/// The teapot tessellated ([`teapot`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Teapot {
+    /// The steps per patch it was tessellated with.
+    pub steps: usize,
+    /// The vertices.
+    pub vertices: Vec<[f32; 3]>,
+    /// The triangles, as indices into the vertices, anticlockwise seen from outside.
+    pub triangles: Vec<[u32; 3]>,
+    /// The surface's unit normals at the triangles' corners, for smooth shading.
+    pub normals: Vec<[f32; 3]>,
+    /// Each triangle's corners' normals, as indices into `normals`.
+    pub corner_normals: Vec<[u32; 3]>,
+}
+
+impl Teapot {
+    /// The teapot as Wavefront OBJ text ([`obscura_scene::obj_text`]) after a comment line
+    /// saying what made it: with [`SHIPPED_STEPS`], `host/scenes/teapot.obj`.
+    #[must_use]
+    pub fn obj_text(&self) -> String {
+        let steps = self.steps;
+        format!(
+            "# The Utah teapot: Newell's 32 Bézier patches, each tessellated into {steps} × \
+             {steps} quads by obscura_host::teapot, with the surface's normal at each vertex\n{}",
+            obscura_scene::obj_text(
+                &self.vertices,
+                &self.triangles,
+                Some(CornerNormals {
+                    normals: &self.normals,
+                    corners: &self.corner_normals,
+                })
+            )
+        )
+    }
 }
 
 #[cfg(test)]
@@ -609,7 +745,7 @@ mod tests {
     #[test]
     fn the_shipped_teapot_is_the_generated_one() {
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/teapot.obj");
-        let generated = teapot_obj(usize::from(SHIPPED_STEPS));
+        let generated = teapot(usize::from(SHIPPED_STEPS)).obj_text();
         if std::env::var_os("OBSCURA_WRITE_TEAPOT").is_some() {
             std::fs::write(path, &generated).unwrap();
         }
@@ -623,7 +759,11 @@ mod tests {
 
     #[test]
     fn the_shipped_teapot_has_552_triangles_on_301_vertices() {
-        let (vertices, triangles) = teapot(usize::from(SHIPPED_STEPS));
+        let Teapot {
+            vertices,
+            triangles,
+            ..
+        } = teapot(usize::from(SHIPPED_STEPS));
         // 32 patches of 3 × 3 quads, two triangles each, but the 4 patches of the lid's knob
         // and the 4 of the bottom each have 3 quads at their pole, with one triangle each
         // left out.
@@ -640,7 +780,7 @@ mod tests {
     #[test]
     fn the_teapot_is_watertight_where_patches_meet() {
         for steps in [2, usize::from(SHIPPED_STEPS), 5] {
-            let (_, triangles) = teapot(steps);
+            let Teapot { triangles, .. } = teapot(steps);
             let uses = edge_uses(&triangles);
             assert!(
                 uses.values().all(|&n| n == 1 || n == 2),
@@ -659,8 +799,60 @@ mod tests {
     }
 
     #[test]
+    fn the_teapots_normals_are_unit_and_turn_with_its_faces() {
+        let mesh = teapot(usize::from(SHIPPED_STEPS));
+        let corner = |index: u32| mesh.vertices[index as usize].map(f64::from);
+        let mut least = f64::INFINITY;
+        for (&[a, b, c], normals) in mesh.triangles.iter().zip(&mesh.corner_normals) {
+            let face = cross(
+                sum(corner(b), scaled(corner(a), -1.0)),
+                sum(corner(c), scaled(corner(a), -1.0)),
+            );
+            let face = unit(face).expect("every triangle has area");
+            for &normal in normals {
+                let normal = mesh.normals[normal as usize].map(f64::from);
+                let length = dot(normal, normal).sqrt();
+                assert!((length - 1.0).abs() < 1e-6, "{length}");
+                least = least.min(dot(normal, face));
+            }
+        }
+        // The normal at a corner is within 70° of the triangle's own (60° from the patch's
+        // or the triangle's own normal, and the mean of a group within 60° of its first); it
+        // is the same at a vertex on both sides of an edge except where the surface folds.
+        assert!(least > 0.34, "{least}");
+        // A vertex's several normals are those of a fold, more than 60° apart; at 3 steps a
+        // patch the rim's lip, the lid's knob, the spout's tip and the handle's lower end
+        // fold (43 vertices); the rest of the surface (the body, the lid, the bottom) is
+        // smooth.
+        let mut at_vertex: HashMap<u32, HashSet<u32>> = HashMap::new();
+        for (triangle, normals) in mesh.triangles.iter().zip(&mesh.corner_normals) {
+            for (&vertex, &normal) in triangle.iter().zip(normals) {
+                at_vertex.entry(vertex).or_default().insert(normal);
+            }
+        }
+        let normal = |i: u32| mesh.normals[i as usize].map(f64::from);
+        for normals in at_vertex.values() {
+            for (&i, &j) in normals
+                .iter()
+                .flat_map(|i| normals.iter().map(move |j| (i, j)))
+            {
+                assert!(i == j || dot(normal(i), normal(j)) < CREASE_COS);
+            }
+        }
+        let folded = at_vertex
+            .values()
+            .filter(|normals| normals.len() > 1)
+            .count();
+        assert!(folded < mesh.vertices.len() / 5, "{folded} vertices folded");
+    }
+
+    #[test]
     fn the_teapot_faces_outwards() {
-        let (vertices, triangles) = teapot(usize::from(SHIPPED_STEPS));
+        let Teapot {
+            vertices,
+            triangles,
+            ..
+        } = teapot(usize::from(SHIPPED_STEPS));
         // Neighbouring triangles walk their shared edge in opposite directions: one winding
         // all over.
         let mut directed = HashSet::new();

@@ -224,7 +224,7 @@ fn read_meshes(
         let fail = |error: anyhow::Error| (place(i), error);
         let loaded = mesh_file::load(directory, &mesh).map_err(fail)?;
         let added = meshes
-            .add(&loaded.vertices, &loaded.triangles)
+            .add(&loaded.vertices, &loaded.normals, &loaded.triangles)
             .map_err(|error| fail(anyhow::anyhow!(hierarchy_error(&mesh.file, error))))?;
         Ok(ObjectDesc {
             shape: ShapeDesc::Mesh { root: added.root },
@@ -708,7 +708,7 @@ mod tests {
                 4,
                 8,
                 { obscura::Uses::EVERYTHING.bits() },
-                crate::MeshVecs<f32>,
+                obscura::mesh::MeshVecs<f32>,
             >::build(&scene.desc())
             .is_ok()
         );

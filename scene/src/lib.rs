@@ -27,8 +27,8 @@ mod settings;
 
 pub use file::{Located, MAX_FILE_BYTES, NamedScene, load, parse};
 pub use format::{Format, FormatJob};
-pub use mesh_file::obj_text;
-pub use meshes::{Added, MeshVecs, OwnedMeshes};
+pub use mesh_file::{CornerNormals, obj_text};
+pub use meshes::{Added, OwnedMeshes};
 pub use owned::OwnedScene;
 pub use settings::{
     FirmwareSettings, FormatChoice, FrameSettings, MethodSettings, PresentationSettings, Sampling,
@@ -51,7 +51,7 @@ pub type HostScene<S> = obscura::Scene<
     MAX_LIGHTS,
     RAY_STACK,
     { obscura::Uses::EVERYTHING.bits() },
-    MeshVecs<S>,
+    obscura::mesh::MeshVecs<S>,
 >;
 
 /// An error as the `obscura` command and the firmware's build print it: `error: ` and its

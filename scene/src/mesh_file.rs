@@ -1300,17 +1300,87 @@ fn product(a: &Matrix, b: &Matrix) -> Matrix {
     a.map(|row| columns.map(|column| dot(row, column)))
 }
 
-/// A mesh as Wavefront OBJ text: a `v x y z` line per vertex (each coordinate the shortest
-/// text that reads back as the same f32), then an `f a b c` line per triangle (1-based), which
-/// a scene's `shape.mesh` reads back exactly.
+/// Normals at the corners of a mesh's triangles, for smooth shading: `corners[k]` names the
+/// normals at triangle k's corners among `normals`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CornerNormals<'a> {
+    /// The unit normals.
+    pub normals: &'a [[f32; 3]],
+    /// Each triangle's corners' normals, as indices into `normals`.
+    pub corners: &'a [[u32; 3]],
+}
+
+/// A mesh as Wavefront OBJ text, which a scene's `shape.mesh` reads back exactly: a `v x y z`
+/// line per vertex the triangles name (in their order; each coordinate the shortest text that
+/// reads back as the same f32); with `normals`, a `vn x y z` line per normal the corners name;
+/// then an `f a b c` line per triangle (1-based; `f a//i b//j c//k` with normals). Normals
+/// that are not one set per triangle, or name a normal that is not there or zero, are left
+/// out: the mesh is written flat.
 #[must_use]
-pub fn obj_text(vertices: &[[f32; 3]], triangles: &[[u32; 3]]) -> String {
-    let vertex_lines = vertices.iter().map(|[x, y, z]| format!("v {x} {y} {z}\n"));
-    let face_lines = triangles.iter().map(|triangle| {
-        let [a, b, c] = triangle.map(|corner| u64::from(corner) + 1);
-        format!("f {a} {b} {c}\n")
+pub fn obj_text(
+    vertices: &[[f32; 3]],
+    triangles: &[[u32; 3]],
+    normals: Option<CornerNormals<'_>>,
+) -> String {
+    let normals = normals.filter(|given| {
+        given.corners.len() == triangles.len()
+            && given.corners.iter().flatten().all(|&i| {
+                given
+                    .normals
+                    .get(i as usize)
+                    .is_some_and(|n| *n != [0.0; 3])
+            })
     });
-    vertex_lines.chain(face_lines).collect()
+    let named_vertices = Named::of(triangles);
+    let named_normals = normals.map(|given| Named::of(given.corners));
+    let lines = |named: &Named, keyword: &str, list: &[[f32; 3]]| -> String {
+        named
+            .0
+            .iter()
+            .map(|&i| {
+                let [x, y, z] = list.get(i as usize).copied().unwrap_or_default();
+                format!("{keyword} {x} {y} {z}\n")
+            })
+            .collect()
+    };
+    let mut text = lines(&named_vertices, "v", vertices);
+    if let (Some(given), Some(named)) = (normals, &named_normals) {
+        text += &lines(named, "vn", given.normals);
+    }
+    for (k, triangle) in triangles.iter().enumerate() {
+        let [a, b, c] = triangle.map(|i| named_vertices.place(i));
+        let corners = normals
+            .zip(named_normals.as_ref())
+            .and_then(|(given, named)| {
+                given
+                    .corners
+                    .get(k)
+                    .map(|corners| corners.map(|i| named.place(i)))
+            });
+        text += &match corners {
+            Some([i, j, l]) => format!("f {a}//{i} {b}//{j} {c}//{l}\n"),
+            None => format!("f {a} {b} {c}\n"),
+        };
+    }
+    text
+}
+
+/// The indices a list of triangles names, ascending, each once: what an OBJ file writes, and
+/// where (1-based).
+struct Named(Vec<u32>);
+
+impl Named {
+    fn of(triangles: &[[u32; 3]]) -> Self {
+        let mut named: Vec<u32> = triangles.iter().flatten().copied().collect();
+        named.sort_unstable();
+        named.dedup();
+        Self(named)
+    }
+
+    /// Index `i`'s place in the file, from 1.
+    fn place(&self, i: u32) -> usize {
+        self.0.binary_search(&i).map_or(0, |place| place + 1)
+    }
 }
 
 #[cfg(test)]
@@ -1324,6 +1394,36 @@ mod tests {
             std::env::temp_dir().join(format!("obscura-mesh_file-{test}-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         dir
+    }
+
+    #[test]
+    fn obj_text_reads_back_as_the_mesh_it_writes() {
+        // Two triangles of four vertices and a fifth vertex neither names.
+        let vertices = [
+            [0.1, 0.0, 0.0],
+            [1.0, 1e-7, 0.0],
+            [0.0, 1.0, -3.5],
+            [9.0, 9.0, 9.0],
+            [1.0, 1.0, 0.0],
+        ];
+        let up = [0.0, 0.6, 0.8];
+        let triangles = [[0, 1, 2], [1, 4, 2]];
+        let spec = MeshFile::at("written.obj".into());
+        for (test, normals, expected) in [
+            ("flat", vec![], vec![]),
+            ("smooth", vec![up; 5], vec![up; 4]),
+            ("partly", vec![up, up, up, up, [0.0; 3]], vec![]),
+        ] {
+            let given = CornerNormals {
+                normals: &normals,
+                corners: &triangles,
+            };
+            let text = obj_text(&vertices, &triangles, Some(given));
+            let loaded = load_placed(test, &spec, text.as_bytes()).unwrap();
+            assert_eq!(loaded.vertices, [0, 1, 2, 4].map(|i| vertices[i]), "{test}");
+            assert_eq!(loaded.normals, expected, "{test}");
+            assert_eq!(loaded.triangles, [[0, 1, 2], [1, 3, 2]], "{test}");
+        }
     }
 
     /// `spec` loaded from `bytes` written as `spec.file` in the test's directory.

@@ -1,9 +1,8 @@
 //! [`OwnedMeshes`]: a scene's meshes, owned: triangles added mesh by mesh, each with its
 //! bounding-volume hierarchy built ([`obscura::mesh::build_hierarchy`]), lent to the core as a
-//! [`MeshesDesc`]; and [`MeshVecs`], where a scene built at run time keeps them in its format.
+//! [`MeshesDesc`].
 
-use obscura::mesh::{HierarchyError, MeshStorage, Meshes, Node, build_hierarchy};
-use obscura::shape::Triangle;
+use obscura::mesh::{HierarchyError, build_hierarchy};
 use obscura::{MeshesDesc, NodeDesc, desc::triangle_has_area};
 
 /// The triangles and hierarchies of a scene's meshes.
@@ -15,6 +14,8 @@ pub struct OwnedMeshes {
     pub triangles: Vec<[u32; 3]>,
     /// See [`MeshesDesc::nodes`].
     pub nodes: Vec<NodeDesc>,
+    /// See [`MeshesDesc::normals`].
+    pub normals: Vec<[f32; 3]>,
 }
 
 /// A mesh [`OwnedMeshes::add`] added.
@@ -36,6 +37,7 @@ impl OwnedMeshes {
             vertices: desc.vertices.to_vec(),
             triangles: desc.triangles.to_vec(),
             nodes: desc.nodes.to_vec(),
+            normals: desc.normals.to_vec(),
         }
     }
 
@@ -46,17 +48,21 @@ impl OwnedMeshes {
             vertices: &self.vertices,
             triangles: &self.triangles,
             nodes: &self.nodes,
+            normals: &self.normals,
         }
     }
 
     /// Adds the mesh of `triangles` over `vertices` (their corners' indices), leaving out the
-    /// triangles without area, and builds its hierarchy.
+    /// triangles without area, and builds its hierarchy. `normals` are the vertices' unit
+    /// normals in their order, for a smooth mesh: a vertex with a zero normal or beyond them
+    /// has none, and a triangle with such a corner is shaded flat (none at all: a flat mesh).
     ///
     /// # Errors
     /// When no triangle with area is left, or a triangle names a corner `vertices` lacks.
     pub fn add(
         &mut self,
         vertices: &[[f32; 3]],
+        normals: &[[f32; 3]],
         triangles: &[[u32; 3]],
     ) -> Result<Added, HierarchyError> {
         let corner = |i: u32| vertices.get(i as usize).copied();
@@ -83,6 +89,15 @@ impl OwnedMeshes {
             triangles: kept.len(),
             without_area: triangles.len() - kept.len(),
         };
+        // Normals are one per vertex of every mesh, or none: a flat mesh's are zero where
+        // another's are given.
+        if !normals.is_empty() || !self.normals.is_empty() {
+            self.normals.resize(self.vertices.len(), [0.0; 3]);
+            self.normals
+                .extend(normals.iter().take(vertices.len()).copied());
+            self.normals
+                .resize(self.vertices.len() + vertices.len(), [0.0; 3]);
+        }
         self.vertices.extend_from_slice(vertices);
         self.triangles
             .extend(kept.iter().map(|t| t.map(|i| i + vertex_base)));
@@ -99,9 +114,14 @@ impl OwnedMeshes {
         Ok(added)
     }
 
-    /// Moves every vertex through `position` and fits each node's box to its triangles again
-    /// (the hierarchy's shape stays; its boxes hold what they hold).
-    pub fn moved(&self, position: impl Fn([f32; 3]) -> [f32; 3]) -> Self {
+    /// Moves every vertex through `position` and its normal through `direction`, and fits each
+    /// node's box to its triangles again (the hierarchy's shape stays; its boxes hold what
+    /// they hold).
+    pub fn moved(
+        &self,
+        position: impl Fn([f32; 3]) -> [f32; 3],
+        direction: impl Fn([f32; 3]) -> [f32; 3],
+    ) -> Self {
         let vertices: Vec<[f32; 3]> = self.vertices.iter().map(|&p| position(p)).collect();
         let nodes = self
             .nodes
@@ -125,47 +145,12 @@ impl OwnedMeshes {
             vertices,
             triangles: self.triangles.clone(),
             nodes,
+            normals: self
+                .normals
+                .iter()
+                .map(|&n| if n == [0.0; 3] { n } else { direction(n) })
+                .collect(),
         }
-    }
-}
-
-/// A scene's meshes in its format, in `Vec`s: where a scene built at run time keeps them (the
-/// harness's scenes, and the proof of a firmware's, which writes them to words).
-#[derive(Clone, Debug, PartialEq)]
-pub struct MeshVecs<S> {
-    nodes: Vec<Node<S>>,
-    triangles: Vec<Triangle<S>>,
-}
-
-impl<S> Default for MeshVecs<S> {
-    fn default() -> Self {
-        Self {
-            nodes: Vec::new(),
-            triangles: Vec::new(),
-        }
-    }
-}
-
-impl<S: Copy> Meshes<S> for MeshVecs<S> {
-    fn node(&self, index: u32) -> Option<Node<S>> {
-        self.nodes.get(index as usize).copied()
-    }
-    fn triangle(&self, index: u32) -> Option<Triangle<S>> {
-        self.triangles.get(index as usize).copied()
-    }
-}
-
-impl<S: Copy> MeshStorage<S> for MeshVecs<S> {
-    fn capacity(&self) -> usize {
-        usize::MAX
-    }
-    fn push_node(&mut self, node: Node<S>) -> bool {
-        self.nodes.push(node);
-        true
-    }
-    fn push_triangle(&mut self, triangle: Triangle<S>) -> bool {
-        self.triangles.push(triangle);
-        true
     }
 }
 
@@ -180,11 +165,11 @@ mod tests {
     fn meshes_are_added_after_each_other_without_their_flat_triangles() {
         let mut meshes = OwnedMeshes::default();
         let first = meshes
-            .add(&SQUARE, &[[0, 1, 2], [0, 2, 3], [0, 1, 1]])
+            .add(&SQUARE, &[], &[[0, 1, 2], [0, 2, 3], [0, 1, 1]])
             .unwrap();
         assert_eq!((first.root, first.triangles, first.without_area), (0, 2, 1));
         let second = meshes
-            .add(&SQUARE, &[[0, 1, 2], [0, 2, 3], [1, 2, 3]])
+            .add(&SQUARE, &[], &[[0, 1, 2], [0, 2, 3], [1, 2, 3]])
             .unwrap();
         // The first mesh's two triangles make one leaf: the second's root is the next node.
         assert_eq!(second.root, 1);
@@ -194,11 +179,11 @@ mod tests {
         assert_eq!((root.first, root.end), (2, 5));
         assert!(root.right == 0 || root.right > second.root);
         assert!(matches!(
-            meshes.add(&SQUARE, &[[0, 1, 9]]),
+            meshes.add(&SQUARE, &[], &[[0, 1, 9]]),
             Err(HierarchyError::NoSuchVertex { triangle: 0 })
         ));
         assert!(
-            meshes.add(&SQUARE, &[[0, 0, 1]]).is_err(),
+            meshes.add(&SQUARE, &[], &[[0, 0, 1]]).is_err(),
             "nothing with area"
         );
     }
@@ -206,11 +191,31 @@ mod tests {
     #[test]
     fn moving_the_vertices_fits_the_boxes_to_them() {
         let mut meshes = OwnedMeshes::default();
-        meshes.add(&SQUARE, &[[0, 1, 2], [0, 2, 3]]).unwrap();
-        let moved = meshes.moved(|[x, y, z]| [2.0 * x + 1.0, y, z]);
+        meshes.add(&SQUARE, &[], &[[0, 1, 2], [0, 2, 3]]).unwrap();
+        let moved = meshes.moved(|[x, y, z]| [2.0 * x + 1.0, y, z], |d| d);
         assert_eq!(
             (moved.nodes[0].min, moved.nodes[0].max),
             ([1.0, 0.0, 0.0], [3.0, 1.0, 0.0])
         );
+    }
+
+    #[test]
+    fn normals_are_one_per_vertex_of_every_mesh_once_one_has_them() {
+        let up = [0.0, 0.0, 1.0];
+        let mut meshes = OwnedMeshes::default();
+        meshes.add(&SQUARE, &[], &[[0, 1, 2]]).unwrap();
+        assert!(meshes.normals.is_empty(), "a flat mesh has none");
+        // Three normals for four vertices: the fourth has none.
+        meshes.add(&SQUARE, &[up; 3], &[[0, 1, 2]]).unwrap();
+        meshes.add(&SQUARE, &[], &[[0, 1, 2]]).unwrap();
+        let zero = [0.0; 3];
+        let expected = [[zero; 4], [up, up, up, zero], [zero; 4]].concat();
+        assert_eq!(meshes.normals, expected);
+        assert_eq!(meshes.desc().corner_normals([4, 5, 6]), Some([up; 3]));
+        assert_eq!(meshes.desc().corner_normals([4, 5, 7]), None);
+        // Mirrored, the normals turn with the surface; a vertex without one keeps none.
+        let mirrored = meshes.moved(|p| p, |[x, y, z]| [x, y, -z]);
+        assert_eq!(mirrored.normals[4], [0.0, 0.0, -1.0]);
+        assert_eq!(mirrored.normals[0], zero);
     }
 }

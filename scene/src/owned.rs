@@ -155,7 +155,12 @@ impl OwnedScene {
                 ShapeDesc::Mesh { root } => {
                     let file = format!("{stem}-mesh-{}.obj", meshes.len());
                     let desc = self.meshes.desc();
-                    let text = crate::obj_text(desc.vertices, desc.triangles_of(root));
+                    let triangles = desc.triangles_of(root);
+                    let normals = crate::CornerNormals {
+                        normals: desc.normals,
+                        corners: triangles,
+                    };
+                    let text = crate::obj_text(desc.vertices, triangles, Some(normals));
                     meshes.push((file.clone(), text));
                     FileShape::Mesh {
                         mesh: MeshFile::at(file),
@@ -253,7 +258,7 @@ impl OwnedScene {
                 ..self.camera
             },
             objects,
-            meshes: self.meshes.moved(&position),
+            meshes: self.meshes.moved(&position, &direction),
             lights,
             background,
             far: length(self.far),

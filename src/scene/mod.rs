@@ -780,6 +780,21 @@ impl<S: Scalar> Converter<S> {
                 return Err(full());
             }
         }
+        if !pool.normals.is_empty() {
+            for (i, &corners) in pool.triangles.iter().enumerate() {
+                let normals = match pool.corner_normals(corners) {
+                    Some(normals) => {
+                        let normal = |n| self.vector(item(i), "a vertex normal", Vec3::from_f32(n));
+                        let [a, b, c] = normals;
+                        [normal(a)?, normal(b)?, normal(c)?]
+                    }
+                    None => [Vec3::ZERO; 3],
+                };
+                if !meshes.push_normals(normals) {
+                    return Err(full());
+                }
+            }
+        }
         for node in pool.nodes {
             let (low, high) = (Vec3::from_f32(node.min), Vec3::from_f32(node.max));
             let item = item(node.first as usize);
@@ -789,7 +804,7 @@ impl<S: Scalar> Converter<S> {
                 first: node.first,
                 end: node.end,
                 right: node.right,
-                axis: node.axis,
+                axis: u32::from(node.axis),
             };
             if !meshes.push_node(node) {
                 return Err(full());

@@ -286,6 +286,9 @@ const LEVEL: f64 = 1.0 / 255.0;
 /// The largest component of a mirror direction d + 2(cos θ)·n of unit d and n.
 const MIRROR: f64 = 3.0;
 
+/// The largest a smooth mesh's interpolated normal is before it is normalised: 1 + 2 + 2.
+const SMOOTH_NORMAL: f64 = 5.0;
+
 /// How far beyond the world's radius a ray can start in `format` (see the module
 /// documentation): the largest surface tolerance (a sphere's or a triangle's own part at its
 /// largest), the rounding of a surface point, and with fast roots the error of the quotient
@@ -385,17 +388,24 @@ pub fn magnitudes<'a>(
             Remedy::LessLight,
         ),
     ];
-    let meshes = desc
+    let has_meshes = desc
         .objects
         .iter()
-        .any(|object| matches!(object.shape, ShapeDesc::Mesh { .. }))
-        .then(|| {
-            scene(
-                "a ray's midpoint less a mesh's box's centre",
-                box_magnitude(world, slack),
-                Remedy::ShrinkWorld,
-            )
-        });
+        .any(|object| matches!(object.shape, ShapeDesc::Mesh { .. }));
+    let meshes = has_meshes.then(|| {
+        scene(
+            "a ray's midpoint less a mesh's box's centre",
+            box_magnitude(world, slack),
+            Remedy::ShrinkWorld,
+        )
+    });
+    let smooth = (has_meshes && !desc.meshes.normals.is_empty()).then(|| {
+        scene(
+            "a smooth mesh's normal, n₀ + u·(n₁ − n₀) + v·(n₂ − n₀)",
+            SMOOTH_NORMAL,
+            Remedy::ShrinkWorld,
+        )
+    });
     let objects = desc.primitives().flat_map(move |(i, object)| {
         let item = Item::Object(i);
         let shape: [Option<(&'static str, f64, Remedy)>; 3] = match object.shape {
@@ -475,7 +485,11 @@ pub fn magnitudes<'a>(
                 remedy,
             })
     });
-    global.into_iter().chain(meshes).chain(objects)
+    global
+        .into_iter()
+        .chain(meshes)
+        .chain(smooth)
+        .chain(objects)
 }
 
 /// The farthest a point of a plane's surface is from its checkerboard's origin: the point

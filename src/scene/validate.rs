@@ -54,9 +54,6 @@ pub(super) fn validate(desc: &SceneDesc<'_>) -> Result<Frame, SceneError> {
     let eye = Vec3::from_f32(desc.camera.eye);
     for (i, object) in desc.objects.iter().enumerate() {
         material(Item::Object(i), &object.material)?;
-        if let ShapeDesc::Mesh { root } = object.shape {
-            hierarchy(Item::Object(i), &desc.meshes, root, desc)?;
-        }
     }
     mesh_corners(desc)?;
     for (i, object) in desc.primitives() {
@@ -72,6 +69,12 @@ pub(super) fn validate(desc: &SceneDesc<'_>) -> Result<Frame, SceneError> {
                 clearance,
                 aperture: desc.camera.aperture,
             });
+        }
+    }
+    // After its triangles, so that a mesh beyond the world is said to be (its boxes are too).
+    for (i, object) in desc.objects.iter().enumerate() {
+        if let ShapeDesc::Mesh { root } = object.shape {
+            hierarchy(Item::Object(i), &desc.meshes, root, desc)?;
         }
     }
     for (i, light) in desc.lights.iter().enumerate() {
@@ -298,21 +301,38 @@ fn hierarchy(
     Ok(())
 }
 
-/// Checks that every corner of every mesh triangle is one of the meshes' vertices.
+/// Checks that every corner of every mesh triangle is one of the meshes' vertices, and that
+/// the vertices' normals, if any, are one per vertex, each unit or zero.
 fn mesh_corners(desc: &SceneDesc<'_>) -> Result<(), SceneError> {
     let meshes = &desc.meshes;
-    match meshes
+    let malformed = |what| {
+        Err(SceneError::MalformedMesh {
+            item: Item::Scene,
+            what,
+        })
+    };
+    let unit_or_zero = |n: &[f32; 3]| {
+        let length = Vec3::from_f32(*n).length();
+        length == 0.0 || (length - 1.0).abs() <= NORMAL_LENGTH_TOLERANCE
+    };
+    if meshes
         .triangles
         .iter()
-        .position(|t| t.iter().any(|&i| meshes.vertices.get(i as usize).is_none()))
+        .any(|t| t.iter().any(|&i| meshes.vertices.get(i as usize).is_none()))
     {
-        Some(_) => Err(SceneError::MalformedMesh {
-            item: Item::Scene,
-            what: "a triangle names a corner that is not among the vertices",
-        }),
-        None => Ok(()),
+        malformed("a triangle names a corner that is not among the vertices")
+    } else if !(meshes.normals.is_empty() || meshes.normals.len() == meshes.vertices.len()) {
+        malformed("its vertices' normals are not one per vertex (give one for each, or none)")
+    } else if !meshes.normals.iter().all(unit_or_zero) {
+        malformed("a vertex normal is neither of length 1 nor 0 (normalise it, or give 0 for none)")
+    } else {
+        Ok(())
     }
 }
+
+/// How far from 1 a vertex normal's length may be: f32's rounding of a unit vector, many
+/// times over.
+const NORMAL_LENGTH_TOLERANCE: f64 = 1e-4;
 
 fn inside_world(item: Item, reach: f64, far: f32) -> Result<(), SceneError> {
     if reach > f64::from(far) {

@@ -149,6 +149,25 @@ impl<S: Scalar> Shape<S> {
         }
     }
 
+    /// The normal that shades a hit on a smooth mesh: its triangle's corners' normals
+    /// interpolated ([`mesh::smooth_normal`]), on either side. `None` elsewhere, where the
+    /// surface's own normal shades it.
+    #[inline]
+    #[must_use]
+    pub fn smooth_normal(
+        &self,
+        hit: &Intersection<S>,
+        roots: RootMethod,
+        meshes: Option<&impl Meshes<S>>,
+    ) -> Option<Vec3<S>> {
+        match self {
+            Self::Mesh(_) => meshes?
+                .normals(hit.part)
+                .and_then(|normals| mesh::smooth_normal(normals, hit.u, hit.v, roots)),
+            Self::Sphere(_) | Self::Plane(_) | Self::Triangle(_) => None,
+        }
+    }
+
     /// The colour of the surface at a point: the material's, or a pattern's.
     #[inline]
     #[must_use]

@@ -45,16 +45,15 @@ pub fn run(command: Command) -> Result<()> {
         Command::Stress(args) => stress::run(&args),
         Command::Fuzz(args) => fuzz::run(&args),
         Command::Teapot(args) => {
-            let steps = usize::from(args.steps);
-            let (vertices, triangles) = crate::teapot::teapot(steps);
-            std::fs::write(&args.output, crate::teapot::teapot_obj(steps))
+            let mesh = crate::teapot::teapot(usize::from(args.steps));
+            std::fs::write(&args.output, mesh.obj_text())
                 .with_context(|| format!("cannot write {}", args.output.display()))?;
             say!(
                 "wrote the teapot at {} steps a patch to {}: {} triangles on {} vertices",
                 args.steps,
                 args.output.display(),
-                triangles.len(),
-                vertices.len()
+                mesh.triangles.len(),
+                mesh.vertices.len()
             )?;
             Ok(())
         }

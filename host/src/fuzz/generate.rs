@@ -228,7 +228,8 @@ impl Generator {
         }
         // A twelfth with a mesh (drawn after the rest, which stays what it was): a closed ball of
         // 8 or 32 triangles, its corners jittered or not, or a soup of triangles, now and then
-        // with corners collapsed into triangles without area (left out), of any size.
+        // with corners collapsed into triangles without area (left out), of any size, half
+        // of them smooth (normals at the corners).
         if self.chance(1.0 / 12.0) {
             self.mesh(&mut scene, eye, forward, vfov, unit);
         }
@@ -280,18 +281,16 @@ impl Generator {
         } else {
             [self.direction(), self.direction()]
         };
+        // Each corner's direction from the centre, mapped with it.
+        let mut outwards = Vec::with_capacity(corners.len());
         for corner in &mut corners {
             let noise = scale(self.direction(), jitter);
             let p = add(*corner, noise);
             let [u, v] = axes;
             let w = cross(u, v);
-            *corner = add(
-                centre,
-                scale(
-                    add(add(scale(u, p[0]), scale(v, p[1])), scale(w, p[2])),
-                    size,
-                ),
-            );
+            let mapped = add(add(scale(u, p[0]), scale(v, p[1])), scale(w, p[2]));
+            *corner = add(centre, scale(mapped, size));
+            outwards.push(mapped);
         }
         let mut triangles: Vec<[u32; 3]> = triangles;
         if self.chance(0.2) {
@@ -300,7 +299,22 @@ impl Generator {
             }
         }
         let vertices: Vec<[f32; 3]> = corners.iter().map(|&c| f32s(c)).collect();
-        let Ok(added) = scene.meshes.add(&vertices, &triangles) else {
+        let material = self.material();
+        // Half of them smooth, drawn last (the mesh is what it would be flat): each corner's
+        // normal its direction from the centre (the surface's, where the map turns the ball),
+        // now and then one left out.
+        let mut normals = Vec::new();
+        if self.chance(0.5) {
+            for outward in outwards {
+                let length = norm(outward);
+                normals.push(if length > 1e-6 && !self.chance(0.05) {
+                    f32s(scale(outward, 1.0 / length))
+                } else {
+                    [0.0; 3]
+                });
+            }
+        }
+        let Ok(added) = scene.meshes.add(&vertices, &normals, &triangles) else {
             return;
         };
         let extent = corners
@@ -312,7 +326,7 @@ impl Generator {
         }
         scene.objects.push(ObjectDesc {
             shape: ShapeDesc::Mesh { root: added.root },
-            material: self.material(),
+            material,
         });
     }
 

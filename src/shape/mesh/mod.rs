@@ -5,6 +5,10 @@
 //! tracer walks a mesh's hierarchy with a stack of at most [`MAX_DEPTH`] + 1 nodes, never by
 //! recursion.
 //!
+//! A mesh whose vertices have normals is shaded smooth: each triangle keeps its corners'
+//! normals, and the normal at a hit is theirs interpolated by its barycentric coordinates
+//! ([`smooth_normal`]; Phong, "Illumination for computer generated pictures", 1975).
+//!
 //! A node is tested by the separating axes of its box and the ray's segment up to the nearest
 //! hit so far (Ericson, *Real-Time Collision Detection*, 5.3.3): products of differences of
 //! positions with unit directions, no reciprocal of a direction, so that every value stays
@@ -14,11 +18,16 @@
 
 mod flash;
 mod hierarchy;
+#[cfg(feature = "alloc")]
+mod vecs;
 
 pub use flash::MeshWords;
 pub(crate) use flash::write as write_words;
 pub use hierarchy::{HierarchyError, MAX_DEPTH, MAX_LEAF, build_hierarchy};
+#[cfg(feature = "alloc")]
+pub use vecs::MeshVecs;
 
+use crate::methods::RootMethod;
 use crate::ray::{Ray, Span};
 use crate::scalar::{Scalar, Work};
 use crate::shape::{Intersection, Triangle};
@@ -34,7 +43,7 @@ pub struct Node<S> {
     pub(crate) first: u32,
     pub(crate) end: u32,
     pub(crate) right: u32,
-    pub(crate) axis: u8,
+    pub(crate) axis: u32,
 }
 
 crate::words::words_of_struct!(Node<S> {
@@ -86,6 +95,9 @@ pub trait Meshes<S> {
     fn node(&self, index: u32) -> Option<Node<S>>;
     /// Triangle `index`, if there is one.
     fn triangle(&self, index: u32) -> Option<Triangle<S>>;
+    /// The normals at triangle `index`'s corners, where the meshes have normals (zero where
+    /// the triangle is shaded flat).
+    fn normals(&self, index: u32) -> Option<[Vec3<S>; 3]>;
 }
 
 /// Storage a scene build fills with its meshes' nodes and triangles, in the order of
@@ -97,6 +109,9 @@ pub trait MeshStorage<S>: Meshes<S> + Default {
     fn push_node(&mut self, node: Node<S>) -> bool;
     /// Adds a triangle; false where it is full.
     fn push_triangle(&mut self, triangle: Triangle<S>) -> bool;
+    /// Adds the normals at the corners of the triangle of the same index; false where it is
+    /// full. Given for every triangle, or for none.
+    fn push_normals(&mut self, normals: [Vec3<S>; 3]) -> bool;
 }
 
 /// The storage of a scene without meshes: it holds none.
@@ -108,6 +123,9 @@ impl<S> Meshes<S> for NoMeshes {
         None
     }
     fn triangle(&self, _: u32) -> Option<Triangle<S>> {
+        None
+    }
+    fn normals(&self, _: u32) -> Option<[Vec3<S>; 3]> {
         None
     }
 }
@@ -122,6 +140,31 @@ impl<S> MeshStorage<S> for NoMeshes {
     fn push_triangle(&mut self, _: Triangle<S>) -> bool {
         false
     }
+    fn push_normals(&mut self, _: [Vec3<S>; 3]) -> bool {
+        false
+    }
+}
+
+/// The unit normal at the point with barycentric coordinates (`u`, `v`) of a triangle with
+/// `normals` at its corners: n₀ + u·(n₁ − n₀) + v·(n₂ − n₀), normalised. `None` where a corner
+/// has no normal (zero), or where they nearly cancel (the sum shorter than ½, which no surface
+/// smooth enough to shade so has), and the triangle's own normal shades it.
+///
+/// Every value stays within 5: the corners' are unit, and a hit's weights are within [0, 1].
+#[inline]
+#[must_use]
+pub fn smooth_normal<S: Scalar>(
+    normals: [Vec3<S>; 3],
+    u: S,
+    v: S,
+    roots: RootMethod,
+) -> Option<Vec3<S>> {
+    let [a, b, c] = normals;
+    if normals.contains(&Vec3::ZERO) {
+        return None;
+    }
+    let n = a.add_scaled(b - a, u).add_scaled(c - a, v);
+    (n.length_squared() >= S::ratio(1, 4)).then(|| n.normalized(roots))
 }
 
 /// A search of a mesh for a ray: where the meshes are, and what the search may skip.

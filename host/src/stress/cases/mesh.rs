@@ -101,7 +101,7 @@ impl FormatJob for Job {
             let corners_f32: Vec<[f32; 3]> = corners.iter().map(|c| c.map(|x| x as f32)).collect();
             let faces_u32: Vec<[u32; 3]> = faces.iter().map(|f| f.map(|i| i as u32)).collect();
             let root = meshes
-                .add(&corners_f32, &faces_u32)
+                .add(&corners_f32, &[], &faces_u32)
                 .map_err(|error| anyhow::anyhow!("the octahedron as a mesh: {error:?}"))?
                 .root;
             let mesh = [ObjectDesc {
