@@ -71,6 +71,9 @@ for target in "$M4F" "$M0"; do
     cargo build -p obscura --release --target "$target" --locked
 done
 
+step "the core as crates.io would take it: cargo package"
+cargo package -p obscura --locked --quiet
+
 step "the library's dependencies: none of the firmware's"
 if cargo tree -p obscura -e normal --locked --prefix none | grep -E "cortex-m|stm32|mipidsi|obscura-"; then
     echo "the obscura library depends on a firmware crate (above)" >&2
