@@ -354,6 +354,15 @@ impl<S: Scalar> Camera<S> {
 
     /// Row y of the image (counting down from the top), ready to give its pixels' rays, or
     /// `None` below the image.
+    ///
+    /// ```
+    /// use obscura::{Scene, scenes};
+    ///
+    /// let camera = Scene::<f32, 8, 4, 6>::build(&scenes::WHITTED)?.camera(32, 24)?;
+    /// assert_eq!(camera.row(23).map(|row| row.rays().count()), Some(32));
+    /// assert!(camera.row(24).is_none());
+    /// # Ok::<(), obscura::SceneError>(())
+    /// ```
     #[must_use]
     pub fn row(&self, y: u32) -> Option<Row<S>> {
         (y < self.height).then(|| Row {

@@ -213,6 +213,13 @@ pub struct CameraDesc {
 impl CameraDesc {
     /// A pinhole camera at `eye` looking at `look_at`, `up` being up, seeing `vfov_degrees`
     /// from the top of the image to the bottom.
+    ///
+    /// ```
+    /// use obscura::CameraDesc;
+    ///
+    /// let camera = CameraDesc::pinhole([0.0, 1.0, -4.0], [0.0, 1.0, 0.0], [0.0, 1.0, 0.0], 45.0);
+    /// assert_eq!(camera.aperture, 0.0); // a pinhole: no depth of field
+    /// ```
     #[must_use]
     pub const fn pinhole(
         eye: [f32; 3],
@@ -334,6 +341,13 @@ impl Default for MaterialDesc {
 
 impl MaterialDesc {
     /// A matte surface of the given colour.
+    ///
+    /// ```
+    /// use obscura::MaterialDesc;
+    ///
+    /// let chalk = MaterialDesc::matte([0.9, 0.9, 0.85]);
+    /// assert_eq!((chalk.specular, chalk.reflection, chalk.transmission), (0.0, 0.0, 0.0));
+    /// ```
     #[must_use]
     pub const fn matte(colour: [f32; 3]) -> Self {
         Self {
@@ -367,6 +381,13 @@ pub struct LightDesc {
 
 impl LightDesc {
     /// A point light.
+    ///
+    /// ```
+    /// use obscura::LightDesc;
+    ///
+    /// let lamp = LightDesc::point([-3.0, 5.0, -4.0], [1.0, 1.0, 1.0]);
+    /// assert_eq!(lamp.radius, 0.0); // a point: hard shadows
+    /// ```
     #[must_use]
     pub const fn point(position: [f32; 3], colour: [f32; 3]) -> Self {
         Self {

@@ -34,6 +34,11 @@
 #[cfg(feature = "alloc")]
 extern crate alloc;
 
+/// The front page's example (`README.md`), compiled and run as a doc test.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct FrontPage;
+
 pub mod adaptive;
 pub mod camera;
 pub mod color;

@@ -78,6 +78,20 @@ impl<
 
     /// Traces a primary ray through the whole ray tree; `id` says which ray of the image it
     /// is, which chooses where its shadow rays meet area lights ([`Pattern::light`]).
+    ///
+    /// ```
+    /// use obscura::pattern::SampleId;
+    /// use obscura::{Scene, scenes};
+    ///
+    /// let scene = Scene::<f64, 8, 4, 6>::build(&scenes::WHITTED)?;
+    /// let camera = scene.camera(64, 64)?;
+    /// // The middle of the top row: sky, no object met.
+    /// let ray = camera.row(0).and_then(|row| row.rays().nth(32)).expect("a ray");
+    /// let sample = scene.trace(ray, SampleId { x: 32, y: 0, sample: 0 });
+    /// assert_eq!(sample.met, 0);
+    /// assert!(sample.colour.to_f64()[2] > 0.5, "blue");
+    /// # Ok::<(), obscura::SceneError>(())
+    /// ```
     #[must_use]
     pub fn trace(&self, primary: Ray<S>, id: SampleId) -> Sample<S> {
         let mut stack: Vec<Task<S>, RAYS> = Vec::new();
@@ -87,6 +101,17 @@ impl<
 
     /// The index of the first object `ray` hits, if any, and on a mesh the index of its
     /// triangle (0 on other shapes): what a primary ray sees, without shading it.
+    ///
+    /// ```
+    /// use obscura::{Scene, scenes};
+    ///
+    /// let scene = Scene::<f32, 8, 4, 6>::build(&scenes::WHITTED)?;
+    /// let camera = scene.camera(64, 64)?;
+    /// // The bottom row sees the checkerboard, object 0.
+    /// let ray = camera.row(63).and_then(|row| row.rays().nth(32)).expect("a ray");
+    /// assert_eq!(scene.first_hit(&ray), Some((0, 0)));
+    /// # Ok::<(), obscura::SceneError>(())
+    /// ```
     #[must_use]
     pub fn first_hit(&self, ray: &Ray<S>) -> Option<(usize, u32)> {
         self.tracer(SampleId::default())

@@ -1,6 +1,6 @@
 //! Each format and method against the f64 reference (same methods, exact roots) on both
 //! built-in scenes at 256×256. The bounds sit just under what the code achieves today (see the
-//! README's tables), so a change that costs precision fails here. A single edge pixel that
+//! book's tables, `docs/speed-accuracy.md`), so a change that costs precision fails here. A single edge pixel that
 //! lands on the other side moves a PSNR by up to 2 dB here, which the bounds allow for where
 //! the code was more precise and still lost one (unit vectors, correctly rounded since, moved
 //! `shapes`' by stable form from 53.96 to 51.48 dB through two pixels).

@@ -26,7 +26,7 @@ pub enum Command {
     /// List the built-in scenes (every command takes a scene file as well).
     Scenes,
     /// List the settings every command's flags and the firmware's build take, each with its
-    /// environment variable and default (a Markdown table, as the README shows it).
+    /// environment variable and default (a Markdown table, as the book shows it).
     Settings,
     /// Range analysis of a scene: its extents and finest features, the bits each method needs,
     /// which formats hold it, the PSNR each is predicted to reach, and the cheapest that meets

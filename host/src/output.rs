@@ -62,14 +62,17 @@ pub fn is_closed_pipe(error: &anyhow::Error) -> bool {
 }
 
 /// Fails, saying why, unless `path` can be written as a file: it is not a directory, its
-/// directory exists, and a file can be created (or, where it exists, opened for writing) there.
-/// What this creates, it removes.
+/// directory exists or can be made (as `out/` is; made, it stays), and a file can be created
+/// (or, where it exists, opened for writing) there. The file this creates, it removes.
 ///
 /// # Errors
 /// Why `path` cannot be written.
 pub fn check_file(path: &Path) -> Result<()> {
     if path.is_dir() {
         bail!("cannot write {}: it is a directory", path.display());
+    }
+    if let Some(dir) = path.parent().filter(|dir| !dir.as_os_str().is_empty()) {
+        fs::create_dir_all(dir).with_context(|| format!("cannot write {}", path.display()))?;
     }
     let existed = path.exists();
     OpenOptions::new()
@@ -150,12 +153,15 @@ mod tests {
     }
 
     #[test]
-    fn a_missing_directory_or_a_directory_as_a_file_is_refused() {
+    fn a_missing_directory_is_made_and_a_file_in_a_file_or_a_directory_as_a_file_refused() {
         let dir = scratch("refused");
-        let missing = check_file(&dir.join("no/such/out.png")).unwrap_err();
+        check_file(&dir.join("made/for/out.png")).unwrap();
+        assert!(dir.join("made/for").is_dir() && !dir.join("made/for/out.png").exists());
+        fs::write(dir.join("a-file"), b"").unwrap();
+        let under_a_file = check_file(&dir.join("a-file/out.png")).unwrap_err();
         assert!(
-            format!("{missing:#}").contains("cannot write"),
-            "{missing:#}"
+            format!("{under_a_file:#}").contains("cannot write"),
+            "{under_a_file:#}"
         );
         let directory = check_file(&dir).unwrap_err();
         assert!(

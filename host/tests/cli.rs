@@ -252,18 +252,15 @@ fn bad_arguments_fail_with_a_clear_message() {
 
 #[test]
 fn an_unwritable_output_is_reported() {
-    let output = obscura(&[
-        "render",
-        "shapes",
-        "--size",
-        "8x8",
-        "-o",
-        "/nonexistent/dir/x.png",
-    ]);
+    let dir = scratch("unwritable");
+    std::fs::write(dir.join("a-file"), b"").unwrap();
+    let path = dir.join("a-file/x.png");
+    let path = path.to_str().unwrap();
+    let output = obscura(&["render", "shapes", "--size", "8x8", "-o", path]);
     assert!(!output.status.success());
     let message = stderr(&output);
     assert!(
-        message.contains("cannot write /nonexistent/dir/x.png"),
+        message.contains(&format!("cannot write {path}")),
         "{message}"
     );
 }
@@ -618,7 +615,9 @@ fn a_target_psnr_no_image_can_reach_is_refused_briefly() {
 fn outputs_are_checked_before_any_work() {
     let dir = scratch("outputs");
     let images = dir.join("images");
-    // The JSON report cannot be written, so no image is rendered either.
+    // The JSON report cannot be written (its directory would be in a file), so no image is
+    // rendered either.
+    std::fs::write(dir.join("a-file"), b"").unwrap();
     let output = obscura(&[
         "compare",
         "whitted",
@@ -627,7 +626,7 @@ fn outputs_are_checked_before_any_work() {
         "--out-dir",
         images.to_str().unwrap(),
         "--json",
-        dir.join("no/such/dir/report.json").to_str().unwrap(),
+        dir.join("a-file/report.json").to_str().unwrap(),
     ]);
     assert!(!output.status.success());
     assert!(

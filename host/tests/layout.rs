@@ -1,4 +1,4 @@
-//! The workspace's layout, as the README draws it: which crate uses which (its path
+//! The workspace's layout, as the book draws it (`docs/design.md`): which crate uses which (its path
 //! dependencies), and that no module of a crate imports in a circle.
 
 use std::collections::{BTreeMap, BTreeSet};

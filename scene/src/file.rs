@@ -1,5 +1,5 @@
 //! The scenes obscura takes: a built-in one by name, or a TOML scene file (see
-//! `host/scenes/` and the README's "Scene files"). A file is read (up to [`MAX_FILE_BYTES`]),
+//! `host/scenes/` and the book's "Scene files", `docs/scene-files.md`). A file is read (up to [`MAX_FILE_BYTES`]),
 //! parsed and checked for vectors of three here; the core's scene build then checks what it
 //! says, and [`NamedScene::locate`] points its refusals at the file's line and column.
 

@@ -16,6 +16,11 @@
 //! # }
 //! ```
 
+/// The book's chapter on scene files (`docs/scene-files.md`): its examples compiled as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../../docs/scene-files.md")]
+struct SceneFilesChapter;
+
 mod file;
 pub mod firmware;
 mod format;

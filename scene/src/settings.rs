@@ -3,7 +3,7 @@
 //! environment variable (`OBSCURA_SAMPLES`: the firmware's build reads it, and every command's
 //! flag falls back on it, through clap's `env`), its default (where it has one) and the parser
 //! that checks its values, for the flag, the variable and the default alike. [`table`] lists
-//! them all, as the README does.
+//! them all, as the book does (`docs/boards.md`).
 //!
 //! - [`Sampling`]: rays per pixel and per area light, over the scene's own counts.
 //! - [`MethodSettings`]: the numerical methods.
@@ -385,7 +385,7 @@ impl FirmwareSettings {
     }
 }
 
-/// The settings as a Markdown table: variable, flag, default, what. What the README shows.
+/// The settings as a Markdown table: variable, flag, default, what. What the book shows (`docs/boards.md`).
 #[must_use]
 pub fn table() -> String {
     let mut out = String::from("| variable | flag | default | what |\n|---|---|---|---|\n");
@@ -598,12 +598,13 @@ mod tests {
     }
 
     #[test]
-    fn the_readme_lists_every_setting_as_the_table_does() {
-        let readme =
-            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../README.md")).unwrap();
+    fn the_book_lists_every_setting_as_the_table_does() {
+        let book =
+            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/boards.md"))
+                .unwrap();
         assert!(
-            readme.contains(&table()),
-            "the README's table of settings is not `obscura settings`'s; paste it in:\n{}",
+            book.contains(&table()),
+            "docs/boards.md's table of settings is not `obscura settings`'s; paste it in:\n{}",
             table()
         );
     }

@@ -144,6 +144,16 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, M:
     ///
     /// # Errors
     /// A [`SceneError`] that names the offending value and says how to fix it.
+    ///
+    /// ```
+    /// use obscura::{I16F16, Scene, SceneError, scenes};
+    ///
+    /// // 8 objects, 4 lights, a ray stack of 6: room for `whitted`.
+    /// assert!(Scene::<I16F16, 8, 4, 6>::build(&scenes::WHITTED).is_ok());
+    /// // Too few objects for it: refused, saying so.
+    /// let refused = Scene::<I16F16, 2, 4, 6>::build(&scenes::WHITTED);
+    /// assert!(matches!(refused, Err(SceneError::TooMany { what: "objects", .. })));
+    /// ```
     pub fn build(desc: &SceneDesc<'_>) -> Result<Self, SceneError> {
         Self::build_with(desc, Methods::LECTURE)
     }
@@ -202,6 +212,16 @@ impl<
     /// [`SceneError::ImageSize`] when a side is 0 or larger than [`MAX_IMAGE_SIDE`]; when the
     /// image plane leaves the format, its pixels are closer than the format can aim rays, or
     /// its lens tilts rays too little to focus in the format ([`range::camera`]), why.
+    ///
+    /// ```
+    /// use obscura::{Scene, SceneError, scenes};
+    ///
+    /// let scene = Scene::<f32, 8, 4, 6>::build(&scenes::SHAPES)?;
+    /// let camera = scene.camera(240, 240)?;
+    /// assert_eq!((camera.width(), camera.height()), (240, 240));
+    /// assert!(matches!(scene.camera(0, 240), Err(SceneError::ImageSize { .. })));
+    /// # Ok::<(), SceneError>(())
+    /// ```
     pub fn camera(&self, width: u32, height: u32) -> Result<Camera<S>, SceneError> {
         camera(&self.frame, &self.settings.methods, width, height)
     }

@@ -87,6 +87,20 @@ struct Pending {
 ///
 /// # Errors
 /// Too few nodes, a corner index out of range, or no triangles.
+///
+/// ```
+/// use obscura::NodeDesc;
+/// use obscura::mesh::build_hierarchy;
+///
+/// // A unit square of two triangles: they fit one leaf, the root.
+/// let vertices = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+/// let mut triangles = [[0, 1, 2], [0, 2, 3]];
+/// let mut nodes = [NodeDesc::default(); 3];
+/// let made = build_hierarchy(&vertices, &mut triangles, &mut nodes)?;
+/// assert_eq!(made, 1);
+/// assert_eq!((nodes[0].min, nodes[0].max), ([0.0; 3], [1.0, 1.0, 0.0]));
+/// # Ok::<(), obscura::mesh::HierarchyError>(())
+/// ```
 pub fn build_hierarchy(
     vertices: &[[f32; 3]],
     triangles: &mut [[u32; 3]],

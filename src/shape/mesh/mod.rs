@@ -151,6 +151,19 @@ impl<S> MeshStorage<S> for NoMeshes {
 /// smooth enough to shade so has), and the triangle's own normal shades it.
 ///
 /// Every value stays within 5: the corners' are unit, and a hit's weights are within [0, 1].
+///
+/// ```
+/// use obscura::Vec3;
+/// use obscura::mesh::smooth_normal;
+/// use obscura::methods::RootMethod;
+///
+/// let (up, side) = (Vec3::new(0.0_f64, 0.0, 1.0), Vec3::new(1.0, 0.0, 0.0));
+/// // Halfway between a corner facing up and one facing sideways: 45° between them.
+/// let n = smooth_normal([up, side, up], 0.5, 0.0, RootMethod::Exact).expect("a normal");
+/// assert!((n.x - n.z).abs() < 1e-12 && (n.length_squared() - 1.0).abs() < 1e-12);
+/// // A corner without a normal: the triangle shades flat.
+/// assert_eq!(smooth_normal([up, Vec3::ZERO, up], 0.5, 0.0, RootMethod::Exact), None);
+/// ```
 #[inline]
 #[must_use]
 pub fn smooth_normal<S: Scalar>(
