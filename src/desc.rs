@@ -47,6 +47,52 @@ pub struct SceneDesc<'a> {
     pub adaptive_shadows: bool,
 }
 
+impl SceneDesc<'static> {
+    /// An empty scene, to fill in with `..SceneDesc::DEFAULT`: a pinhole camera at the origin
+    /// looking along +z with +y up and 60° of view, a world of radius 100, no objects or
+    /// lights, a dim grey ambient light (0.1), a black background, ray trees 5 levels deep,
+    /// one ray a pixel and one shadow ray a light. A scene file's keys left out take these
+    /// values too.
+    ///
+    /// ```
+    /// use obscura::{CameraDesc, LightDesc, MaterialDesc, ObjectDesc, Scene, SceneDesc, ShapeDesc};
+    ///
+    /// const BALL: &[ObjectDesc] = &[ObjectDesc {
+    ///     shape: ShapeDesc::Sphere { center: [0.0, 1.0, 0.0], radius: 1.0 },
+    ///     material: MaterialDesc::matte([0.9, 0.2, 0.1]),
+    /// }];
+    /// const SCENE: SceneDesc<'static> = SceneDesc {
+    ///     camera: CameraDesc::pinhole([0.0, 1.5, -5.0], [0.0, 1.0, 0.0], [0.0, 1.0, 0.0], 45.0),
+    ///     objects: BALL,
+    ///     lights: &[LightDesc::point([-3.0, 5.0, -4.0], [1.0; 3])],
+    ///     far: 20.0,
+    ///     ..SceneDesc::DEFAULT
+    /// };
+    /// assert!(Scene::<f32, 1, 1, 6>::build(&SCENE).is_ok());
+    /// ```
+    pub const DEFAULT: Self = Self {
+        camera: CameraDesc::pinhole([0.0; 3], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 60.0),
+        objects: &[],
+        meshes: MeshesDesc::NONE,
+        lights: &[],
+        ambient: [0.1; 3],
+        background: BackgroundDesc::Solid([0.0; 3]),
+        far: 100.0,
+        max_depth: 5,
+        samples: 1,
+        adaptive_samples: false,
+        shadow_samples: 1,
+        adaptive_shadows: false,
+    };
+}
+
+/// [`SceneDesc::DEFAULT`].
+impl Default for SceneDesc<'_> {
+    fn default() -> Self {
+        SceneDesc::DEFAULT
+    }
+}
+
 impl SceneDesc<'_> {
     /// Whether a pixel takes one ray and a light one shadow ray: no samples spread over the
     /// pixel, and no area light sampled.

@@ -248,9 +248,10 @@ pub struct PreviewArgs {
     /// The microcontroller whose firmware is previewed: its pace, and `auto`'s pick.
     #[arg(long, value_enum, default_value = "m4f")]
     pub target: Target,
-    /// The format; `auto` is the cheapest on the target that holds the scene and reaches
-    /// --target-psnr, as `obscura firmware --format auto` picks it.
-    #[arg(long, value_enum, default_value = "auto")]
+    /// The format (the same default as every command's and the firmware's); `auto` is the
+    /// cheapest on the target that holds the scene and reaches --target-psnr, as `obscura
+    /// firmware --format auto` picks it.
+    #[arg(long, value_enum, default_value = "i16f16")]
     pub format: FormatChoice,
     /// The PSNR against f64, in dB, that `--format auto` aims for.
     #[arg(long, default_value_t = TARGET_PSNR, value_parser = parse_psnr)]

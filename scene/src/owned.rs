@@ -42,27 +42,33 @@ pub struct OwnedScene<O = ObjectDesc> {
     #[serde(default)]
     pub adaptive_samples: bool,
     /// See [`SceneDesc::shadow_samples`].
-    #[serde(default = "default_samples", deserialize_with = "ray_count")]
+    #[serde(default = "default_shadow_samples", deserialize_with = "ray_count")]
     pub shadow_samples: u16,
     /// See [`SceneDesc::adaptive_shadows`].
     #[serde(default)]
     pub adaptive_shadows: bool,
 }
 
-fn default_ambient() -> [f32; 3] {
-    [0.1; 3]
+// A key left out takes the core's default ([`SceneDesc::DEFAULT`]).
+
+const fn default_ambient() -> [f32; 3] {
+    SceneDesc::DEFAULT.ambient
 }
 
-fn default_background() -> BackgroundDesc {
-    BackgroundDesc::Solid([0.0; 3])
+const fn default_background() -> BackgroundDesc {
+    SceneDesc::DEFAULT.background
 }
 
-fn default_max_depth() -> u8 {
-    5
+const fn default_max_depth() -> u8 {
+    SceneDesc::DEFAULT.max_depth
 }
 
-fn default_samples() -> u16 {
-    1
+const fn default_samples() -> u16 {
+    SceneDesc::DEFAULT.samples
+}
+
+const fn default_shadow_samples() -> u16 {
+    SceneDesc::DEFAULT.shadow_samples
 }
 
 /// A count of rays (`samples`, `shadow_samples`): any whole number reads, and one beyond a
