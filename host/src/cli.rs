@@ -141,8 +141,9 @@ pub struct AnalyzeArgs {
 pub struct RenderArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// The PNG file to write.
-    #[arg(short, long, default_value = "out.png")]
+    /// The PNG file to write (its directory made if missing); in `out/`, where every command
+    /// writes unless told otherwise.
+    #[arg(short, long, default_value = "out/render.png")]
     pub output: PathBuf,
     /// Threads to render on (rows are shared out one at a time).
     #[arg(long, default_value_t = default_threads(), value_parser = clap::value_parser!(u16).range(1..=1024))]

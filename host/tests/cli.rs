@@ -745,3 +745,29 @@ fn every_example_scene_file_renders_in_the_format_auto_picks() {
         assert!(out.is_file(), "{}", file.display());
     }
 }
+
+#[test]
+fn every_command_writes_into_out_unless_told_otherwise() {
+    let dir = scratch("defaults");
+    for args in [
+        &["render", "shapes", "--size", "8x8"][..],
+        &["compare", "shapes", "--size", "8x8", "--runs", "1"][..],
+        &["preview", "shapes", "--headless"][..],
+    ] {
+        let output = Command::new(env!("CARGO_BIN_EXE_obscura"))
+            .args(args)
+            .current_dir(&dir)
+            .output()
+            .expect("the binary runs");
+        assert!(output.status.success(), "{args:?}: {}", stderr(&output));
+    }
+    for written in [
+        "render.png",
+        "i16f16.png",
+        "f64.png",
+        "diff.png",
+        "preview.png",
+    ] {
+        assert!(dir.join("out").join(written).is_file(), "out/{written}");
+    }
+}
