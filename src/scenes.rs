@@ -112,7 +112,6 @@ const WHITTED_LIGHTS: [LightDesc; 1] = [LightDesc::point([-5.0, 12.0, -8.0], [1.
 pub const WHITTED: SceneDesc<'static> = SceneDesc {
     camera: CameraDesc::pinhole([0.0, 3.0, -6.0], [-0.2, 1.0, 2.0], [0.0, 1.0, 0.0], 45.0),
     objects: &WHITTED_OBJECTS,
-    meshes: MeshesDesc::NONE,
     lights: &WHITTED_LIGHTS,
     ambient: [0.12, 0.12, 0.14],
     background: BackgroundDesc::Gradient {
@@ -122,10 +121,7 @@ pub const WHITTED: SceneDesc<'static> = SceneDesc {
     },
     far: 30.0,
     max_depth: 5,
-    samples: 1,
-    adaptive_samples: false,
-    shadow_samples: 1,
-    adaptive_shadows: false,
+    ..SceneDesc::DEFAULT
 };
 
 const GREEN: MaterialDesc = MaterialDesc {
@@ -211,16 +207,12 @@ const SHAPES_LIGHTS: [LightDesc; 2] = [
 pub const SHAPES: SceneDesc<'static> = SceneDesc {
     camera: CameraDesc::pinhole([0.0, 2.4, -4.5], [0.0, 0.8, 2.4], [0.0, 1.0, 0.0], 50.0),
     objects: &SHAPES_OBJECTS,
-    meshes: MeshesDesc::NONE,
     lights: &SHAPES_LIGHTS,
     ambient: [0.1, 0.1, 0.1],
     background: BackgroundDesc::Solid([0.08, 0.1, 0.14]),
     far: 25.0,
     max_depth: 3,
-    samples: 1,
-    adaptive_samples: false,
-    shadow_samples: 1,
-    adaptive_shadows: false,
+    ..SceneDesc::DEFAULT
 };
 
 /// The soft scene's tetrahedron: apex and base corners.
@@ -295,7 +287,6 @@ const SOFT_LIGHTS: [LightDesc; 1] = [LightDesc {
 pub const SOFT: SceneDesc<'static> = SceneDesc {
     camera: CameraDesc::pinhole([0.0, 3.2, -5.5], [0.0, 0.6, 1.0], [0.0, 1.0, 0.0], 45.0),
     objects: &SOFT_OBJECTS,
-    meshes: MeshesDesc::NONE,
     lights: &SOFT_LIGHTS,
     ambient: [0.12, 0.12, 0.12],
     background: BackgroundDesc::Gradient {
@@ -305,10 +296,9 @@ pub const SOFT: SceneDesc<'static> = SceneDesc {
     },
     far: 12.0,
     max_depth: 2,
-    samples: 1,
-    adaptive_samples: false,
     shadow_samples: 16,
     adaptive_shadows: true,
+    ..SceneDesc::DEFAULT
 };
 
 /// A sphere of the focus scene: `k` steps along the row, of `colour`.

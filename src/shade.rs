@@ -639,8 +639,7 @@ fn push<S>(stack: &mut VecView<Task<S>>, task: Task<S>) {
 mod tests {
     use super::*;
     use crate::desc::{
-        BackgroundDesc, CameraDesc, LightDesc, MaterialDesc, MeshesDesc, ObjectDesc, SceneDesc,
-        ShapeDesc,
+        BackgroundDesc, CameraDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc, ShapeDesc,
     };
     use crate::methods::{BiasMethod, Methods, SphereMethod};
     use crate::test_util::{for_each_format, v};
@@ -658,16 +657,12 @@ mod tests {
         SceneDesc {
             camera: CAMERA,
             objects,
-            meshes: MeshesDesc::NONE,
             lights,
             ambient: [ambient; 3],
             background: BackgroundDesc::Solid([0.2, 0.4, 0.6]),
             far: 10.0,
             max_depth,
-            samples: 1,
-            adaptive_samples: false,
-            shadow_samples: 1,
-            adaptive_shadows: false,
+            ..SceneDesc::DEFAULT
         }
     }
 

@@ -5,7 +5,6 @@ mod common;
 
 use common::{Frame, render};
 use embedded_graphics::pixelcolor::RgbColor;
-use obscura::MeshesDesc;
 use obscura::formats::I8f24;
 use obscura::{
     BackgroundDesc, CameraDesc, I16F16, MaterialDesc, Methods, ObjectDesc, Scalar, SceneDesc,
@@ -87,7 +86,6 @@ fn sampled(objects: &[ObjectDesc], samples: u16, adaptive_samples: bool) -> Scen
     SceneDesc {
         camera: CameraDesc::pinhole([0.0; 3], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 90.0),
         objects,
-        meshes: MeshesDesc::NONE,
         lights: &[],
         ambient: [1.0; 3],
         background: BackgroundDesc::Solid([0.0; 3]),
@@ -95,8 +93,7 @@ fn sampled(objects: &[ObjectDesc], samples: u16, adaptive_samples: bool) -> Scen
         max_depth: 0,
         samples,
         adaptive_samples,
-        shadow_samples: 1,
-        adaptive_shadows: false,
+        ..SceneDesc::DEFAULT
     }
 }
 

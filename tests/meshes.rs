@@ -70,10 +70,7 @@ fn scene<'a>(objects: &'a [ObjectDesc], meshes: MeshesDesc<'a>) -> SceneDesc<'a>
         background: BackgroundDesc::Solid([0.2, 0.3, 0.5]),
         far: 20.0,
         max_depth: 2,
-        samples: 1,
-        adaptive_samples: false,
-        shadow_samples: 1,
-        adaptive_shadows: false,
+        ..SceneDesc::DEFAULT
     }
 }
 

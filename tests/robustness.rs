@@ -5,7 +5,6 @@
 
 mod common;
 
-use obscura::MeshesDesc;
 use obscura::methods::MethodName;
 use obscura::{
     BackgroundDesc, BiasMethod, CameraDesc, CheckerDesc, F32Approx, I16F16, I20F12, I32F32,
@@ -140,7 +139,6 @@ fn random_scenes_build_or_are_refused_and_render_without_panicking() {
                 r.wild_range(10.0, 120.0),
             ),
             objects: &objects,
-            meshes: MeshesDesc::NONE,
             lights: &lights,
             ambient: r.colour().map(|c| c * 0.3),
             background: BackgroundDesc::Gradient {
@@ -150,10 +148,7 @@ fn random_scenes_build_or_are_refused_and_render_without_panicking() {
             },
             far: r.wild(extent * 4.0),
             max_depth: (r.next() * 5.0) as u8,
-            samples: 1,
-            adaptive_samples: false,
-            shadow_samples: 1,
-            adaptive_shadows: false,
+            ..SceneDesc::DEFAULT
         };
         let methods = methods(&mut r);
         let results = [

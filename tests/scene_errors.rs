@@ -1,7 +1,6 @@
 //! Every way a scene description can be refused, asserted by variant, with messages that say
 //! what is wrong and how to fix it.
 
-use obscura::MeshesDesc;
 use obscura::scalar::FormatSet;
 use obscura::{
     BackgroundDesc, CameraDesc, CheckerDesc, I16F16, Item, LightDesc, MaterialDesc, Methods,
@@ -26,16 +25,12 @@ fn scene<'a>(objects: &'a [ObjectDesc], lights: &'a [LightDesc]) -> SceneDesc<'a
     SceneDesc {
         camera: CAMERA,
         objects,
-        meshes: MeshesDesc::NONE,
         lights,
         ambient: [0.1; 3],
         background: BackgroundDesc::Solid([0.0, 0.0, 0.3]),
         far: 20.0,
         max_depth: 3,
-        samples: 1,
-        adaptive_samples: false,
-        shadow_samples: 1,
-        adaptive_shadows: false,
+        ..SceneDesc::DEFAULT
     }
 }
 

@@ -330,9 +330,9 @@ fn mesh_corners(desc: &SceneDesc<'_>) -> Result<(), SceneError> {
     }
 }
 
-/// How far from 1 a vertex normal's length may be: f32's rounding of a unit vector, many
-/// times over.
-const NORMAL_LENGTH_TOLERANCE: f64 = 1e-4;
+/// How far from 1 a vertex normal's length may be: f32's rounding of a unit vector (a few of
+/// its epsilons), a thousand times over.
+const NORMAL_LENGTH_TOLERANCE: f64 = 1024.0 * f32::EPSILON as f64;
 
 fn inside_world(item: Item, reach: f64, far: f32) -> Result<(), SceneError> {
     if reach > f64::from(far) {

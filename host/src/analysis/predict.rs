@@ -537,9 +537,7 @@ fn shading_error<S: Scalar>(desc: &SceneDesc<'_>) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use obscura::{
-        BackgroundDesc, CameraDesc, MaterialDesc, MeshesDesc, ObjectDesc, ShapeDesc, scenes,
-    };
+    use obscura::{BackgroundDesc, CameraDesc, MaterialDesc, ObjectDesc, ShapeDesc, scenes};
 
     /// A white sphere on black, seen head on at 32×32.
     fn ball() -> Reference {
@@ -556,16 +554,12 @@ mod tests {
         let desc = SceneDesc {
             camera: CameraDesc::pinhole([0.0; 3], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], 30.0),
             objects: &objects,
-            meshes: MeshesDesc::NONE,
             lights: &[],
             ambient: [1.0; 3],
             background: BackgroundDesc::Solid([0.0; 3]),
             far: 10.0,
             max_depth: 0,
-            samples: 1,
-            adaptive_samples: false,
-            shadow_samples: 1,
-            adaptive_shadows: false,
+            ..SceneDesc::DEFAULT
         };
         Reference::render(&Request {
             desc: &desc,

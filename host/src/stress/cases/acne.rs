@@ -8,8 +8,8 @@ use crate::stress::{Case, Row};
 use anyhow::Result;
 use obscura::methods::MethodName;
 use obscura::{
-    BackgroundDesc, BiasMethod, CameraDesc, LightDesc, MaterialDesc, MeshesDesc, Methods,
-    ObjectDesc, Scalar, SceneDesc, ShapeDesc,
+    BackgroundDesc, BiasMethod, CameraDesc, LightDesc, MaterialDesc, Methods, ObjectDesc, Scalar,
+    SceneDesc, ShapeDesc,
 };
 use obscura_scene::FormatJob;
 
@@ -47,16 +47,12 @@ impl FormatJob for Job {
             let desc = SceneDesc {
                 camera: CameraDesc::pinhole([0.0; 3], [0.0, -1.5, 4.0], [0.0, 1.0, 0.0], 60.0),
                 objects: &FLOOR,
-                meshes: MeshesDesc::NONE,
                 lights: &light,
                 ambient: [0.1; 3],
                 background: BackgroundDesc::Solid([0.0; 3]),
                 far: 25.0,
                 max_depth: 0,
-                samples: 1,
-                adaptive_samples: false,
-                shadow_samples: 1,
-                adaptive_shadows: false,
+                ..SceneDesc::DEFAULT
             };
             for &(bias, name) in BiasMethod::ALL {
                 let methods = Methods {

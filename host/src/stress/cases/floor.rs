@@ -8,8 +8,8 @@ use crate::stress::{Case, Row};
 use anyhow::Result;
 use obscura::methods::MethodName;
 use obscura::{
-    BackgroundDesc, CameraDesc, LightDesc, MeshesDesc, Methods, ObjectDesc, Scalar, SceneDesc,
-    ShapeDesc, SphereMethod,
+    BackgroundDesc, CameraDesc, LightDesc, Methods, ObjectDesc, Scalar, SceneDesc, ShapeDesc,
+    SphereMethod,
 };
 use obscura_scene::FormatJob;
 
@@ -32,16 +32,12 @@ fn scene(floor: ShapeDesc, far: f32, objects: &mut Vec<ObjectDesc>) -> SceneDesc
     SceneDesc {
         camera: CameraDesc::pinhole([0.0, 2.0, 0.0], [0.0, 0.0, 4.0], [0.0, 1.0, 0.0], 45.0),
         objects,
-        meshes: MeshesDesc::NONE,
         lights: &LIGHTS,
         ambient: [0.2; 3],
         background: BackgroundDesc::Solid([0.1, 0.2, 0.6]),
         far,
         max_depth: 0,
-        samples: 1,
-        adaptive_samples: false,
-        shadow_samples: 1,
-        adaptive_shadows: false,
+        ..SceneDesc::DEFAULT
     }
 }
 

@@ -8,8 +8,8 @@ use crate::stress::{Case, Row};
 use anyhow::Result;
 use obscura::methods::MethodName;
 use obscura::{
-    BackgroundDesc, BiasMethod, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, MeshesDesc,
-    Methods, ObjectDesc, Scalar, SceneDesc, ShapeDesc, Y_UP,
+    BackgroundDesc, BiasMethod, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, Methods,
+    ObjectDesc, Scalar, SceneDesc, ShapeDesc, Y_UP,
 };
 use obscura_scene::FormatJob;
 
@@ -74,7 +74,6 @@ fn scene(offset: f64) -> SceneDesc<'static> {
             90.0,
         ),
         objects: &OBJECTS,
-        meshes: MeshesDesc::NONE,
         lights: &LIGHTS,
         ambient: [0.15; 3],
         background: BackgroundDesc::Gradient {
@@ -84,10 +83,7 @@ fn scene(offset: f64) -> SceneDesc<'static> {
         },
         far: 12.0,
         max_depth: 4,
-        samples: 1,
-        adaptive_samples: false,
-        shadow_samples: 1,
-        adaptive_shadows: false,
+        ..SceneDesc::DEFAULT
     }
 }
 

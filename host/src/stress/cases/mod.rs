@@ -16,9 +16,7 @@ use super::check::{ImageCheck, image};
 use super::{Case, Outcome, Row};
 use crate::render::HostScene;
 use anyhow::Context as _;
-use obscura::{
-    BackgroundDesc, CameraDesc, MaterialDesc, MeshesDesc, Methods, Scalar, SceneDesc, SceneError,
-};
+use obscura::{BackgroundDesc, CameraDesc, MaterialDesc, Methods, Scalar, SceneDesc, SceneError};
 
 /// Every case, in the order they run.
 pub static CASES: [Case; 11] = [
@@ -47,16 +45,12 @@ fn bare<'a>(objects: &'a [obscura::ObjectDesc], far: f32) -> SceneDesc<'a> {
     SceneDesc {
         camera: CAMERA,
         objects,
-        meshes: MeshesDesc::NONE,
         lights: &[],
         ambient: [0.2; 3],
         background: BackgroundDesc::Solid([0.0; 3]),
         far,
         max_depth: 0,
-        samples: 1,
-        adaptive_samples: false,
-        shadow_samples: 1,
-        adaptive_shadows: false,
+        ..SceneDesc::DEFAULT
     }
 }
 

@@ -9,8 +9,7 @@ use crate::checked::Checked;
 use crate::stress::{Case, Row};
 use anyhow::Result;
 use obscura::{
-    BackgroundDesc, CameraDesc, LightDesc, MeshesDesc, Methods, ObjectDesc, Scalar, SceneDesc,
-    ShapeDesc,
+    BackgroundDesc, CameraDesc, LightDesc, Methods, ObjectDesc, Scalar, SceneDesc, ShapeDesc,
 };
 use obscura_scene::FormatJob;
 
@@ -53,16 +52,13 @@ fn scene(light: &[LightDesc]) -> SceneDesc<'_> {
     SceneDesc {
         camera: CameraDesc::pinhole([0.0, 4.0, -4.5], [0.0, 0.0, 0.5], [0.0, 1.0, 0.0], 60.0),
         objects: &OBJECTS,
-        meshes: MeshesDesc::NONE,
         lights: light,
         ambient: [0.15; 3],
         background: BackgroundDesc::Solid([0.1, 0.2, 0.6]),
         far: 12.0,
         max_depth: 0,
-        samples: 1,
-        adaptive_samples: false,
         shadow_samples: 16,
-        adaptive_shadows: false,
+        ..SceneDesc::DEFAULT
     }
 }
 
