@@ -68,6 +68,17 @@ const KINDS: [(RayKind, &str); 3] = [
 ];
 
 impl FrameCount {
+    /// Textbook operations per pixel, of every phase of a pixel's work (products, quotients,
+    /// roots and sums alike).
+    pub fn operations_per_pixel(&self) -> f64 {
+        let (whole, _) = self
+            .lines()
+            .last()
+            .map(|line| line.measured)
+            .unwrap_or_default();
+        whole.total() as f64 / self.pixels.max(1) as f64
+    }
+
     /// The model's lines, the whole pixel last.
     pub fn lines(&self) -> Vec<Line> {
         let tally = &self.tally;

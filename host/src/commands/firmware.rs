@@ -2,7 +2,6 @@
 
 use crate::cli::FirmwareArgs;
 use crate::cost::Machine;
-use crate::counted::Operations;
 use crate::firmware::{self, Target};
 use crate::heatmap::heatmap;
 use crate::operations;
@@ -401,16 +400,14 @@ fn print_operations(
     let Some(whole) = count.lines().pop() else {
         return Ok(());
     };
-    let sum = |o: Operations| (o.products + o.quotients + o.roots + o.sums) as f64;
-    let per_operation =
-        report.instructions_per_pixel as f64 * count.pixels as f64 / sum(whole.measured.0).max(1.0);
+    let per_operation = report.instructions_per_pixel as f64 / count.operations_per_pixel();
     say!(
         "\n{name} in {format}, the tracer's operations (counted on the host, one per textbook \
          operation; `render --count`), beside the target's {} instructions per pixel: {:.1} per \
          operation, and at that rate the floor is about {:.0} instructions per pixel:\n{}",
         report.instructions_per_pixel,
         per_operation,
-        per_operation * sum(whole.floor.0) / count.pixels.max(1) as f64,
+        per_operation * whole.floor.0.total() as f64 / count.pixels.max(1) as f64,
         count.table()
     )?;
     Ok(())

@@ -1,11 +1,13 @@
 //! `obscura preview`: the firmware's render loop on the desktop. The same core draws the scene
 //! at the display's size in RGB565, in the firmware's row order and dither, into an
-//! embedded-graphics-simulator window, each row appearing when it would on the board (paced by
-//! the committed chart's instructions per pixel at the target's clock); the final frame, the
-//! firmware's to the bit, is written as a PNG. With `--headless` there is no window and no pace.
+//! embedded-graphics-simulator window, each row appearing when it would on the target's board
+//! (paced by [`estimate::frame`]: the Black Pill for the M4F, the Pico for the M0); the final
+//! frame, the firmware's to the bit, is written as a PNG. With `--headless` there is no window
+//! and no pace.
 
 use crate::cli::PreviewArgs;
-use crate::cost::{self, Machine};
+use crate::cost::Machine;
+use crate::estimate;
 use crate::output::say;
 use crate::render::{Request, prepare, rgb565_image};
 use anyhow::Result;
@@ -41,28 +43,31 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
     };
     let prepared = prepare(format, &request)?;
     let presentation = args.presentation.presentation();
-    // What the board takes for a frame, by the chart, if it measured the like.
-    let frame_time = cost::cost(machine, format, &methods, desc.has_triangles()).map(|per_pixel| {
-        Duration::from_secs_f64(per_pixel * f64::from(SIDE * SIDE) / args.target.core_hz() as f64)
-    });
+    let estimate = estimate::frame(args.target, format, &desc, methods)?;
     say!(
-        "{} in {format} on the {} ({}), rows {}, dither {}: {}",
+        "{} in {format} on the {}, rows {}, dither {}: {}",
         named.name,
-        args.target.name(),
-        machine,
+        args.target.board().name,
         presentation.order.name(),
         presentation.dither.name(),
-        frame_time.map_or_else(
-            || "no chart figure to pace it by".to_owned(),
-            |t| {
+        estimate.map_or_else(
+            || "no firmware runs this format, nothing to pace it by".to_owned(),
+            |e| {
                 format!(
-                    "about {:.1} s a frame, by the chart's instructions per pixel on the \
-                     built-in scene most like it",
-                    t.as_secs_f64()
+                    "about {:.1} s a frame ({:.0} instructions a pixel, {} core{} at {} MHz), \
+                     estimated by the instructions an operation takes in `{}` under QEMU \
+                     (`obscura firmware` measures it)",
+                    e.seconds,
+                    e.instructions_per_pixel,
+                    e.board.cores,
+                    if e.board.cores == 1 { "" } else { "s" },
+                    e.board.core_hz / 1_000_000,
+                    e.priced_by,
                 )
             }
         )
     )?;
+    let frame_time = estimate.map(|e| Duration::from_secs_f64(e.seconds));
     let pixels = if args.headless {
         prepared.rgb565_frame(presentation, &mut |_, _| {})?
     } else {
