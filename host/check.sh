@@ -5,7 +5,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-step() { printf '\n==> %s\n' "$*"; }
+# Each step says when it starts, in seconds from the check's start.
+step() { printf '\n==> [%4d s] %s\n' "$SECONDS" "$*"; }
 
 M4F=thumbv7em-none-eabihf
 M0=thumbv6m-none-eabi

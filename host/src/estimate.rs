@@ -4,16 +4,16 @@
 //! instructions an operation takes on the board's processor, at the board's clock with the rows
 //! shared between its cores.
 //!
-//! The instructions an operation takes are those of the committed firmware run of the built-in
-//! scene most like it ([`Alike`]), in one image of its own on the target, divided by that
-//! scene's operations counted in the same format: `whitted`'s, the lecture's, unless the scene
-//! has a mesh (`host/scenes/teapot.toml`'s), a lens (`focus`'s) or area lights (`soft`'s), whose
-//! work goes less into the products and sums the count weighs alike (a mesh's box tests) or more
-//! (a fixed format's unit vectors and quotients, a disc's sample points). Written by
-//! `obscura firmware --target T --scene S --format F --json host/images/firmware/T-S.json`, for
-//! the formats each file lists; a 32-bit fixed split is priced by the file's 32-bit fixed run (they run
-//! the same code but for their shifts), and a format the file lacks by `whitted`'s.
-//! `obscura firmware` measures what this estimates.
+//! The instructions an operation takes are those of the committed QEMU run of the built-in
+//! scene most like it ([`Alike`]) — `host/scenes/teapot.toml` for a scene with a mesh, `focus`
+//! with a lens, `soft` with area lights, `whitted` (the lecture's) otherwise — divided by that
+//! scene's operations counted in the same format: the count weighs a product, a quotient and a
+//! root alike, and box tests, a lens's and a disc's sample points change the mix. Each
+//! `host/images/firmware/T-S.json` is written by `obscura firmware --target T --scene S
+//! --format F,… --json host/images/firmware/T-S.json`, one scene an image, for the formats it
+//! lists; a 32-bit fixed split is priced by the file's 32-bit fixed run (the same code but for
+//! the shifts), a format the file lacks by `whitted`'s. `obscura firmware` measures what this
+//! estimates.
 
 use crate::firmware::{self, Board, Target};
 use crate::operations;

@@ -89,8 +89,10 @@ impl Configuration {
             let format = match choice {
                 FormatChoice::Auto => bail!(
                     "OBSCURA_FORMATS: `auto` is the harness's choice, made by rendering the \
-                     scenes on the host: `obscura firmware --target <m4f or m0> --scene \
-                     <scenes> --format auto` prints the format it takes; give that here"
+                     scenes on the host: `obscura firmware --target m0 --scene {scenes} --format \
+                     auto` prints the format it takes on the Pico's Cortex-M0+ (`--target m4f` \
+                     on the Black Pill's Cortex-M4F); give that here",
+                    scenes = settings.frames.scene.join(",")
                 ),
                 FormatChoice::Given(Format::F64) => bail!(
                     "OBSCURA_FORMATS: `f64` is not a firmware format: {}",
@@ -555,7 +557,10 @@ mod tests {
                 "OBSCURA_SPHERE: `quadratic` or `stable`, not `round`",
             ),
             (&[(VARIANTS, "all")][..], "`none` or `each`"),
-            (&[(FORMATS, "auto")][..], "obscura firmware --target"),
+            (
+                &[(FORMATS, "auto"), (SCENES, "host/scenes/pyramid.toml")][..],
+                "`obscura firmware --target m0 --scene host/scenes/pyramid.toml --format auto`",
+            ),
             (
                 &[("OBSCURA_DITHER", "floyd")][..],
                 "OBSCURA_DITHER: `none` or `ordered`, not `floyd`",
