@@ -158,6 +158,9 @@ pub struct Tally {
     in_test: bool,
     /// Whether the operations are a box test's, which no floor keeps.
     in_box: bool,
+    /// The floor of the object being tested, where a mesh's search met a triangle: the last
+    /// such triangle's test (the object's own test is the whole search).
+    hit: Option<Operations>,
     searching: Option<RayKind>,
     test: Operations,
     /// The current ray's floor: the operations of the test that met what it meets.
@@ -229,6 +232,7 @@ impl Tally {
         match work {
             Work::Search(kind) => {
                 self.end_search();
+                self.hit = None;
                 self.searching = Some(kind);
                 self.rays[kind_index(kind)].rays += 1;
             }
@@ -249,13 +253,15 @@ impl Tally {
                     self.rays[kind_index(kind)].boxes += 1;
                 }
             }
+            Work::Hit => self.hit = Some(self.test),
             Work::Met => {
+                let test = self.hit.take().unwrap_or(self.test);
                 let Some(kind) = self.searching else { return };
                 self.rays[kind_index(kind)].met += 1;
                 self.ray_floor = match kind {
                     // The nearest so far: what the ray meets unless a nearer one follows.
-                    RayKind::Primary | RayKind::Secondary => (self.test, 1),
-                    RayKind::Shadow => (self.ray_floor.0 + self.test, self.ray_floor.1 + 1),
+                    RayKind::Primary | RayKind::Secondary => (test, 1),
+                    RayKind::Shadow => (self.ray_floor.0 + test, self.ray_floor.1 + 1),
                 };
             }
         }
@@ -499,9 +505,10 @@ mod tests {
             .map(String::as_str)
             .filter(|file| Phase::of(file) == Some(Phase::Setup))
             .collect();
-        // The scene's build, each row's culling ranges (a few operations a row, not a pixel's)
-        // and what never runs in a frame: a file moved or added to a pixel's work must be named
-        // in `Phase::of`, or its operations would count as set-up.
+        // The scene's build, each row's culling ranges (a few operations a row, not a pixel's),
+        // a mesh's storage read (no operations) and what never runs in a frame: a file moved or
+        // added to a pixel's work must be named in `Phase::of`, or its operations would count as
+        // set-up.
         assert_eq!(
             set_up,
             [

@@ -91,7 +91,8 @@ impl Configuration {
                     "OBSCURA_FORMATS: `auto` is the harness's choice, made by rendering the \
                      scenes on the host: `obscura firmware --target m0 --scene {scenes} --format \
                      auto` prints the format it takes on the Pico's Cortex-M0+ (`--target m4f` \
-                     on the Black Pill's Cortex-M4F); give that here",
+                     on the Black Pill's Cortex-M4F; add the flags of any other OBSCURA_ \
+                     variable set here, `--samples` for OBSCURA_SAMPLES); give that here",
                     scenes = settings.frames.scene.join(",")
                 ),
                 FormatChoice::Given(Format::F64) => bail!(

@@ -289,6 +289,9 @@ pub enum Work {
     Node,
     /// The object just tested is met: the nearest so far, or an occluder of a shadow ray.
     Met,
+    /// Within a mesh's search, the triangle just tested is met: the mesh's nearest so far, or
+    /// an occluder of a shadow ray (the mesh is [met](Self::Met) once its search is over).
+    Hit,
 }
 
 /// The kinds of ray, by what their search is for.

@@ -43,31 +43,36 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
     };
     let prepared = prepare(format, &request)?;
     let presentation = args.presentation.presentation();
-    let estimate = estimate::frame(args.target, format, &desc, methods)?;
+    // An estimate that cannot be made (its pricing scene's files gone from an installed
+    // harness's workspace) leaves the frame unpaced, not undrawn.
+    let estimate = estimate::frame(args.target, format, &desc, methods);
     say!(
         "{} in {format} on the {}, rows {}, dither {}: {}",
         named.name,
         args.target.board().name,
         presentation.order.name(),
         presentation.dither.name(),
-        estimate.map_or_else(
-            || "no firmware runs this format, nothing to pace it by".to_owned(),
-            |e| {
-                format!(
-                    "about {:.1} s a frame ({:.0} instructions a pixel, {} core{} at {} MHz), \
-                     estimated by the instructions an operation takes in `{}` under QEMU \
-                     (`obscura firmware` measures it)",
-                    e.seconds,
-                    e.instructions_per_pixel,
-                    e.board.cores,
-                    if e.board.cores == 1 { "" } else { "s" },
-                    e.board.core_hz / 1_000_000,
-                    e.priced_by,
-                )
-            }
-        )
+        match &estimate {
+            Ok(Some(e)) => format!(
+                "about {:.1} s a frame ({:.0} instructions a pixel, {} core{} at {} MHz), \
+                 estimated by the instructions an operation takes in `{}` in {} under QEMU \
+                 (`obscura firmware` measures it)",
+                e.seconds,
+                e.instructions_per_pixel,
+                e.board.cores,
+                if e.board.cores == 1 { "" } else { "s" },
+                e.board.core_hz / 1_000_000,
+                e.priced_by,
+                e.priced_in,
+            ),
+            Ok(None) => "no firmware runs this format, nothing to pace it by".to_owned(),
+            Err(error) => format!("drawn unpaced, no estimate: {error:#}"),
+        }
     )?;
-    let frame_time = estimate.map(|e| Duration::from_secs_f64(e.seconds));
+    let frame_time = estimate
+        .ok()
+        .flatten()
+        .map(|e| Duration::from_secs_f64(e.seconds));
     let pixels = if args.headless {
         prepared.rgb565_frame(presentation, &mut |_, _| {})?
     } else {

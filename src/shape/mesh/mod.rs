@@ -231,6 +231,7 @@ impl<S: Scalar, M: Meshes<S>> Search<'_, S, M> {
                     };
                     S::note(Work::Test);
                     if let Some(at) = test(&triangle, span) {
+                        S::note(Work::Hit);
                         span.max = at.t;
                         found = Some(Intersection { part, ..at });
                         if self.any {
