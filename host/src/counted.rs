@@ -122,7 +122,14 @@ impl Phase {
     /// The phase of an operation formed at `file` of the core, or `None` for a helper, whose
     /// operations are its caller's.
     fn of(file: &str) -> Option<Self> {
-        let file = file.replace('\\', "/");
+        // Called for every operation counted: a path with no backslash is taken as it is.
+        let slashed;
+        let file = if file.contains('\\') {
+            slashed = file.replace('\\', "/");
+            slashed.as_str()
+        } else {
+            file
+        };
         let file = file.strip_prefix("src/")?;
         Some(match file {
             "camera.rs" => Self::Camera,
