@@ -320,7 +320,7 @@ settings! {
             scene: String = "whitted", "OBSCURA_SCENES", scene_name;
             /// Formats, comma-separated; `auto` is the cheapest on the target that holds
             /// every scene and is predicted to reach the target PSNR, which `obscura
-            /// firmware` picks (a build alone cannot: it names the format to give instead).
+            /// firmware` picks (a build alone cannot: it names the command that does).
             format: FormatChoice = "i16f16", "OBSCURA_FORMATS", format_choice;
         }
         one {
