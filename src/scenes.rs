@@ -1,8 +1,8 @@
 //! The built-in scenes, as const data that a firmware keeps in flash.
 
 use crate::desc::{
-    BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, MeshesDesc, ObjectDesc,
-    SceneDesc, ShapeDesc,
+    BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc,
+    ShapeDesc,
 };
 
 /// A built-in scene with its name and a line about it.
@@ -352,7 +352,6 @@ pub const FOCUS: SceneDesc<'static> = SceneDesc {
         ..CameraDesc::pinhole([0.9, 1.3, -6.0], [0.0, 0.5, 2.5], [0.0, 1.0, 0.0], 45.0)
     },
     objects: &FOCUS_OBJECTS,
-    meshes: MeshesDesc::NONE,
     lights: &FOCUS_LIGHTS,
     ambient: [0.12, 0.12, 0.12],
     background: BackgroundDesc::Gradient {
@@ -363,7 +362,5 @@ pub const FOCUS: SceneDesc<'static> = SceneDesc {
     far: 16.0,
     max_depth: 2,
     samples: 16,
-    adaptive_samples: false,
-    shadow_samples: 1,
-    adaptive_shadows: false,
+    ..SceneDesc::DEFAULT
 };

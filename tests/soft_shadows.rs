@@ -6,11 +6,10 @@ mod common;
 
 use common::render;
 use core::f64::consts::PI;
-use obscura::MeshesDesc;
 use obscura::pattern::SampleId;
 use obscura::{
-    BackgroundDesc, BiasMethod, CameraDesc, I16F16, LightDesc, MaterialDesc, Methods, ObjectDesc,
-    Ray, Scalar, Scene, SceneDesc, ShapeDesc, Vec3, scenes,
+    BiasMethod, CameraDesc, I16F16, LightDesc, MaterialDesc, Methods, ObjectDesc, Ray, Scalar,
+    Scene, SceneDesc, ShapeDesc, Vec3, scenes,
 };
 
 /// A zero radius, or a single shadow ray, aims at the light's centre: today's images.
@@ -61,16 +60,13 @@ fn floor_scene<'a>(
     SceneDesc {
         camera: CameraDesc::pinhole(EYE.map(|c| c as f32), [0.0; 3], [0.0, 1.0, 0.0], 40.0),
         objects,
-        meshes: MeshesDesc::NONE,
         lights,
         ambient: [0.0; 3],
-        background: BackgroundDesc::Solid([0.0; 3]),
         far: 25.0,
         max_depth: 0,
-        samples: 1,
-        adaptive_samples: false,
         shadow_samples: 256,
         adaptive_shadows,
+        ..SceneDesc::DEFAULT
     }
 }
 
