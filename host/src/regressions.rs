@@ -4,7 +4,7 @@
 //! bound. Each scene is a file in `host/scenes/hostile/` whose header says what it broke; the
 //! fuzzer ([`crate::fuzz`]) tries the same promises on scenes nobody wrote.
 
-use crate::analysis::{Analysis, Fit, TARGET_PSNR, measure, pick};
+use crate::analysis::{Analysis, Choice, Fit, TARGET_PSNR, measure, pick};
 use crate::cost::Machine;
 use crate::fuzz::false_accept;
 use crate::metrics::accuracy;
@@ -205,7 +205,7 @@ fn a_checker_too_large_for_its_reciprocal_is_refused_or_predicted_so() {
             true,
         )
         .expect("renders");
-        if let Some(picked) = picked {
+        if let Choice::Reaches(picked) = picked {
             let measured =
                 measure(picked.format, &scene, Methods::LECTURE, (64, 64)).expect("renders");
             assert!(measured >= 40.0, "{picked:?} measures {measured:.1} dB");
@@ -380,5 +380,38 @@ fn analyze_and_the_build_agree_on_a_field_of_view_of_almost_180_degrees() {
                 verdict.fit
             );
         }
+    }
+}
+
+#[test]
+fn a_triangle_has_no_area_only_for_its_own_size() {
+    let small = hostile("tiny-triangle");
+    for scene in [small.scaled(100.0), small] {
+        for format in [Format::F64, Format::F32] {
+            assert!(refused_or_held(
+                &scene,
+                format,
+                Methods::LECTURE,
+                (64, 64),
+                &[]
+            ));
+        }
+    }
+    let mesh = hostile("tiny-teapot");
+    assert!(refused_or_held(
+        &mesh,
+        Format::F64,
+        Methods::LECTURE,
+        (64, 64),
+        &[]
+    ));
+    for format in [Format::I16f16, Format::F32] {
+        assert!(!refused_or_held(
+            &mesh,
+            format,
+            Methods::LECTURE,
+            (64, 64),
+            &["twice the triangle's area"]
+        ));
     }
 }

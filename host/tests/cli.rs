@@ -410,6 +410,40 @@ fn a_format_predicted_useless_is_refused_unless_forced() {
 }
 
 #[test]
+fn a_format_the_reference_cannot_check_is_refused_unless_forced() {
+    let tilt = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/scenes/hostile/tilt-beyond-f64.toml"
+    );
+    let dir = scratch("unchecked");
+    let file = dir.join("tilt.png");
+    let file = file.to_str().unwrap();
+    let render = [
+        "render", tilt, "--format", "i32f32", "--size", "64x64", "-o", file,
+    ];
+    let output = obscura(&render);
+    assert!(!output.status.success());
+    let message = stderr(&output);
+    assert!(
+        message.contains("tilt-beyond-f64.toml:12:1: i32f32 by lecture holds the scene, but the f64 reference does not, so nothing can check what i32f32 draws")
+            && message.contains("the scene cannot be built in f64: the camera")
+            && message.contains("--force"),
+        "{message}"
+    );
+    assert!(!Path::new(file).exists(), "nothing is drawn");
+    // analyze agrees: no format can hold what f64 cannot.
+    let output = obscura(&["analyze", tilt, "--size", "64x64"]);
+    assert!(!output.status.success());
+    assert!(
+        stderr(&output).contains("no format can hold the scene"),
+        "{}",
+        stderr(&output)
+    );
+    let output = obscura(&[&render[..], &["--force"]].concat());
+    assert!(output.status.success(), "{}", stderr(&output));
+}
+
+#[test]
 fn firmware_without_qemu_says_how_to_install_it() {
     // A PATH with rustc on it and nothing else: no QEMU (and perhaps no thumb target).
     let dir = scratch("no-qemu");

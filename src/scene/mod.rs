@@ -15,7 +15,9 @@ pub use error::{Item, Remedy, SceneError};
 use crate::camera::{Camera, Frame, MAX_IMAGE_SIDE};
 use crate::color::Rgb;
 use crate::cull::{self, Bound};
-use crate::desc::{BackgroundDesc, CheckerDesc, LightDesc, MaterialDesc, SceneDesc, ShapeDesc};
+use crate::desc::{
+    BackgroundDesc, CheckerDesc, LightDesc, MaterialDesc, SceneDesc, ShapeDesc, triangle_has_area,
+};
 use crate::light::{Background, Light};
 use crate::material::Material;
 use crate::methods::{Methods, RootMethod};
@@ -743,11 +745,12 @@ impl<S: Scalar> Converter<S> {
         [a, b, c]: [[f32; 3]; 3],
     ) -> Result<(Triangle<S>, f64), SceneError> {
         let (a64, b64, c64) = (Vec3::from_f32(a), Vec3::from_f32(b), Vec3::from_f32(c));
-        // Validation guarantees a non-zero area.
-        let n = (b64 - a64)
-            .cross(c64 - a64)
-            .direction()
-            .ok_or(SceneError::DegenerateTriangle { item })?;
+        // Degenerate relative to its own size, as validation tests it, never to the unit.
+        if !triangle_has_area([a, b, c]) {
+            return Err(SceneError::DegenerateTriangle { item });
+        }
+        let cross = (b64 - a64).cross(c64 - a64);
+        let n = cross * cross.length().recip();
         let corners = [
             self.point(item, "shape.triangle.vertices", a)?,
             self.point(item, "shape.triangle.vertices", b)?,

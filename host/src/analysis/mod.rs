@@ -12,7 +12,7 @@ use crate::checked::Checked;
 use crate::cost::{Machine, cost};
 use crate::metrics::accuracy;
 use crate::render::{HostScene, Request, all_cores, exact_roots, prepare, prepare_reference};
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use obscura::methods::MethodName;
 use obscura::scalar::FormatInfo;
 use obscura::scene::range::{self, Feature, Magnitude};
@@ -185,7 +185,7 @@ fn split(analyses: &[&Analysis], rescaled: bool) -> Option<Format> {
         .max_by_key(|format| format.split().map(|(_, fraction)| fraction))
 }
 
-/// A format `--format auto` picked, and what it measured.
+/// A format `--format auto` measured, and what it measured.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pick {
     /// The format.
@@ -195,14 +195,59 @@ pub struct Pick {
     /// Its PSNR against f64, measured on the host (which computes the firmware's bits), in dB:
     /// the lowest over the scenes.
     pub psnr_db: f64,
+    /// The PSNR against f64 the model predicts it to reach at least, in dB: the lowest over the
+    /// scenes (`None` where it predicts none).
+    pub predicted_db: Option<f64>,
+}
+
+/// What `--format auto` found.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Choice {
+    /// The cheapest format that reaches the target.
+    Reaches(Pick),
+    /// No format reaches the target: the one that comes closest.
+    Closest(Pick),
+    /// No format holds every scene.
+    Nothing,
+}
+
+impl Choice {
+    /// Why no format is picked for `target_psnr` dB: the one that comes closest, what it is
+    /// predicted and measured to reach, and the `--target-psnr` that would take it; or that
+    /// no format holds the scenes. `None` when one reaches it.
+    #[must_use]
+    pub fn shortfall(&self, target_psnr: f64) -> Option<String> {
+        match self {
+            Self::Reaches(_) => None,
+            Self::Nothing => Some(format!(
+                "no format holds the scene and reaches {target_psnr} dB; change the scene as \
+                 `obscura analyze` says"
+            )),
+            Self::Closest(pick) => {
+                let predicted = pick.predicted_db.map_or(String::new(), |db| {
+                    format!("predicted to reach at least {db:.1} dB and ")
+                });
+                let how = pick.rescaled.map_or(String::new(), |factor| {
+                    format!(" rescaled ×{factor} about the eye")
+                });
+                // Rounded down, so that the target it names takes the format.
+                let accepting = (pick.psnr_db * 10.0).floor() / 10.0;
+                Some(format!(
+                    "no format reaches {target_psnr} dB; the closest is {}{how}, {predicted}\
+                     measured at {:.1} dB: --target-psnr {accepting:.1} accepts it",
+                    pick.format, pick.psnr_db
+                ))
+            }
+        }
+    }
 }
 
 /// The cheapest format on `machine` (by the committed chart) that holds every one of `scenes`
 /// (each with its analysis at `size` by `methods`) and, rendered on the host, reaches
 /// `target_psnr` against f64 on each: the formats are measured cheapest first, and the first
 /// that reaches it is taken. With `rescale`, a format that holds a scene only rescaled about
-/// the eye renders it so (a firmware, whose scenes are built in, cannot). `None` when no
-/// format reaches it.
+/// the eye renders it so (a firmware, whose scenes are built in, cannot). Where none reaches
+/// it, every candidate has been measured, and the one measured closest is said.
 ///
 /// # Errors
 /// When a render fails.
@@ -213,7 +258,7 @@ pub fn pick(
     machine: Machine,
     target_psnr: f64,
     rescale: bool,
-) -> Result<Option<Pick>> {
+) -> Result<Choice> {
     let analyses: Vec<&Analysis> = scenes.iter().map(|&(_, analysis)| analysis).collect();
     // The 32-bit splits cost the same, so of those only the scenes' split, the most precise,
     // is a candidate (where one holds them all as they are; or, rescaling, rescaled).
@@ -241,11 +286,16 @@ pub fn pick(
         })
         .collect();
     candidates.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut closest: Option<Pick> = None;
     for (_, format) in candidates {
         let mut worst = f64::INFINITY;
+        let mut predicted: Option<f64> = None;
         let mut rescaled = None;
         for &(scene, analysis) in scenes {
             let verdict = analysis.verdicts.iter().find(|v| v.format == format);
+            if let Some(p) = verdict.and_then(|v| v.prediction) {
+                predicted = Some(predicted.map_or(p.psnr_db, |db| db.min(p.psnr_db)));
+            }
             let scene = match verdict.map(|v| &v.fit) {
                 Some(Fit::Rescaled(factor)) => {
                     rescaled = Some(*factor);
@@ -255,15 +305,20 @@ pub fn pick(
             };
             worst = worst.min(measure(format, &scene, methods, size)?);
         }
+        let measured = Pick {
+            format,
+            rescaled,
+            psnr_db: worst,
+            predicted_db: predicted,
+        };
         if worst >= target_psnr {
-            return Ok(Some(Pick {
-                format,
-                rescaled,
-                psnr_db: worst,
-            }));
+            return Ok(Choice::Reaches(measured));
+        }
+        if closest.as_ref().is_none_or(|c| worst > c.psnr_db) {
+            closest = Some(measured);
         }
     }
-    Ok(None)
+    Ok(closest.map_or(Choice::Nothing, Choice::Closest))
 }
 
 /// The PSNR against f64, in dB, that `--format auto` and `analyze` aim for unless told.
@@ -277,11 +332,12 @@ pub const USELESS_PSNR: f64 = 20.0;
 
 /// Refuses `format` for `scene` at `size` by `methods` where the model predicts it below
 /// `floor` dB against f64, with the prediction, the formats predicted to reach `floor` as the
-/// scene is, and the changes of one method that make `format` reach it. f64, and a format that
-/// cannot build the scene (its build says why), pass.
+/// scene is, and the changes of one method that make `format` reach it; refuses it too where
+/// the f64 reference cannot hold the scene, which leaves nothing to check it by. f64, and a
+/// format that cannot build the scene (its build says why), pass.
 ///
 /// # Errors
-/// The refusal; or a render of the f64 reference that fails.
+/// The refusal.
 pub fn refuse_useless(
     format: Format,
     scene: &OwnedScene,
@@ -293,8 +349,18 @@ pub fn refuse_useless(
         return Ok(());
     }
     let desc = scene.desc();
-    let Ok(f64s) = reference(&desc, methods, size) else {
-        return Ok(());
+    let f64s = match reference(&desc, methods, size) {
+        Ok(f64s) => f64s,
+        // A render nothing can check is refused like one predicted useless: no prediction,
+        // no measurement and no `auto` can vouch for it.
+        Err(error) if builds(format, &desc, methods, size).is_ok() => {
+            return Err(error.context(format!(
+                "{format} by {methods} holds the scene, but the f64 reference does not, so \
+                 nothing can check what {format} draws; change the scene until f64 holds it \
+                 (`obscura analyze` says how), or give --force to draw it unchecked"
+            )));
+        }
+        Err(_) => return Ok(()),
     };
     let predicted = |format: Format, methods: Methods, reference: &Reference| {
         predict::predict(format, &desc, methods, reference).map_or(f64::INFINITY, |p| p.psnr_db)
@@ -374,14 +440,13 @@ pub fn firmware_format(
         })
         .collect::<Result<Vec<_>>>()?;
     let pairs: Vec<_> = scenes.iter().map(|s| &s.scene).zip(&analyses).collect();
-    let Pick { format, .. } = pick(&pairs, methods, (SIDE, SIDE), machine, target_psnr, false)?
-        .with_context(|| {
-            format!(
-                "no firmware format holds every scene and reaches {target_psnr} dB; `obscura \
-                 analyze` says why"
-            )
-        })?;
-    Ok(format)
+    match pick(&pairs, methods, (SIDE, SIDE), machine, target_psnr, false)? {
+        Choice::Reaches(Pick { format, .. }) => Ok(format),
+        choice => bail!(
+            "for a firmware: {}",
+            choice.shortfall(target_psnr).unwrap_or_default()
+        ),
+    }
 }
 
 /// The PSNR of `format` against f64 on `scene` at `size` by `methods`, measured.
@@ -631,6 +696,50 @@ mod tests {
         assert_eq!(pick(Machine::M4f), Format::F32);
         // The built-in scenes' 32-bit split.
         assert_eq!(pick(Machine::M0), Format::I12f20);
+    }
+
+    #[test]
+    fn where_no_format_reaches_the_target_the_closest_is_said_and_its_target_takes_it() {
+        let scene = obscura_scene::load(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/scenes/tinyraytracer.toml"
+        ))
+        .unwrap()
+        .scene;
+        let size = (48, 48);
+        let analysis = Analysis::of(&scene, Methods::LECTURE, size.0, size.1).unwrap();
+        let choose = |target| {
+            pick(
+                &[(&scene, &analysis)],
+                Methods::LECTURE,
+                size,
+                Machine::M4f,
+                target,
+                true,
+            )
+            .unwrap()
+        };
+        // Every format's checker edges differ from f64's somewhere: none reaches 90 dB.
+        let short = choose(90.0);
+        let Choice::Closest(closest) = &short else {
+            panic!("{short:?}")
+        };
+        let said = short.shortfall(90.0).unwrap();
+        assert!(
+            said.contains(&format!("the closest is {}", closest.format)),
+            "{said}"
+        );
+        let target: f64 = said
+            .rsplit_once("--target-psnr ")
+            .and_then(|(_, rest)| rest.split(' ').next())
+            .and_then(|number| number.parse().ok())
+            .unwrap();
+        assert!(target <= closest.psnr_db && closest.psnr_db < target + 0.1);
+        // That target takes the closest format, or a cheaper one that reaches it too.
+        let Choice::Reaches(taken) = choose(target) else {
+            panic!("--target-psnr {target} takes nothing")
+        };
+        assert!(taken.psnr_db >= target, "{taken:?}");
     }
 
     #[test]

@@ -1,6 +1,6 @@
 //! `obscura analyze`: a scene's range analysis, in tables (see [`crate::analysis`]).
 
-use crate::analysis::{Analysis, Bits, Extents, Fit, Pick, measure, pick};
+use crate::analysis::{Analysis, Bits, Choice, Extents, Fit, Pick, measure, pick};
 use crate::cli::AnalyzeArgs;
 use crate::cost::Machine;
 use crate::output::say;
@@ -120,7 +120,7 @@ fn print_pick(args: &AnalyzeArgs, named: &NamedScene, analysis: &Analysis) -> Re
         target,
         true,
     )? {
-        Some(Pick {
+        Choice::Reaches(Pick {
             format, rescaled, ..
         }) => {
             let how = rescaled.map_or(String::new(), |factor| {
@@ -131,10 +131,7 @@ fn print_pick(args: &AnalyzeArgs, named: &NamedScene, analysis: &Analysis) -> Re
                  auto)"
             )?;
         }
-        None => say!(
-            "\nno format holds the scene and reaches {target} dB: lower --target-psnr, or \
-             change the scene as the refusals above say"
-        )?,
+        choice => say!("\n{}", choice.shortfall(target).unwrap_or_default())?,
     }
     Ok(())
 }

@@ -10,7 +10,7 @@ mod preview;
 mod render;
 mod stress;
 
-use crate::analysis::{self, Analysis, Pick, pick};
+use crate::analysis::{self, Analysis, Choice, Pick, pick};
 use crate::cli::{AutoArgs, Command, RefusalArgs, SceneArgs};
 use crate::cost::Machine;
 use crate::output::say;
@@ -164,17 +164,17 @@ fn pick_format(
             auto.target_psnr,
             true,
         )?;
-        let Some(Pick {
+        let Choice::Reaches(Pick {
             format,
             rescaled,
             psnr_db,
+            ..
         }) = picked
         else {
             bail!(
-                "no format holds {} and reaches {} dB at {width}x{height}; `obscura analyze {}` \
-                 says why",
+                "{} at {width}x{height}: {} (`obscura analyze {}` says more)",
                 named.name,
-                auto.target_psnr,
+                picked.shortfall(auto.target_psnr).unwrap_or_default(),
                 named.name
             );
         };

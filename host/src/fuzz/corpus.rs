@@ -6,7 +6,7 @@
 //! `--format auto`'s pick for each scene builds.
 
 use super::{Tally, generate, pool, try_scenes};
-use crate::analysis::{Analysis, pick};
+use crate::analysis::{Analysis, Choice, pick};
 use crate::cost::Machine;
 use crate::render::{Request, prepare};
 use obscura::Methods;
@@ -59,7 +59,9 @@ fn auto_picks_a_format_the_build_accepts() {
                 true,
             )
             .unwrap();
-            let Some(choice) = choice else { continue };
+            let Choice::Reaches(choice) = choice else {
+                continue;
+            };
             let scene = match choice.rescaled {
                 Some(factor) => generated.scene.scaled(factor as f32),
                 None => generated.scene.clone(),
