@@ -92,7 +92,7 @@ done
 
 step "firmware for the ST7789 on an STM32F411 Black Pill and on a Raspberry Pi Pico, from a scene file, as the README builds them"
 OBSCURA_SCENES=host/scenes/pyramid.toml OBSCURA_FORMATS=f32 cargo build --release -p obscura-black-pill --target "$M4F" --locked
-OBSCURA_SCENES=host/scenes/pyramid.toml OBSCURA_FORMATS=i14f18 cargo build --release -p obscura-pico --target "$M0" --locked
+OBSCURA_SCENES=host/scenes/pyramid.toml OBSCURA_FORMATS=i16f16 cargo build --release -p obscura-pico --target "$M0" --locked
 OBSCURA_SCENES=host/scenes/pyramid.toml OBSCURA_SAMPLES=16 OBSCURA_ADAPTIVE_SAMPLES=true \
     cargo build --release -p obscura-pico --target "$M0" --locked
 

@@ -206,6 +206,9 @@ fn a_checker_too_large_for_its_reciprocal_is_refused_or_predicted_so() {
         )
         .expect("renders");
         if let Choice::Reaches(picked) = picked {
+            let scene = picked
+                .rescaled
+                .map_or_else(|| scene.clone(), |factor| scene.scaled(factor as f32));
             let measured =
                 measure(picked.format, &scene, Methods::LECTURE, (64, 64)).expect("renders");
             assert!(measured >= 40.0, "{picked:?} measures {measured:.1} dB");
