@@ -76,9 +76,6 @@ pub struct Reference {
     sampled: bool,
 }
 
-/// Images of at least this many pixels have their rays nudged on all cores.
-const PARALLEL_PIXELS: u32 = 1 << 16;
-
 /// The directions a pixel's ray is nudged in, to see what lies within a distance of it: along
 /// the rows and columns and the diagonals.
 const NUDGES: [(f64, f64); 8] = [
@@ -133,10 +130,13 @@ impl Reference {
                 })
                 .collect()
         };
-        let own: Vec<f64> = if width * height < PARALLEL_PIXELS {
-            (0..height).flat_map(own_row).collect()
-        } else {
+        // On every core, or on one within a thread pool's task (the fuzzer's, the analyses'),
+        // as the renders are: a small image of many shadow rays is as dear as a large one.
+        let parallel = threads_here() > 1;
+        let own: Vec<f64> = if parallel {
             (0..height).into_par_iter().flat_map_iter(own_row).collect()
+        } else {
+            (0..height).flat_map(own_row).collect()
         };
         let reaches = reach(&own, width, height);
         let around = |x: u32, y: u32| neighbours(width, height, x, y);
@@ -193,15 +193,14 @@ impl Reference {
                 .fold((0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1))
         };
         let add = |a: (f64, f64), b: (f64, f64)| (a.0 + b.0, a.1 + b.1);
-        // A small image is not worth the threads (and a fuzzer runs many on its own).
-        let (squared, mismatched) = if width * height < PARALLEL_PIXELS {
-            (0..height).map(row).fold((0.0, 0.0), add)
+        // Summed in the rows' order however they were found, so that a prediction is the same
+        // to the bit on any number of cores.
+        let rows: Vec<(f64, f64)> = if parallel {
+            (0..height).into_par_iter().map(row).collect()
         } else {
-            (0..height)
-                .into_par_iter()
-                .map(row)
-                .reduce(|| (0.0, 0.0), add)
+            (0..height).map(row).collect()
         };
+        let (squared, mismatched) = rows.into_iter().fold((0.0, 0.0), add);
         let pixels = f64::from(width) * f64::from(height);
         (squared / (3.0 * pixels), mismatched / pixels)
     }
