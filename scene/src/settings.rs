@@ -319,7 +319,7 @@ settings! {
             /// comma-separated.
             scene: String = "whitted", "OBSCURA_SCENES", scene_name;
             /// Formats, comma-separated; `auto` is the cheapest on the target that holds
-            /// every scene and is predicted to reach the target PSNR, which `obscura
+            /// every scene and measures at the target PSNR on the host, which `obscura
             /// firmware` picks (a build alone cannot: it names the command that does).
             format: FormatChoice = "i16f16", "OBSCURA_FORMATS", format_choice;
         }
@@ -417,11 +417,11 @@ impl MethodName for Variants {
     const ALL: &'static [(Self, &'static str)] = &[(Self::None, "none"), (Self::Each, "each")];
 }
 
-/// A number format, or `auto`: the cheapest predicted to meet a target.
+/// A number format, or `auto`: the cheapest measured to meet a target.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FormatChoice {
-    /// The cheapest format that holds the scene and is predicted to reach the target PSNR
-    /// (see `obscura analyze`).
+    /// The cheapest format that holds the scene and, rendered on the host, reaches the target
+    /// PSNR against f64 (see `obscura analyze`).
     Auto,
     /// This format.
     Given(Format),

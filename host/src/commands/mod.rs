@@ -113,7 +113,7 @@ pub fn firmware_format(
 }
 
 /// Picks the format for `named` by `args`: the format given, or with `auto` the cheapest that
-/// holds the scene and is predicted to reach the target (rescaled about the eye when only
+/// holds the scene and measures at the target on the host (rescaled about the eye when only
 /// that fits), said aloud on standard error.
 pub fn resolve(named: &NamedScene, args: &SceneArgs) -> Result<Resolved> {
     let methods = args.methods.methods();
