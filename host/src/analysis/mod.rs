@@ -694,7 +694,7 @@ mod tests {
         let pick =
             |machine| firmware_format(&whitted, Methods::default(), machine, TARGET_PSNR).unwrap();
         assert_eq!(pick(Machine::M4f), Format::F32);
-        // Whose shift by 16 the M0 folds into its products: the cheapest there that reaches 40 dB.
+        // i16f16, whose shift by 16 the M0 gets free, is the cheapest there that reaches 40 dB.
         assert_eq!(pick(Machine::M0), Format::I16f16);
     }
 
