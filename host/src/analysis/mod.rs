@@ -230,11 +230,12 @@ impl Choice {
                 let how = pick.rescaled.map_or(String::new(), |factor| {
                     format!(" rescaled ×{factor} about the eye")
                 });
-                // Rounded down, so that the target it names takes the format.
+                // Rounded down, so that the target it names takes the format; the measurement
+                // to a digit more, so that it never reads as less than that target.
                 let accepting = (pick.psnr_db * 10.0).floor() / 10.0;
                 Some(format!(
                     "no format reaches {target_psnr} dB; the closest is {}{how}, {predicted}\
-                     measured at {:.1} dB: --target-psnr {accepting:.1} accepts it",
+                     measured at {:.2} dB: --target-psnr {accepting:.1} accepts it",
                     pick.format, pick.psnr_db
                 ))
             }
