@@ -60,6 +60,17 @@ struct Row {
     host: Option<f64>,
 }
 
+impl Row {
+    /// Its cost on `machine`, if the chart measured it there.
+    fn on(&self, machine: Machine) -> Option<f64> {
+        match machine {
+            Machine::M4f => self.m4f,
+            Machine::M0 => self.m0,
+            Machine::Host => self.host,
+        }
+    }
+}
+
 fn rows() -> &'static [Row] {
     static ROWS: OnceLock<Vec<Row>> = OnceLock::new();
     ROWS.get_or_init(|| parse(CHART))
@@ -131,11 +142,6 @@ pub fn cost(
     has_triangles: bool,
 ) -> Option<f64> {
     let label = methods.to_string();
-    let on_machine = |r: &Row| match machine {
-        Machine::M4f => r.m4f,
-        Machine::M0 => r.m0,
-        Machine::Host => r.host,
-    };
     // The mean cost of the charted formats `priced` names, on the built-in scenes like this one
     // (or else on the others).
     let price = |priced: &dyn Fn(&str) -> bool| {
@@ -146,7 +152,7 @@ pub fn cost(
                 let costs: Vec<f64> = rows()
                     .iter()
                     .filter(|r| r.scene == scene.name && r.variant == variant && priced(&r.format))
-                    .filter_map(on_machine)
+                    .filter_map(|r| r.on(machine))
                     .collect();
                 mean_of(&costs)
             };
@@ -200,12 +206,17 @@ mod tests {
         );
     }
 
-    /// The chart's cost of a run, read off its CSV directly.
+    /// The chart's cost of a run on the M4F, read off its CSV directly.
     fn charted(scene: &str, format: &str, variant: &str) -> f64 {
+        charted_on(Machine::M4f, scene, format, variant)
+    }
+
+    /// The chart's cost of a run on `machine`, read off its CSV directly.
+    fn charted_on(machine: Machine, scene: &str, format: &str, variant: &str) -> f64 {
         rows()
             .iter()
             .find(|r| r.scene == scene && r.format == format && r.variant == variant)
-            .and_then(|r| r.m4f)
+            .and_then(|r| r.on(machine))
             .expect("charted")
     }
 
@@ -242,18 +253,8 @@ mod tests {
         // i24f8 holds neither scene: priced as the 32-bit formats the chart ran on whitted
         // that shift as it does (not i16f16, whose shift the M0 gets free).
         for machine in [Machine::M4f, Machine::M0] {
-            let kin = ["i12f20", "i14f18", "i18f14", "i20f12"].map(|f| {
-                let row = rows()
-                    .iter()
-                    .find(|r| r.scene == "whitted" && r.format == f && r.variant == "lecture")
-                    .unwrap();
-                if machine == Machine::M0 {
-                    row.m0
-                } else {
-                    row.m4f
-                }
-                .unwrap()
-            });
+            let kin = ["i12f20", "i14f18", "i18f14", "i20f12"]
+                .map(|f| charted_on(machine, "whitted", f, "lecture"));
             assert_eq!(
                 cost(machine, Format::I24f8, &lecture, false),
                 Some(kin.iter().sum::<f64>() / 4.0)
