@@ -145,7 +145,7 @@ fn edge<S: Scalar>(line: u32, pixels: u32) -> (u32, S) {
 /// `2^depth` steps across the pixel.
 pub(crate) struct Pixel<
     'a,
-    S,
+    S: Scalar,
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,

@@ -1,8 +1,9 @@
 //! Linear colour in the tracer's number format, and its quantisation to a display's pixel
-//! colour.
+//! colour. Light is in the format; what filters it — a surface's colour, a weight along the
+//! ray tree — is at most 1, and is in the format's narrow numbers ([`Scalar::Narrow`]).
 
 use crate::scalar::Scalar;
-use core::ops::{Add, Mul};
+use core::ops::Add;
 use embedded_graphics_core::pixelcolor::{Bgr565, Bgr888, Rgb555, Rgb565, Rgb888, RgbColor};
 
 /// A linear RGB colour; 1.0 is full intensity on a channel.
@@ -16,7 +17,7 @@ pub struct Rgb<S> {
     pub b: S,
 }
 
-crate::words::words_of_struct!(Rgb<S> { r, g, b });
+crate::words::words_of_struct!(Rgb<S: NumberBits> { r, g, b });
 
 impl<S: Scalar> Rgb<S> {
     /// Black: no light.
@@ -53,6 +54,30 @@ impl<S: Scalar> Rgb<S> {
     #[track_caller]
     pub fn scale(self, k: S) -> Self {
         Self::new(self.r * k, self.g * k, self.b * k)
+    }
+
+    /// Every channel multiplied by the narrow number `k` ([`Scalar::mul_narrow`]).
+    #[inline]
+    #[must_use]
+    #[track_caller]
+    pub fn scale_narrow(self, k: S::Narrow) -> Self {
+        Self::new(
+            self.r.mul_narrow(k),
+            self.g.mul_narrow(k),
+            self.b.mul_narrow(k),
+        )
+    }
+
+    /// Light filtered by a narrow colour (a surface's, or a weight), channel by channel.
+    #[inline]
+    #[must_use]
+    #[track_caller]
+    pub fn filter(self, by: Rgb<S::Narrow>) -> Self {
+        Self::new(
+            self.r.mul_narrow(by.r),
+            self.g.mul_narrow(by.g),
+            self.b.mul_narrow(by.b),
+        )
     }
 
     /// What a display can show of the colour, each channel clamped to [0, 1], in 16-bit
@@ -143,16 +168,6 @@ impl<S: Scalar> Add for Rgb<S> {
     #[track_caller]
     fn add(self, rhs: Self) -> Self {
         Self::new(self.r + rhs.r, self.g + rhs.g, self.b + rhs.b)
-    }
-}
-
-/// Channel by channel: a filter applied to light.
-impl<S: Scalar> Mul for Rgb<S> {
-    type Output = Self;
-    #[inline]
-    #[track_caller]
-    fn mul(self, rhs: Self) -> Self {
-        Self::new(self.r * rhs.r, self.g * rhs.g, self.b * rhs.b)
     }
 }
 

@@ -57,7 +57,9 @@ impl<S: Scalar> Background<S> {
     pub fn colour(&self, dir: Vec3<S>) -> Rgb<S> {
         match *self {
             Self::Solid(colour) => colour,
-            Self::Gradient { horizon, rise, up } => horizon + rise.scale(dir.dot(up).max(S::ZERO)),
+            Self::Gradient { horizon, rise, up } => {
+                horizon + rise.scale_narrow(dir.dot(up).max(S::ZERO).narrow())
+            }
         }
     }
 }

@@ -1,23 +1,25 @@
 //! [`Material`]: how a surface answers light, in the tracer's number format.
 
 use crate::color::Rgb;
+use crate::scalar::Scalar;
 
 /// Whitted's surface model: local (ambient, Lambert diffuse, Phong specular) plus mirror
-/// reflection and refraction, each with its weight.
+/// reflection and refraction, each with its weight. The colour and the weights are within
+/// [0, 1]: narrow numbers ([`Scalar::Narrow`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Material<S> {
+pub struct Material<S: Scalar> {
     /// The surface colour.
-    pub colour: Rgb<S>,
+    pub colour: Rgb<S::Narrow>,
     /// Lambertian weight.
-    pub diffuse: S,
+    pub diffuse: S::Narrow,
     /// Phong highlight weight.
-    pub specular: S,
+    pub specular: S::Narrow,
     /// Phong exponent.
     pub shininess: u16,
     /// Mirror reflection weight.
-    pub reflection: S,
+    pub reflection: S::Narrow,
     /// Transmission weight.
-    pub transmission: S,
+    pub transmission: S::Narrow,
     /// Index of refraction.
     pub ior: S,
     /// 1 / index of refraction: the ratio η for a ray entering the material.

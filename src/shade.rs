@@ -32,11 +32,12 @@ pub struct Sample<S> {
     pub met: u64,
 }
 
-/// A ray waiting on the stack, with the share of the pixel it contributes.
+/// A ray waiting on the stack, with the share of the pixel it contributes (at most 1 on each
+/// channel: a narrow colour).
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Task<S> {
+pub(crate) struct Task<S: Scalar> {
     ray: Ray<S>,
-    weight: Rgb<S>,
+    weight: Rgb<S::Narrow>,
     depth: u8,
     /// The surface the ray leaves (none for a primary ray).
     from: Option<Leaving<S>>,
@@ -55,7 +56,7 @@ struct Leaving<S> {
 
 /// The nearest hit of a ray.
 #[derive(Clone, Copy, Debug)]
-struct Hit<'a, S> {
+struct Hit<'a, S: Scalar> {
     object: &'a Object<S>,
     index: usize,
     at: Intersection<S>,
@@ -137,7 +138,7 @@ impl<
 /// The tracer proper, over slices: one copy per number format and set of parts ([`Uses`]),
 /// whatever the capacities.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Tracer<'a, S, M, const USES: u32> {
+pub(crate) struct Tracer<'a, S: Scalar, M, const USES: u32> {
     objects: &'a [Object<S>],
     /// The meshes' nodes and triangles.
     meshes: &'a M,
@@ -255,7 +256,7 @@ impl<S: Scalar, M: Meshes<S>, const USES: u32> Tracer<'_, S, M, USES> {
                 self.shade(task, &hit, stack, &mut sample.met)
             }
         };
-        sample.colour = sample.colour + task.weight * colour;
+        sample.colour = sample.colour + colour.filter(task.weight);
     }
 
     /// The span a ray leaving `from` searches: beyond the surface's tolerance for the epsilon
@@ -403,8 +404,10 @@ impl<S: Scalar, M: Meshes<S>, const USES: u32> Tracer<'_, S, M, USES> {
         let above = point.add_scaled(facing, offset);
         let below = point.add_scaled(facing, -offset);
 
+        // The light a surface sends back is the light's colour (in the format) filtered by the
+        // surface's colour, weights and cosines (narrow numbers, at most 1 each).
         let surface = shape.surface_colour(point, material.colour);
-        let mut local = self.settings.ambient * surface;
+        let mut local = self.settings.ambient.filter(surface);
         for light in self.lights {
             let (l, distance) = (light.position - above).normalized_with_length(roots);
             let lambert = shading.dot(l);
@@ -419,25 +422,27 @@ impl<S: Scalar, M: Meshes<S>, const USES: u32> Tracer<'_, S, M, USES> {
                     cones.get(i).is_none_or(|cone| cone.admits(l))
                 })
             };
-            if shadow == S::ZERO {
+            if shadow == S::Narrow::ZERO {
                 continue;
             }
-            let mut reflected = surface.scale(material.diffuse * lambert);
+            let arriving = light.colour.scale_narrow(shadow);
+            let diffuse = surface.scale(material.diffuse * lambert.narrow());
+            local = local + arriving.filter(diffuse);
             let highlight = shading_mirror.dot(l);
-            if material.specular > S::ZERO && highlight > S::ZERO {
+            if material.specular > S::Narrow::ZERO && highlight > S::ZERO {
                 // The cosine of two unit vectors, which rounding can lift a few steps above 1,
                 // where the power would multiply the excess by the exponent: clamped, it loses
                 // nothing and stays within 1 whatever the exponent.
-                let phong = material.specular * highlight.min(S::ONE).powi(material.shininess);
-                reflected = reflected + Rgb::new(phong, phong, phong);
+                let cosine = highlight.narrow().min(S::Narrow::ONE);
+                let phong = material.specular * cosine.powi(material.shininess);
+                local = local + arriving.scale_narrow(phong);
             }
-            local = local + light.colour.scale(shadow) * reflected;
         }
 
         if task.depth < self.settings.max_depth {
             let depth = task.depth + 1;
             let mut reflection = material.reflection;
-            if material.transmission > S::ZERO {
+            if material.transmission > S::Narrow::ZERO {
                 if solid {
                     // Snell, with η = n₁/n₂: the incident direction's part along the surface,
                     // t = d + cos θᵢ·n (|t| = sin θᵢ), is scaled by η, and the refracted ray is
@@ -465,7 +470,7 @@ impl<S: Scalar, M: Meshes<S>, const USES: u32> Tracer<'_, S, M, USES> {
                     self.spawn(stack, ray, other_side, task, material.transmission, depth);
                 }
             }
-            if reflection > S::ZERO {
+            if reflection > S::Narrow::ZERO {
                 self.spawn(
                     stack,
                     Ray::new(above, mirror),
@@ -486,7 +491,7 @@ impl<S: Scalar, M: Meshes<S>, const USES: u32> Tracer<'_, S, M, USES> {
         ray: Ray<S>,
         from: Leaving<S>,
         parent: &Task<S>,
-        share: S,
+        share: S::Narrow,
         depth: u8,
     ) {
         let weight = parent.weight.scale(share);
@@ -517,10 +522,10 @@ impl<S: Scalar, M: Meshes<S>, const USES: u32> Tracer<'_, S, M, USES> {
         from: Leaving<S>,
         met: &mut u64,
         admits: impl Fn(usize) -> bool,
-    ) -> S {
+    ) -> S::Narrow {
         S::note(Work::Search(RayKind::Shadow));
         let span = self.span(Some(from), distance);
-        let mut passed = S::ONE;
+        let mut passed = S::Narrow::ONE;
         let mut per_ray = PerRay::new();
         for (index, object) in self.objects.iter().enumerate() {
             if !admits(index) {
@@ -534,7 +539,7 @@ impl<S: Scalar, M: Meshes<S>, const USES: u32> Tracer<'_, S, M, USES> {
                 S::note(Work::Met);
                 *met |= bit(index);
                 passed = passed * object.material.transmission;
-                if passed == S::ZERO {
+                if passed == S::Narrow::ZERO {
                     break;
                 }
             }
@@ -562,7 +567,7 @@ impl<S: Scalar, M: Meshes<S>, const USES: u32> Tracer<'_, S, M, USES> {
         facing: Vec3<S>,
         from: Leaving<S>,
         met: &mut u64,
-    ) -> S {
+    ) -> S::Narrow {
         let roots = self.methods().roots;
         let pattern = Pattern::light(self.id, light.index);
         let l = (light.position - origin).normalized(roots);
@@ -590,21 +595,24 @@ impl<S: Scalar, M: Meshes<S>, const USES: u32> Tracer<'_, S, M, USES> {
                     admitted & bit(i) != 0
                 })
             } else {
-                S::ZERO
+                S::Narrow::ZERO
             };
             // At most 2¹⁶.
-            let passed = passed.clamp(S::ZERO, S::ONE).to_q16().unsigned_abs();
+            let passed = passed
+                .clamp(S::Narrow::ZERO, S::Narrow::ONE)
+                .to_q16()
+                .unsigned_abs();
             if i == 0 {
                 first = passed;
             }
             agree &= passed == first;
             if agree && i + 1 == SHADOW_PROBES && self.settings.adaptive_shadows {
-                return S::from_q16(first as i32);
+                return S::Narrow::from_q16(first as i32);
             }
             sum += passed;
         }
         let n = u32::from(n);
-        S::from_q16(((sum + n / 2) / n) as i32)
+        S::Narrow::from_q16(((sum + n / 2) / n) as i32)
     }
 }
 
@@ -630,7 +638,7 @@ fn bit(index: usize) -> u64 {
 /// Pushes a task. It cannot fail: a task of depth k leaves at most one sibling per level on
 /// the stack, so it never holds more than max_depth + 1 ≤ RAYS tasks (checked by
 /// `Scene::build`).
-fn push<S>(stack: &mut VecView<Task<S>>, task: Task<S>) {
+fn push<S: Scalar>(stack: &mut VecView<Task<S>>, task: Task<S>) {
     let pushed = stack.push(task);
     debug_assert!(pushed.is_ok(), "ray stack overflow");
 }

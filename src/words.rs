@@ -14,7 +14,7 @@
 use crate::methods::{
     BiasMethod, MethodName, Methods, RayMethod, RootMethod, SphereMethod, TriangleMethod,
 };
-use crate::scalar::Bits;
+use crate::scalar::{Bits, NumberBits};
 use crate::uses::Uses;
 use core::fmt;
 
@@ -231,7 +231,7 @@ pub(crate) fn read<S: Bits, T: Words>(what: &'static str, words: &[u32]) -> Resu
     }
 }
 
-impl<S: Bits> Words for S {
+impl<S: NumberBits> Words for S {
     #[allow(clippy::cast_possible_truncation, reason = "word by word")]
     fn put(&self, out: &mut Writer<'_>) {
         let bits = self.to_bits();
@@ -333,10 +333,15 @@ impl<T: Words, const N: usize> Words for [T; N] {
 }
 
 /// Words for a struct, field by field: `words_of_struct!(Sphere<S> { center, radius })`. Every
-/// field must be listed (reading builds the struct from them).
+/// field must be listed (reading builds the struct from them). The format is a [`Bits`], or
+/// where a narrow format's numbers are stored too, a [`NumberBits`] if it is named so:
+/// `words_of_struct!(Rgb<S: NumberBits> { r, g, b })`.
 macro_rules! words_of_struct {
-    ($ty:ident $(<$t:ident>)? { $($field:ident),* $(,)? }) => {
-        impl$(<$t: $crate::scalar::Bits>)? $crate::words::Words for $ty$(<$t>)? {
+    ($ty:ident <$t:ident> { $($field:ident),* $(,)? }) => {
+        $crate::words::words_of_struct!($ty<$t: Bits> { $($field),* });
+    };
+    ($ty:ident $(<$t:ident: $bound:ident>)? { $($field:ident),* $(,)? }) => {
+        impl$(<$t: $crate::scalar::$bound>)? $crate::words::Words for $ty$(<$t>)? {
             fn put(&self, out: &mut $crate::words::Writer<'_>) {
                 $($crate::words::Words::put(&self.$field, out);)*
             }

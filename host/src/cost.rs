@@ -130,9 +130,8 @@ fn parse(csv: &str) -> Vec<Row> {
 /// as the chart measured it on the built-in scenes like it (on the others where those refused
 /// the format): by these methods where they change something there and the chart ran them, by
 /// the lecture's otherwise. A 32-bit fixed format the built-in scenes refuse (the narrowest and
-/// coarsest splits) costs what the 32-bit formats the chart measured cost on average, but
-/// `i16f16`: they run the same code but for their shifts, and the chart finds them within 7 %
-/// of each other on both machines, where `i16f16` costs a tenth less on the M0 ([`shifts_wide`]).
+/// coarsest splits) costs what the 32-bit formats of its narrow format the chart measured cost
+/// on average, but `i16f16`: they run the same code but for their shifts ([`shifts_alike`]).
 /// `None` where the chart has no measurement at all (f64, which the chart measures others
 /// against).
 pub fn cost(
@@ -167,8 +166,12 @@ pub fn cost(
         };
         mean(true).or_else(|| mean(false))
     };
-    price(&|name| name == format.name())
-        .or_else(|| format.is_fixed_32().then(|| price(&shifts_wide)).flatten())
+    price(&|name| name == format.name()).or_else(|| {
+        format
+            .is_fixed_32()
+            .then(|| price(&|name| shifts_alike(format, name)))
+            .flatten()
+    })
 }
 
 /// The mean of `costs`, if there are any.
@@ -176,13 +179,16 @@ fn mean_of(costs: &[f64]) -> Option<f64> {
     (!costs.is_empty()).then(|| costs.iter().sum::<f64>() / costs.len() as f64)
 }
 
-/// Whether the chart's format name is a 32-bit fixed format's that shifts its products' 64-bit
-/// sums: any but `i16f16`, whose shift by 16 the M0 gets free where its partial products meet
-/// (so that it prices no other split).
-fn shifts_wide(name: &str) -> bool {
-    Format::ALL
-        .iter()
-        .any(|format| format.name() == name && format.is_fixed_32() && *format != Format::I16f16)
+/// Whether the chart's format name is a 32-bit fixed format's that runs `format`'s code but for
+/// its shifts: of the same narrow format, and not `i16f16`, whose shift by 16 the M0 gets free
+/// where its partial products meet (so that it prices no other split).
+fn shifts_alike(format: Format, name: &str) -> bool {
+    Format::ALL.iter().any(|&other| {
+        other.name() == name
+            && other.is_fixed_32()
+            && other.narrow() == format.narrow()
+            && other != Format::I16f16
+    })
 }
 
 #[cfg(test)]
@@ -251,13 +257,20 @@ mod tests {
             Some(charted("whitted", "i20f12", "lecture"))
         );
         // i24f8 holds neither scene: priced as the 32-bit formats the chart ran on whitted
-        // that shift as it does (not i16f16, whose shift the M0 gets free).
+        // with its narrow format that shift as it does (not i16f16, whose shift the M0 gets
+        // free); i8f24 as those with its own.
         for machine in [Machine::M4f, Machine::M0] {
-            let kin = ["i12f20", "i14f18", "i18f14", "i20f12"]
-                .map(|f| charted_on(machine, "whitted", f, "lecture"));
+            let mean = |kin: [&str; 2]| {
+                let costs = kin.map(|f| charted_on(machine, "whitted", f, "lecture"));
+                Some(costs.iter().sum::<f64>() / 2.0)
+            };
             assert_eq!(
                 cost(machine, Format::I24f8, &lecture, false),
-                Some(kin.iter().sum::<f64>() / 4.0)
+                mean(["i18f14", "i20f12"])
+            );
+            assert_eq!(
+                cost(machine, Format::I8f24, &lecture, false),
+                mean(["i12f20", "i14f18"])
             );
         }
     }

@@ -10,7 +10,8 @@
 //! each count one; a dot product three products and two sums; a unit vector (with its length)
 //! seven products, two sums and a root; a − b·c·d's edge function two products and a sum; an
 //! integer power as many products as repeated squaring takes; a colour channel's quantisation a
-//! product and a sum. Comparisons, negations and conversions count nothing.
+//! product and a sum; a product of a narrow number ([`Scalar::Narrow`]) a product. Comparisons,
+//! negations and conversions (to and from the narrow format too) count nothing.
 //!
 //! A phase is read from the source file of the core that forms the operation (the core's
 //! vector and colour operations pass their caller's place on, `#[track_caller]`): the camera's,
@@ -369,6 +370,19 @@ impl<S: Scalar> Scalar for Counted<S> {
 
     fn from_int(n: i32) -> Self {
         Self(S::from_int(n))
+    }
+    type Narrow = Counted<S::Narrow>;
+    #[track_caller]
+    fn narrow(self) -> Self::Narrow {
+        Counted(self.0.narrow())
+    }
+    fn widen(narrow: Self::Narrow) -> Self {
+        Self(S::widen(narrow.0))
+    }
+    #[track_caller]
+    fn mul_narrow(self, k: Self::Narrow) -> Self {
+        count(Operations::PRODUCT);
+        Self(self.0.mul_narrow(k.0))
     }
     fn from_q16(bits: i32) -> Self {
         Self(S::from_q16(bits))

@@ -103,7 +103,9 @@ impl Alike {
             .filter_map(|r| Some((Format::from_name(&r.format)?, r.instructions_per_pixel)))
             .collect();
         let find = |priced: &dyn Fn(Format) -> bool| runs.iter().copied().find(|&(f, _)| priced(f));
-        let split = |ran: Format| ran.is_fixed_32() && format.is_fixed_32();
+        let split = |ran: Format| {
+            ran.is_fixed_32() && format.is_fixed_32() && ran.narrow() == format.narrow()
+        };
         find(&|ran| ran == format)
             .or_else(|| find(&|ran| split(ran) && ran != Format::I16f16))
             .or_else(|| find(&split))
@@ -208,7 +210,9 @@ mod tests {
                     assert!(
                         pricing.is_some_and(|p| p.instructions_per_pixel > 0
                             && (p.format == format
-                                || p.format.is_fixed_32() && format.is_fixed_32())),
+                                || p.format.is_fixed_32()
+                                    && format.is_fixed_32()
+                                    && p.format.narrow() == format.narrow())),
                         "{format} on {target:?} like {alike:?}: {pricing:?}"
                     );
                 }

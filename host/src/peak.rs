@@ -78,6 +78,21 @@ impl Scalar for Peak {
         Self(f64::from(n))
     }
 
+    /// Its narrow numbers are its own, as `f64`'s.
+    type Narrow = Self;
+
+    fn narrow(self) -> Self {
+        self
+    }
+
+    fn widen(narrow: Self) -> Self {
+        narrow
+    }
+
+    fn mul_narrow(self, k: Self) -> Self {
+        self * k
+    }
+
     fn from_q16(bits: i32) -> Self {
         Self(f64::from_q16(bits))
     }

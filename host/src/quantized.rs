@@ -23,76 +23,79 @@ use std::fmt;
 use std::marker::PhantomData;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
-/// An f64 with format `S`'s constants (see the module documentation).
-pub struct Quantized<S>(f64, PhantomData<S>);
+/// An f64 with format `S`'s constants (see the module documentation), on the grid of `G`: `S`
+/// itself, or for its narrow numbers ([`Scalar::Narrow`]) its narrow format, whose constants
+/// (surfaces' colours, material weights) are rounded to that format's grid and whose powers'
+/// cosines are narrowed.
+pub struct Quantized<S, G = S>(f64, PhantomData<(S, G)>);
 
-impl<S> Quantized<S> {
+impl<S, G> Quantized<S, G> {
     const fn new(x: f64) -> Self {
         Self(x, PhantomData)
     }
 }
 
-impl<S> Clone for Quantized<S> {
+impl<S, G> Clone for Quantized<S, G> {
     fn clone(&self) -> Self {
         *self
     }
 }
 
-impl<S> Copy for Quantized<S> {}
+impl<S, G> Copy for Quantized<S, G> {}
 
-impl<S> Default for Quantized<S> {
+impl<S, G> Default for Quantized<S, G> {
     fn default() -> Self {
         Self::new(0.0)
     }
 }
 
-impl<S> PartialEq for Quantized<S> {
+impl<S, G> PartialEq for Quantized<S, G> {
     fn eq(&self, other: &Self) -> bool {
         self.0 == other.0
     }
 }
 
-impl<S> PartialOrd for Quantized<S> {
+impl<S, G> PartialOrd for Quantized<S, G> {
     fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
         self.0.partial_cmp(&other.0)
     }
 }
 
-impl<S> fmt::Debug for Quantized<S> {
+impl<S, G> fmt::Debug for Quantized<S, G> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         self.0.fmt(f)
     }
 }
 
-impl<S> Add for Quantized<S> {
+impl<S, G> Add for Quantized<S, G> {
     type Output = Self;
     fn add(self, rhs: Self) -> Self {
         Self::new(self.0 + rhs.0)
     }
 }
 
-impl<S> Sub for Quantized<S> {
+impl<S, G> Sub for Quantized<S, G> {
     type Output = Self;
     fn sub(self, rhs: Self) -> Self {
         Self::new(self.0 - rhs.0)
     }
 }
 
-impl<S> Mul for Quantized<S> {
+impl<S, G> Mul for Quantized<S, G> {
     type Output = Self;
     fn mul(self, rhs: Self) -> Self {
         Self::new(self.0 * rhs.0)
     }
 }
 
-impl<S> Neg for Quantized<S> {
+impl<S, G> Neg for Quantized<S, G> {
     type Output = Self;
     fn neg(self) -> Self {
         Self::new(-self.0)
     }
 }
 
-impl<S: Scalar> Div for Quantized<S> {
+impl<S, G: Scalar> Div for Quantized<S, G> {
     type Output = Self;
     /// Saturating at the format's range, as the format's own quotient does.
     fn div(self, rhs: Self) -> Self {
@@ -100,22 +103,37 @@ impl<S: Scalar> Div for Quantized<S> {
         Self::new(if quotient.is_nan() {
             0.0
         } else {
-            quotient.clamp(-S::RANGE, S::RANGE)
+            quotient.clamp(-G::RANGE, G::RANGE)
         })
     }
 }
 
-impl<S: Scalar> Scalar for Quantized<S> {
+impl<S: Scalar, G: Scalar> Scalar for Quantized<S, G> {
     const ZERO: Self = Self::new(0.0);
     const ONE: Self = Self::new(1.0);
-    const MAX: Self = Self::new(S::RANGE);
+    const MAX: Self = Self::new(G::RANGE);
 
     fn from_int(n: i32) -> Self {
-        Self::new(S::from_int(n).to_f64())
+        Self::new(G::from_int(n).to_f64())
+    }
+
+    type Narrow = Quantized<S, G::Narrow>;
+
+    /// Exact: the model adds a narrowing's rounding where it matters, to a power's cosine.
+    fn narrow(self) -> Self::Narrow {
+        Quantized::new(self.0)
+    }
+
+    fn widen(narrow: Self::Narrow) -> Self {
+        Self::new(narrow.0)
+    }
+
+    fn mul_narrow(self, k: Self::Narrow) -> Self {
+        Self::new(self.0 * k.0)
     }
 
     fn from_q16(bits: i32) -> Self {
-        Self::new(S::from_q16(bits).to_f64())
+        Self::new(G::from_q16(bits).to_f64())
     }
 
     fn to_q16(self) -> i32 {
@@ -131,7 +149,7 @@ impl<S: Scalar> Scalar for Quantized<S> {
     }
 
     fn ratio(num: i32, den: i32) -> Self {
-        Self::new(S::ratio(num, den).to_f64())
+        Self::new(G::ratio(num, den).to_f64())
     }
 
     /// The power of the base moved by its rounding as a cosine, and by the rounding of the
@@ -139,13 +157,15 @@ impl<S: Scalar> Scalar for Quantized<S> {
     /// documentation.
     fn powi(self, exponent: u16) -> Self {
         let n = i32::from(exponent);
-        let cosine = COSINE_STEPS * S::UNIT_ERROR;
+        // A coarser grid than the format's rounds the format's cosine again.
+        let narrowing = (G::resolution(1.0) - S::resolution(1.0)).max(0.0) / 2.0;
+        let cosine = COSINE_STEPS * S::UNIT_ERROR + narrowing;
         let exact = self.0.clamp(0.0, 1.0).powi(n);
         let (up, down) = (
             (self.0 + cosine).clamp(0.0, 1.0),
             (self.0 - cosine).clamp(0.0, 1.0),
         );
-        let rounding = |base: f64| power_rounding(base, exponent, S::resolution(1.0) / 2.0);
+        let rounding = |base: f64| power_rounding(base, exponent, G::resolution(1.0) / 2.0);
         if up.powi(n) - exact >= exact - down.powi(n) {
             Self::new((up.powi(n) + rounding(up)).min(1.0))
         } else {
@@ -159,13 +179,13 @@ impl<S: Scalar> Scalar for Quantized<S> {
     }
 }
 
-impl<S: Scalar> Precision for Quantized<S> {
-    const NAME: &'static str = S::NAME;
+impl<S: Scalar, G: Scalar> Precision for Quantized<S, G> {
+    const NAME: &'static str = G::NAME;
 
-    const RANGE: f64 = S::RANGE;
+    const RANGE: f64 = G::RANGE;
 
     fn from_f64(x: f64) -> Option<Self> {
-        S::from_f64(x).map(|stored| Self::new(stored.to_f64()))
+        G::from_f64(x).map(|stored| Self::new(stored.to_f64()))
     }
 
     fn to_f64(self) -> f64 {
@@ -173,10 +193,17 @@ impl<S: Scalar> Precision for Quantized<S> {
     }
 
     fn resolution(magnitude: f64) -> f64 {
-        S::resolution(magnitude)
+        G::resolution(magnitude)
     }
 
     const UNIT_ERROR: f64 = S::UNIT_ERROR;
+}
+
+/// How much coarser format `S`'s narrow format ([`Scalar::Narrow`]) is than `S` at 1: the
+/// step a narrowing may add to a number's rounding (nothing where the narrow format is the
+/// finer, or the format itself).
+pub fn coarser<S: Scalar>() -> f64 {
+    (<S::Narrow as Precision>::resolution(1.0) - S::resolution(1.0)).max(0.0)
 }
 
 /// How far [`Scalar::powi`]'s products, each rounded by up to `rounding`, may move xⁿ for x in
@@ -213,6 +240,22 @@ mod tests {
         assert_eq!((Q16::ONE / Q16::ZERO).to_f64(), Q16::RANGE);
         assert_eq!(Q16::ratio(1, 3).to_f64(), 21_845.0 / 65_536.0);
         assert_eq!(Q16::resolution(1.0), 1.0 / 65_536.0);
+    }
+
+    #[test]
+    fn narrow_constants_are_on_the_narrow_formats_grid() {
+        type Narrow = <Q16 as Scalar>::Narrow;
+        let third = Narrow::from_f64(1.0 / 3.0).unwrap();
+        assert_eq!(third.to_f64(), 5_461.0 / 16_384.0);
+        assert_eq!(Narrow::RANGE, 2.0 - 1.0 / 16_384.0);
+        assert_eq!(coarser::<Q16>(), 3.0 / 65_536.0);
+        assert_eq!(coarser::<Quantized<f32>>(), 0.0);
+        // A cosine narrowed is rounded once more before its power: the power moves further.
+        let cosine = 1.0 - 1.0 / 64.0;
+        let wide = Q16::from_f64(cosine).unwrap().powi(40).to_f64();
+        let narrow = Narrow::from_f64(cosine).unwrap().powi(40).to_f64();
+        let exact = cosine.powi(40);
+        assert!((narrow - exact).abs() > (wide - exact).abs());
     }
 
     /// The bound holds for the formats' own powers, of cosines they hold exactly.

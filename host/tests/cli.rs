@@ -475,7 +475,8 @@ fn analyze_tables_the_bits_the_formats_and_the_cheapest() {
     for expected in [
         "smallest sphere radius",
         "| triangles, by watertight |",
-        "| i20f12 | no: object 2: radius² seen from the eye",
+        "| i20f12 | i2f14 | no: object 2: radius² seen from the eye",
+        "| i12f20 | i2f30 | yes |",
         "the cheapest on the Cortex-M0 that reaches 40 dB:",
     ] {
         assert!(text.contains(expected), "{expected}: {text}");

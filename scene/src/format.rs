@@ -112,6 +112,20 @@ impl Format {
         self.run::<Proven, _>(Split)
     }
 
+    /// The name of the format's narrow format ([`obscura::Scalar::Narrow`]): `i2f14` for the
+    /// 32-bit formats of at most 16 fraction bits, `i2f30` for the finer ones and `i32f32`, a
+    /// float's own name for a float.
+    pub fn narrow(self) -> &'static str {
+        struct Narrow;
+        impl FormatJob for Narrow {
+            type Output = &'static str;
+            fn run<S: Scalar>(self) -> &'static str {
+                <S::Narrow as obscura::scalar::Precision>::NAME
+            }
+        }
+        self.run::<Proven, _>(Narrow)
+    }
+
     /// Whether the format is fixed point (whose firmware frames must match the host's bit for
     /// bit, and which has fast approximate roots when it is 32 bits wide).
     pub fn is_fixed_point(self) -> bool {
@@ -119,7 +133,8 @@ impl Format {
     }
 
     /// Whether the format is fixed point on 32 bits: the formats that differ only in where
-    /// their binary point sits, and so cost the same.
+    /// their binary point sits, and so cost the same where their narrow formats are the same
+    /// ([`Self::narrow`]).
     pub fn is_fixed_32(self) -> bool {
         self.split().is_some_and(|(int, frac)| int + frac == 32)
     }

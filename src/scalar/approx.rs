@@ -92,6 +92,24 @@ impl Scalar for F32Approx {
         Self(f32::from_int(n))
     }
 
+    /// Its narrow numbers are its own, as `f32`'s.
+    type Narrow = Self;
+
+    #[inline]
+    fn narrow(self) -> Self {
+        self
+    }
+
+    #[inline]
+    fn widen(narrow: Self) -> Self {
+        narrow
+    }
+
+    #[inline]
+    fn mul_narrow(self, k: Self) -> Self {
+        self * k
+    }
+
     #[inline]
     fn from_q16(bits: i32) -> Self {
         Self(f32::from_q16(bits))

@@ -2,15 +2,19 @@
 //! core and comes back unchanged, as a proven scene does on its way from a firmware's build to
 //! the chip ([`crate::words`]).
 
-use super::fixed_point::{Fx, Overflow, WideBits};
+use super::fixed_point::{Fx, Narrowed, Overflow, WideBits};
 use super::{F32Approx, Scalar};
-use core::fmt::Debug;
-use fixed::traits::FixedSigned;
 
-/// A format of the core's own, whose numbers are their bits: a number written as
-/// [`Bits::to_bits`] and read back by [`Bits::from_bits`] is the same number. Sealed: the
-/// harness's instrumented formats wrap these and have no bits of their own.
-pub trait Bits: Scalar + sealed::Sealed {
+/// A format of the core's own, with its narrow format ([`Scalar::Narrow`]), whose numbers are
+/// their bits ([`NumberBits`]). Sealed: the harness's instrumented formats wrap these and have
+/// no bits of their own.
+pub trait Bits: NumberBits<Narrow: NumberBits> {}
+
+impl<S: NumberBits<Narrow: NumberBits>> Bits for S {}
+
+/// A number that is its bits: written as [`NumberBits::to_bits`] and read back by
+/// [`NumberBits::from_bits`], it is the same number. The core's formats and their narrow ones.
+pub trait NumberBits: Scalar + sealed::Sealed {
     /// The 32-bit words a number takes: 1, or 2 for a 64-bit format.
     const WORDS: usize;
     /// The number's bits, in the low 32 × [`Self::WORDS`] bits.
@@ -28,10 +32,9 @@ impl sealed::Sealed for f32 {}
 impl sealed::Sealed for f64 {}
 impl sealed::Sealed for F32Approx {}
 
-impl<F, O> Bits for Fx<F, O>
+impl<F, O> NumberBits for Fx<F, O>
 where
-    F: FixedSigned + Debug + Default + Send + Sync + 'static,
-    F::Bits: WideBits,
+    F: Narrowed,
     O: Overflow,
 {
     const WORDS: usize = <F::Bits as WideBits>::WORDS;
@@ -45,7 +48,7 @@ where
     }
 }
 
-impl Bits for f32 {
+impl NumberBits for f32 {
     const WORDS: usize = 1;
 
     fn to_bits(self) -> u64 {
@@ -61,7 +64,7 @@ impl Bits for f32 {
     }
 }
 
-impl Bits for f64 {
+impl NumberBits for f64 {
     const WORDS: usize = 2;
 
     fn to_bits(self) -> u64 {
@@ -73,15 +76,15 @@ impl Bits for f64 {
     }
 }
 
-impl Bits for F32Approx {
+impl NumberBits for F32Approx {
     const WORDS: usize = 1;
 
     fn to_bits(self) -> u64 {
-        Bits::to_bits(self.0)
+        NumberBits::to_bits(self.0)
     }
 
     fn from_bits(bits: u64) -> Self {
-        Self(Bits::from_bits(bits))
+        Self(NumberBits::from_bits(bits))
     }
 }
 

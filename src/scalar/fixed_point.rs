@@ -19,7 +19,7 @@ use super::isqrt::{
     MANTISSA_BITS, MANTISSA_SCALE, ROOT_SCALE, RootPair, isqrt_u64, one_step_holds_unit, root_pair,
     rsqrt_fixed, rsqrt_mantissa,
 };
-use super::kernels::{div_i32_fixed, mul_i32_wide, mul_u32_wide, mul_u64_small};
+use super::kernels::{div_i32_fixed, mul_i32_i16_wide, mul_i32_wide, mul_u32_wide, mul_u64_small};
 use super::{Precision, Scalar};
 use core::cmp::Ordering;
 use core::fmt;
@@ -28,6 +28,8 @@ use core::marker::PhantomData;
 use core::ops::{Add, Div, Mul, Neg, Sub};
 use core::panic::Location;
 use fixed::traits::{Fixed, FixedSigned};
+use fixed::types::extra::{IsLessOrEqual, LeEqU16, LeEqU32, LeEqU64, U16};
+use fixed::{FixedI16, FixedI32, FixedI64};
 
 /// Signed 16.16 fixed point on `i32`: range ±32 768, resolution 1/65 536 ≈ 1.5·10⁻⁵.
 pub type I16F16 = Fx<fixed::types::I16F16>;
@@ -50,6 +52,8 @@ pub enum Operation {
     Product,
     /// `a₀b₀ + a₁b₁ + a₂b₂`, rounded once.
     DotProduct,
+    /// A number rounded to the format's narrow one ([`Scalar::narrow`]).
+    Narrowing,
 }
 
 impl fmt::Display for Operation {
@@ -58,6 +62,7 @@ impl fmt::Display for Operation {
             Self::Sum => "a sum",
             Self::Difference => "a difference",
             Self::Product => "a product",
+            Self::Narrowing => "a narrowing",
             Self::DotProduct => "a dot product",
         })
     }
@@ -167,7 +172,7 @@ pub trait WideBits: Copy + Ord {
     /// self/b for b > 0, in raw units with `frac` fraction bits ≤ 28, from the fast reciprocal
     /// square root as a mantissa and an exponent: about 14 correct bits whatever the size of b.
     fn div_raw_fast(self, b: Self, frac: u32) -> Self;
-    /// The 32-bit words the integer takes ([`super::Bits::WORDS`]).
+    /// The 32-bit words the integer takes ([`super::NumberBits::WORDS`]).
     const WORDS: usize;
     /// The integer's bits, sign-extended to 64.
     fn to_u64(self) -> u64;
@@ -179,7 +184,7 @@ macro_rules! wide_bits {
     ($($bits:ident => $wide:ident, mul: $mul:path, div: $div:path, fast: $fast:literal, root_error: $root_error:expr, roots: $sqrt:path, $rsqrt:path, $normalize:path);*) => {$(
         impl WideBits for $bits {
             type Wide = $wide;
-            const WORDS: usize = <$bits>::BITS as usize / 32;
+            const WORDS: usize = <$bits>::BITS.div_ceil(32) as usize;
             #[inline]
             #[allow(clippy::cast_sign_loss, reason = "the bits, sign-extended")]
             fn to_u64(self) -> u64 {
@@ -259,10 +264,114 @@ macro_rules! wide_bits {
     )*};
 }
 wide_bits!(
+    // The 16-bit narrow format: its roots and quotients are the 32-bit ones', narrowed.
+    i16 => i32, mul: mul_i16_wide, div: div_i16_fixed, fast: false, root_error: 0.0, roots: sqrt_raw_16, rsqrt_raw_16, normalize_raw_16;
     i32 => i64, mul: mul_i32_wide, div: div_i32_fixed, fast: true, root_error: 0.0, roots: sqrt_raw_32, rsqrt_raw_32, normalize_raw_32;
     // The root pair keeps about 30 bits, short of the 64-bit formats' fraction.
     i64 => i128, mul: mul_i64_wide, div: div_i64_fixed, fast: false, root_error: 1.0 / (1_u64 << 29) as f64, roots: sqrt_raw_64, rsqrt_raw_64, normalize_raw_64
 );
+
+/// a·b exactly, for the narrow formats (one `muls` on the M0).
+#[inline]
+fn mul_i16_wide(a: i16, b: i16) -> i32 {
+    i32::from(a) * i32::from(b)
+}
+
+/// a·2^frac / b truncated towards zero for the narrow formats, by the 32-bit formats' division.
+#[inline]
+fn div_i16_fixed(a: i16, b: i16, frac: u32) -> Option<i16> {
+    div_i32_fixed(a.into(), b.into(), frac).and_then(|q| i16::try_from(q).ok())
+}
+
+/// The narrow formats' roots and unit vectors: the 32-bit formats', saturated to 16 bits.
+#[inline]
+fn sqrt_raw_16(x: i16, frac: u32, fast: bool) -> i16 {
+    i16::try_from(sqrt_raw_32(x.into(), frac, fast)).unwrap_or(i16::MAX)
+}
+
+#[inline]
+fn rsqrt_raw_16(x: i16, frac: u32, fast: bool) -> i16 {
+    i16::try_from(rsqrt_raw_32(x.into(), frac, fast)).unwrap_or(i16::MAX)
+}
+
+#[inline]
+fn normalize_raw_16(v: [i16; 3], frac: u32, fast: bool) -> Option<([i16; 3], i16)> {
+    let (unit, length) = normalize_raw_32(v.map(i32::from), frac, fast)?;
+    let narrow = |x: i32| i16::try_from(x).unwrap_or(if x < 0 { i16::MIN } else { i16::MAX });
+    Some((unit.map(narrow), narrow(length)))
+}
+
+/// A fixed format and its narrow format ([`Scalar::Narrow`]), chosen by the fraction bits it
+/// has to keep: signed 2.14 (16 bits) for a 32-bit format of at most 16 fraction bits, whose own
+/// step is no finer (i16f16 to i24f8); signed 2.30 for the finer 32-bit formats (i8f24 to
+/// i14f18) and the 64-bit one, whose accuracy 14 bits would cut. A narrow format is its own.
+pub trait Narrowed:
+    FixedSigned<Bits: WideBits> + fmt::Debug + Default + Send + Sync + 'static
+{
+    /// The narrow format.
+    type Narrow: Narrowed;
+    /// The exact product of a number's bits and a narrow number's.
+    fn wide_mul_narrow(
+        a: Self::Bits,
+        k: <Self::Narrow as Fixed>::Bits,
+    ) -> <Self::Bits as WideBits>::Wide;
+}
+
+/// A 32-bit format's narrow format, by whether its fraction has at most 16 bits
+/// (`typenum::B1`) or more (`B0`).
+pub trait NarrowOf32 {
+    /// 2.14 or 2.30.
+    type Narrow: Narrowed;
+    /// The exact product of a 32-bit number and a narrow one.
+    fn wide_mul(a: i32, k: <Self::Narrow as Fixed>::Bits) -> i64;
+}
+
+impl NarrowOf32 for typenum::B1 {
+    type Narrow = fixed::types::I2F14;
+    #[inline]
+    fn wide_mul(a: i32, k: i16) -> i64 {
+        mul_i32_i16_wide(a, k)
+    }
+}
+
+impl NarrowOf32 for typenum::B0 {
+    type Narrow = fixed::types::I2F30;
+    #[inline]
+    fn wide_mul(a: i32, k: i32) -> i64 {
+        mul_i32_wide(a, k)
+    }
+}
+
+/// Whether `Frac` is at most 16: `B1` or `B0`.
+type AtMost16<Frac> = <Frac as IsLessOrEqual<U16>>::Output;
+
+impl<Frac> Narrowed for FixedI32<Frac>
+where
+    Frac: LeEqU32 + IsLessOrEqual<U16> + Send + Sync + 'static,
+    AtMost16<Frac>: NarrowOf32,
+{
+    type Narrow = <AtMost16<Frac> as NarrowOf32>::Narrow;
+    #[inline]
+    fn wide_mul_narrow(a: i32, k: <Self::Narrow as Fixed>::Bits) -> i64 {
+        <AtMost16<Frac> as NarrowOf32>::wide_mul(a, k)
+    }
+}
+
+impl<Frac: LeEqU16 + Send + Sync + 'static> Narrowed for FixedI16<Frac> {
+    type Narrow = fixed::types::I2F14;
+    #[inline]
+    fn wide_mul_narrow(a: i16, k: i16) -> i32 {
+        mul_i16_wide(a, k)
+    }
+}
+
+impl<Frac: LeEqU64 + Send + Sync + 'static> Narrowed for FixedI64<Frac> {
+    type Narrow = fixed::types::I2F30;
+    #[inline]
+    fn wide_mul_narrow(a: i64, k: i32) -> i128 {
+        i128::from(a) * i128::from(k)
+    }
+}
 
 /// a·b exactly, for the 64-bit format (in 128 bits, a library call on every 32-bit machine).
 #[inline]
@@ -472,8 +581,7 @@ where
 
 impl<F, O> Scalar for Fx<F, O>
 where
-    F: FixedSigned + fmt::Debug + Default + Send + Sync + 'static,
-    F::Bits: WideBits,
+    F: Narrowed,
     O: Overflow,
 {
     const ZERO: Self = Self::new(F::ZERO);
@@ -483,6 +591,55 @@ where
     #[inline]
     fn from_int(n: i32) -> Self {
         Self::new(F::saturating_from_num(n))
+    }
+
+    type Narrow = Fx<F::Narrow, O>;
+
+    /// To nearest by adding half the narrow format's step and dropping the bits below it
+    /// (`fixed`'s conversions round down); exact where the format is the coarser.
+    #[inline]
+    #[track_caller]
+    fn narrow(self) -> Self::Narrow {
+        let (biased, carried) = if F::FRAC_NBITS > F::Narrow::FRAC_NBITS {
+            let half = F::DELTA << (F::FRAC_NBITS - F::Narrow::FRAC_NBITS - 1);
+            self.0.overflowing_add(half)
+        } else {
+            (self.0, false)
+        };
+        let (narrow, wrapped) = F::Narrow::overflowing_from_num(biased);
+        if carried || wrapped {
+            O::overflowed(Operation::Narrowing, Location::caller());
+        }
+        Fx::new(narrow)
+    }
+
+    /// Exact where the format is the finer; else down to the format's step, and up by one
+    /// where the bits dropped are at least half of it.
+    #[inline]
+    fn widen(narrow: Self::Narrow) -> Self {
+        let down = Self::new(F::wrapping_from_num(narrow.0));
+        if F::FRAC_NBITS >= F::Narrow::FRAC_NBITS {
+            return down;
+        }
+        let dropped = narrow.0.wrapping_sub(down.0.wrapping_to_num());
+        let half = F::Narrow::wrapping_from_num(F::DELTA) >> 1;
+        if dropped >= half {
+            Self::new(down.0.wrapping_add(F::DELTA))
+        } else {
+            down
+        }
+    }
+
+    /// The exact product, rounded once ([`Narrowed::wide_mul_narrow`]).
+    #[inline]
+    #[track_caller]
+    fn mul_narrow(self, k: Self::Narrow) -> Self {
+        let wide = F::wide_mul_narrow(self.raw(), k.get().to_bits());
+        let (product, wrapped) = F::Bits::narrow(wide, F::Narrow::FRAC_NBITS);
+        if wrapped {
+            O::overflowed(Operation::Product, Location::caller());
+        }
+        Self::from_raw(product)
     }
 
     #[inline]
@@ -598,8 +755,7 @@ where
 
 impl<F, O> Precision for Fx<F, O>
 where
-    F: FixedSigned + fmt::Debug + Default + Send + Sync + 'static,
-    F::Bits: WideBits,
+    F: Narrowed,
     O: Overflow,
 {
     const NAME: &'static str = FixedName::<F>::NAME;
@@ -834,6 +990,75 @@ mod tests {
         });
         let huge = [i64::MAX, -i64::MAX, i64::MAX];
         check::<I32F32>(huge, |c| I32F32::new(fixed::types::I32F32::from_bits(c)));
+    }
+
+    /// `x` rounded to a grid of `step`, to nearest, ties up: what every narrowing, widening and
+    /// product with a narrow number must give.
+    fn to_nearest(x: f64, step: f64) -> f64 {
+        (x / step + 0.5).floor() * step
+    }
+
+    /// Numbers of a format within the narrow range, at every edge: 0, ±1, the ends of ±2, a
+    /// tie between two narrow steps, and a sweep.
+    fn narrow_range<S: Scalar>() -> Vec<S> {
+        let lsb = S::resolution(1.0);
+        let mut all: Vec<f64> = vec![0.0, 1.0, -1.0, 2.0 - lsb, -2.0, 0.5 + 2f64.powi(-15)];
+        all.extend((0..4000).map(|i| -2.0 + f64::from(i) * 1.0009765625e-3));
+        all.into_iter().filter_map(|x| S::from_f64(x)).collect()
+    }
+
+    fn narrowing_rounds_to_nearest<S: Scalar>() {
+        let step = S::Narrow::resolution(1.0);
+        for x in narrow_range::<S>() {
+            let want = to_nearest(x.to_f64(), step);
+            if want < S::Narrow::RANGE {
+                let narrow = x.narrow();
+                assert_eq!(narrow.to_f64(), want, "{}: {x:?}", S::NAME);
+                let back = S::widen(narrow).to_f64();
+                assert_eq!(
+                    back,
+                    to_nearest(want, S::resolution(1.0)),
+                    "{}: {x:?}",
+                    S::NAME
+                );
+            }
+            for k in narrow_range::<S::Narrow>().into_iter().step_by(7) {
+                let want = to_nearest(x.to_f64() * k.to_f64(), S::resolution(1.0));
+                if want < S::RANGE && want >= -S::RANGE {
+                    let product = x.mul_narrow(k).to_f64();
+                    assert_eq!(product, want, "{}: {x:?} × {k:?}", S::NAME);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn narrow_numbers_round_to_nearest_in_every_format() {
+        narrowing_rounds_to_nearest::<crate::formats::I8f24>();
+        narrowing_rounds_to_nearest::<I16F16>();
+        narrowing_rounds_to_nearest::<crate::formats::I18f14>();
+        narrowing_rounds_to_nearest::<I20F12>();
+        narrowing_rounds_to_nearest::<crate::formats::I24f8>();
+        narrowing_rounds_to_nearest::<I32F32>();
+        narrowing_rounds_to_nearest::<<I16F16 as Scalar>::Narrow>();
+        assert_eq!(<I16F16 as Scalar>::Narrow::NAME, "i2f14");
+        assert_eq!(<crate::formats::I24f8 as Scalar>::Narrow::NAME, "i2f14");
+        assert_eq!(<crate::formats::I14f18 as Scalar>::Narrow::NAME, "i2f30");
+        assert_eq!(<I32F32 as Scalar>::Narrow::NAME, "i2f30");
+    }
+
+    #[test]
+    fn a_number_beyond_the_narrow_range_is_told_as_a_narrowing() {
+        let two = Recorded::from_int(2);
+        let _ = two.narrow();
+        assert_eq!(heard(), [(Operation::Narrowing, line!() - 1)]);
+        let almost = Recorded::from_f64(2.0 - 2f64.powi(-16)).unwrap();
+        let _ = almost.narrow();
+        assert_eq!(heard(), [(Operation::Narrowing, line!() - 1)]);
+        let big = Recorded::from_int(30_000);
+        let k = Recorded::from_f64(1.5).unwrap().narrow();
+        let _ = big.mul_narrow(k);
+        assert_eq!(heard(), [(Operation::Product, line!() - 1)]);
     }
 
     /// The error model's unit (one LSB at 1, [`Precision::UNIT_ERROR`]) holds for the fast unit

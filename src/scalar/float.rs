@@ -55,6 +55,24 @@ macro_rules! float_scalar {
                 n as $t
             }
 
+            /// A float's narrow numbers are its own.
+            type Narrow = Self;
+
+            #[inline]
+            fn narrow(self) -> Self {
+                self
+            }
+
+            #[inline]
+            fn widen(narrow: Self) -> Self {
+                narrow
+            }
+
+            #[inline]
+            fn mul_narrow(self, k: Self) -> Self {
+                self * k
+            }
+
             #[inline]
             #[allow(clippy::cast_precision_loss, reason = "rounded as documented")]
             fn from_q16(bits: i32) -> Self {

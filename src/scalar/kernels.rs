@@ -45,6 +45,30 @@ pub fn mul_i32_wide(a: i32, b: i32) -> i64 {
     }
 }
 
+/// a·b exactly, for a 32-bit format's number and a narrow one (a cosine, a colour, a weight):
+/// two 16×16→32 partial products on the M0, not four.
+#[inline(always)]
+pub fn mul_i32_i16_wide(a: i32, b: i16) -> i64 {
+    #[cfg(armv6m)]
+    {
+        mul_i32_i16_partial(a, b)
+    }
+    #[cfg(not(armv6m))]
+    {
+        i64::from(a) * i64::from(b)
+    }
+}
+
+/// a·b exactly from two partial products, a = a₁·2¹⁶ + a₀ with a₁ = a >> 16 (arithmetic) and
+/// 0 ≤ a₀ < 2¹⁶: a₁b (at most 2³⁰ in magnitude) and a₀b (within ±2³¹, an `i32`).
+#[cfg(any(armv6m, test))]
+#[inline(always)]
+fn mul_i32_i16_partial(a: i32, b: i16) -> i64 {
+    let b = i32::from(b);
+    let (a1, a0) = (a >> 16, a & 0xFFFF);
+    (i64::from(a1 * b) << 16) + i64::from(a0 * b)
+}
+
 /// a·b exactly from four 16×16 partial products of signed high halves and unsigned low halves,
 /// a = a₁·2¹⁶ + a₀ with a₁ = a >> 16 (arithmetic) and 0 ≤ a₀ < 2¹⁶: a₁b₁ (at most 2³⁰ in
 /// magnitude), a₁b₀ and a₀b₁ (each within ±2³¹, so an `i32`), a₀b₀ (below 2³², a `u32`). No
@@ -198,6 +222,21 @@ mod tests {
                 "{a} × {b}"
             );
         });
+    }
+
+    #[test]
+    fn narrow_products_are_exact() {
+        let narrow: Vec<i16> = operands()
+            .iter()
+            .flat_map(|&b| [b as i16, (b >> 16) as i16])
+            .collect();
+        for &a in &operands() {
+            for &b in &narrow {
+                let exact = i64::from(a as i32) * i64::from(b);
+                assert_eq!(mul_i32_i16_wide(a as i32, b), exact, "{a} × {b}");
+                assert_eq!(mul_i32_i16_partial(a as i32, b), exact, "{a} × {b}");
+            }
+        }
     }
 
     #[test]

@@ -35,8 +35,10 @@ mod isqrt;
 mod kernels;
 
 pub use approx::F32Approx;
-pub use bits::Bits;
-pub use fixed_point::{Fx, I16F16, I20F12, I32F32, Operation, Overflow, Proven, WideBits};
+pub use bits::{Bits, NumberBits};
+pub use fixed_point::{
+    Fx, I16F16, I20F12, I32F32, NarrowOf32, Narrowed, Operation, Overflow, Proven, WideBits,
+};
 
 /// The relative error of the 32-bit fixed formats' fast roots and quotients (14 bits, and a
 /// bit to spare).
@@ -117,6 +119,28 @@ pub trait Scalar:
     const MAX: Self;
     /// The integer `n` (saturating when it does not fit).
     fn from_int(n: i32) -> Self;
+
+    /// The format's narrow numbers: what is bounded by construction within ±2 — cosines,
+    /// colours of surfaces, material weights, the weights along a ray tree — stored and
+    /// multiplied in the width it needs. A 32-bit fixed format's are signed 2.14 (a product
+    /// of two is one 16×16→32 multiply, a product with one of the format's is 32×16), the
+    /// 64-bit format's signed 2.30, a float's the float itself.
+    type Narrow: Scalar;
+
+    /// `self` rounded to the narrow format (to nearest, ties up); exact while it fits, which
+    /// the scene build proves, and like a product beyond that ([`Overflow`]).
+    #[must_use]
+    #[track_caller]
+    fn narrow(self) -> Self::Narrow;
+
+    /// A narrow number in the format, rounded to nearest (ties up) where the format is coarser.
+    #[must_use]
+    fn widen(narrow: Self::Narrow) -> Self;
+
+    /// `self · k`, rounded to nearest as `×` rounds: a 32×16 product in a 32-bit fixed format.
+    #[must_use]
+    #[track_caller]
+    fn mul_narrow(self, k: Self::Narrow) -> Self;
 
     /// `bits`·2⁻¹⁶, the number whose Q16.16 representation is `bits`, rounded down to the
     /// format's resolution (saturating when it does not fit): how a position that integers
@@ -318,6 +342,10 @@ pub struct FormatInfo {
     pub unit_error: f64,
     /// [`Scalar::FAST_ROOTS`].
     pub fast_roots: bool,
+    /// The name of the narrow format ([`Scalar::Narrow`]).
+    pub narrow: &'static str,
+    /// The narrow format's [`Precision::resolution`] at 1.
+    pub narrow_resolution: f64,
 }
 
 impl FormatInfo {
@@ -330,7 +358,18 @@ impl FormatInfo {
             resolution: S::resolution,
             unit_error: S::UNIT_ERROR,
             fast_roots: S::FAST_ROOTS,
+            narrow: <S::Narrow as Precision>::NAME,
+            narrow_resolution: narrow_resolution::<S>(),
         }
+    }
+}
+
+/// The spacing of `S`'s narrow numbers at 1, which a `const fn` cannot ask of
+/// [`Precision::resolution`]: a fixed narrow format's LSB, a float's epsilon.
+const fn narrow_resolution<S: Scalar>() -> f64 {
+    match <S::Narrow as Precision>::SPLIT {
+        Some((_, fraction)) => 1.0 / (1_u64 << fraction) as f64,
+        None => <S::Narrow as Precision>::UNIT_ERROR,
     }
 }
 

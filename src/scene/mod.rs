@@ -23,7 +23,7 @@ use crate::material::Material;
 use crate::methods::{Methods, RootMethod};
 use crate::occlusion::Cone;
 use crate::scalar::REACH_ERRORS;
-use crate::scalar::{Bits, FormatInfo, FormatSet, Scalar};
+use crate::scalar::{Bits, FormatInfo, FormatSet, Precision, Scalar};
 use crate::shape::mesh::{MeshStorage, Meshes, NoMeshes, Node};
 use crate::shape::{CHECKER_PERIOD, Checker, Plane, Shape, Sphere, Triangle};
 use crate::uses::Uses;
@@ -44,7 +44,7 @@ pub const WEIGHT_CUTOFF: i32 = 512;
 
 /// An object: a shape and its material.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Object<S> {
+pub struct Object<S: Scalar> {
     /// The geometry.
     pub shape: Shape<S>,
     /// The surface.
@@ -79,7 +79,7 @@ crate::words::words_of_struct!(Object<S> {
 /// none of them: its tracer, built without them, lacks nothing the scene needs.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene<
-    S,
+    S: Scalar,
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,
@@ -98,7 +98,7 @@ pub struct Scene<
 
 /// What the tracer needs of a scene besides its objects and lights.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Settings<S> {
+pub(crate) struct Settings<S: Scalar> {
     pub(crate) ambient: Rgb<S>,
     pub(crate) background: Background<S>,
     /// The longest a ray can be: the diameter of the ball rays start in (the world and its
@@ -112,7 +112,7 @@ pub(crate) struct Settings<S> {
     /// The widening of a mesh's box test ([`crate::shape::mesh::slack`]).
     pub(crate) box_slack: S,
     /// See [`WEIGHT_CUTOFF`].
-    pub(crate) min_weight: S,
+    pub(crate) min_weight: S::Narrow,
     pub(crate) max_depth: u8,
     /// Rays per pixel ([`SceneDesc::samples`]).
     pub(crate) samples: u16,
@@ -608,7 +608,8 @@ impl<S: Scalar> Converter<S> {
                     range::box_magnitude(self.world, self.slack),
                 ),
             )?,
-            min_weight: S::ratio(1, WEIGHT_CUTOFF),
+            // 2⁻⁹ in 16-bit fractions: exact in every narrow format.
+            min_weight: S::Narrow::from_q16((1 << 16) / WEIGHT_CUTOFF),
             max_depth: desc.max_depth,
             samples: desc.samples,
             adaptive_samples: desc.adaptive_samples,
@@ -694,12 +695,12 @@ impl<S: Scalar> Converter<S> {
             1.0
         };
         let material = Material {
-            colour: self.colour(item, "material.colour", m.colour)?,
-            diffuse: self.scalar(item, "material.diffuse", f64::from(m.diffuse))?,
-            specular: self.scalar(item, "material.specular", f64::from(m.specular))?,
+            colour: self.narrow_colour(item, "material.colour", m.colour)?,
+            diffuse: self.narrow(item, "material.diffuse", m.diffuse)?,
+            specular: self.narrow(item, "material.specular", m.specular)?,
             shininess: m.shininess,
-            reflection: self.scalar(item, "material.reflection", f64::from(m.reflection))?,
-            transmission: self.scalar(item, "material.transmission", f64::from(m.transmission))?,
+            reflection: self.narrow(item, "material.reflection", m.reflection)?,
+            transmission: self.narrow(item, "material.transmission", m.transmission)?,
             ior: self
                 .scalar(item, "material.ior", ior)
                 .map_err(|error| with_remedy(error, Remedy::LowerIor))?,
@@ -868,7 +869,7 @@ impl<S: Scalar> Converter<S> {
             squares - CHECKER_PERIOD * libm::floor(squares / CHECKER_PERIOD)
         };
         Ok(Checker {
-            colour: self.colour(item, "shape.plane.checker.colour", desc.colour)?,
+            colour: self.narrow_colour(item, "shape.plane.checker.colour", desc.colour)?,
             u: self.vector(item, "checker axis", u * size.recip())?,
             v: self.vector(item, "checker axis", v * size.recip())?,
             start: [
@@ -914,6 +915,32 @@ impl<S: Scalar> Converter<S> {
     ) -> Result<Rgb<S>, SceneError> {
         Rgb::from_f64(c.to_f64())
             .ok_or_else(|| with_remedy(self.out_of_range(item, quantity, c), Remedy::LessLight))
+    }
+
+    /// A surface's colour in the narrow format ([`Scalar::Narrow`]).
+    fn narrow_colour(
+        &self,
+        item: Item,
+        quantity: &'static str,
+        c: [f32; 3],
+    ) -> Result<Rgb<S::Narrow>, SceneError> {
+        let [r, g, b] = c.map(|channel| self.narrow(item, quantity, channel));
+        Ok(Rgb::new(r?, g?, b?))
+    }
+
+    /// A surface's colour channel or weight in the narrow format, which holds it: validation
+    /// keeps each within [0, 1].
+    fn narrow(&self, item: Item, quantity: &'static str, x: f32) -> Result<S::Narrow, SceneError> {
+        let x = f64::from(x);
+        S::Narrow::from_f64(x).ok_or(SceneError::OutOfRange {
+            item,
+            quantity,
+            value: x.abs(),
+            format: S::Narrow::NAME,
+            range: S::Narrow::RANGE,
+            remedy: Remedy::LessLight,
+            holds: FormatSet::of(|format| range::fits(x.abs(), format.range)),
+        })
     }
 
     fn scalar(&self, item: Item, quantity: &'static str, x: f64) -> Result<S, SceneError> {

@@ -50,6 +50,8 @@
 //! | area light | the shadow rays' transmittances, summed in 16-bit fractions | integers: at most [`MAX_SAMPLES`](crate::pattern::MAX_SAMPLES) · 2¹⁶ < 2³² (const-asserted) |
 //! | refraction | (d + cos·n)·η, its squared length | η² in Snell's law |
 //! | colour | each level's ambient, Lambert, Phong times the light, times its weight; the sum | a pixel's sum of colours over its ray tree |
+//! | narrow | cosines narrowed, surface colours, material weights, Lambert's and Phong's factors, a shadow's transmittance, the weights along the ray tree, their products and the sum reflection + transmission | within 1, a cosine a few steps beyond: 1.0625 at most, within every narrow format's 2 (const-asserted) |
+//! | narrow | light times a narrow number: the ambient and each light filtered by a surface, a sky's rise by its cosine, a ray's colour by its weight | no larger than the light: within a pixel's sum of colours |
 //! | quotients, roots | every division and root | total: they saturate (fixed point) or reach infinity (floats) |
 
 use super::SURFACE_TOLERANCE_STEPS;
@@ -288,6 +290,17 @@ const MIRROR: f64 = 3.0;
 
 /// The largest a smooth mesh's interpolated normal is before it is normalised: 1 + 2 + 2.
 const SMOOTH_NORMAL: f64 = 5.0;
+
+/// The largest number the tracer keeps in a narrow format ([`crate::Scalar::Narrow`]): a
+/// cosine of two unit vectors, 1 plus the rounding of their coordinates (a few steps of the
+/// coarsest format's 2⁻⁸, far within this); a colour, a weight, or a product of them, at most
+/// 1. Every narrow format's range is 2, less a step.
+const NARROW: f64 = 1.0625;
+
+const _: () = assert!(
+    NARROW * RANGE_HEADROOM < 2.0 - 1.0 / 16_384.0,
+    "the narrow numbers fit the narrow formats"
+);
 
 /// How far beyond the world's radius a ray can start in `format` (see the module
 /// documentation): the largest surface tolerance (a sphere's or a triangle's own part at its

@@ -49,7 +49,7 @@ impl<S: Scalar> Intersection<S> {
 
 /// Any primitive.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Shape<S> {
+pub enum Shape<S: Scalar> {
     /// A sphere.
     Sphere(Sphere<S>),
     /// A plane.
@@ -171,7 +171,11 @@ impl<S: Scalar> Shape<S> {
     /// The colour of the surface at a point: the material's, or a pattern's.
     #[inline]
     #[must_use]
-    pub fn surface_colour(&self, point: Vec3<S>, material_colour: Rgb<S>) -> Rgb<S> {
+    pub fn surface_colour(
+        &self,
+        point: Vec3<S>,
+        material_colour: Rgb<S::Narrow>,
+    ) -> Rgb<S::Narrow> {
         match self {
             Self::Plane(plane) => plane.pattern_colour(point).unwrap_or(material_colour),
             Self::Sphere(_) | Self::Triangle(_) | Self::Mesh(_) => material_colour,

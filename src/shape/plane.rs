@@ -14,7 +14,7 @@ use crate::vec3::Vec3;
 /// R) the disc is small, and |p|² = h² + |p − foot|² would lose its radius in the rounding of
 /// h², moving the rim by R/ρ times the error of |p|.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Plane<S> {
+pub struct Plane<S: Scalar> {
     normal: Vec3<S>,
     offset: S,
     /// The eye's foot on the plane (relative to the eye): the centre of the visible disc, and
@@ -49,9 +49,9 @@ pub const CHECKER_PERIOD: f64 = 2.0;
 /// (p − foot)·axis counts squares from the eye's foot on the plane, where the count starts at
 /// `start`; and the colour of every other square.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Checker<S> {
+pub struct Checker<S: Scalar> {
     /// The colour of the squares whose two coordinates sum to an odd number.
-    pub colour: Rgb<S>,
+    pub colour: Rgb<S::Narrow>,
     /// The first in-plane axis divided by the square size.
     pub u: Vec3<S>,
     /// The second in-plane axis divided by the square size.
@@ -166,7 +166,7 @@ impl<S: Scalar> Plane<S> {
 
     /// The checker colour at a point, where the point falls on a square of the second colour.
     #[must_use]
-    pub fn pattern_colour(&self, point: Vec3<S>) -> Option<Rgb<S>> {
+    pub fn pattern_colour(&self, point: Vec3<S>) -> Option<Rgb<S::Narrow>> {
         let checker = self.checker?;
         let local = point - self.foot;
         let [start_u, start_v] = checker.start;

@@ -36,7 +36,7 @@
 use super::extents;
 use crate::checked::Checked;
 use crate::metrics::accuracy;
-use crate::quantized::{COSINE_STEPS, Quantized};
+use crate::quantized::{COSINE_STEPS, Quantized, coarser};
 use crate::render::{Prepared, Request, exact_roots, threads_here};
 use anyhow::Result;
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
@@ -510,9 +510,12 @@ fn object_shifts<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods, pixel: f64)
 /// How far format `S`'s rounding may move a pixel's colour, as a share of full intensity: the
 /// rounding of Lambert's cosine times the diffuse weight, times the light that reaches a
 /// surface, and the rounding of the colour's products and sums, over every level of the ray
-/// tree. (The highlights' rounding is in the render of the constants.)
+/// tree; where the narrow format ([`Scalar::Narrow`]) is the coarser, the cosine's narrowing and
+/// the narrow products' rounding too. (The highlights' rounding is in the render of the
+/// constants.)
 fn shading_error<S: Scalar>(desc: &SceneDesc<'_>) -> f64 {
-    let cosine = COSINE_STEPS * S::UNIT_ERROR;
+    let narrowing = coarser::<S>();
+    let cosine = COSINE_STEPS * S::UNIT_ERROR + narrowing / 2.0;
     let local = desc
         .objects
         .iter()
@@ -530,7 +533,8 @@ fn shading_error<S: Scalar>(desc: &SceneDesc<'_>) -> f64 {
         .map(|k| passed_on.powi(i32::from(k)))
         .sum();
     let colour = brightest(desc.ambient) + 2.0 * light;
-    levels * (light * local + COLOUR_STEPS * S::resolution(colour.max(1.0)) * colour)
+    let rounding = S::resolution(colour.max(1.0)) + narrowing;
+    levels * (light * local + COLOUR_STEPS * rounding * colour)
 }
 
 #[cfg(test)]
