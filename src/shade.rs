@@ -408,10 +408,14 @@ impl<S: Scalar, M: Meshes<S>, const USES: u32> Tracer<'_, S, M, USES> {
         // surface's colour, weights and cosines (narrow numbers, at most 1 each).
         let surface = shape.surface_colour(point, material.colour);
         let mut local = self.settings.ambient.filter(surface);
+        // Lambert's and Phong's cosines are of unit vectors: taken in the narrow format, a
+        // 16×16 product a coordinate in the formats whose narrow format is 2.14.
+        let (shading, shading_mirror) = (shading.narrow(), shading_mirror.narrow());
         for light in self.lights {
             let (l, distance) = (light.position - above).normalized_with_length(roots);
-            let lambert = shading.dot(l);
-            if lambert <= S::ZERO {
+            let towards = l.narrow();
+            let lambert = shading.dot(towards);
+            if lambert <= S::Narrow::ZERO {
                 continue;
             }
             let shadow = if Self::has(Uses::AREA_LIGHTS) && light.shadow_rays > 1 {
@@ -426,14 +430,14 @@ impl<S: Scalar, M: Meshes<S>, const USES: u32> Tracer<'_, S, M, USES> {
                 continue;
             }
             let arriving = light.colour.scale_narrow(shadow);
-            let diffuse = surface.scale(material.diffuse * lambert.narrow());
+            let diffuse = surface.scale(material.diffuse * lambert);
             local = local + arriving.filter(diffuse);
-            let highlight = shading_mirror.dot(l);
-            if material.specular > S::Narrow::ZERO && highlight > S::ZERO {
+            let highlight = shading_mirror.dot(towards);
+            if material.specular > S::Narrow::ZERO && highlight > S::Narrow::ZERO {
                 // The cosine of two unit vectors, which rounding can lift a few steps above 1,
                 // where the power would multiply the excess by the exponent: clamped, it loses
                 // nothing and stays within 1 whatever the exponent.
-                let cosine = highlight.narrow().min(S::Narrow::ONE);
+                let cosine = highlight.min(S::Narrow::ONE);
                 let phong = material.specular * cosine.powi(material.shininess);
                 local = local + arriving.scale_narrow(phong);
             }

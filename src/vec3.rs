@@ -48,6 +48,15 @@ impl<S: Scalar> Vec3<S> {
         [self.x.to_f64(), self.y.to_f64(), self.z.to_f64()]
     }
 
+    /// A unit vector in the narrow format ([`Scalar::Narrow`]), each coordinate rounded to
+    /// nearest: what the cosines of shading are taken of.
+    #[inline]
+    #[must_use]
+    #[track_caller]
+    pub fn narrow(self) -> Vec3<S::Narrow> {
+        Vec3::new(self.x.narrow(), self.y.narrow(), self.z.narrow())
+    }
+
     /// The dot product, rounded once in fixed point (see [`Scalar::dot3`]).
     #[inline]
     #[must_use]

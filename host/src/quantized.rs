@@ -157,9 +157,9 @@ impl<S: Scalar, G: Scalar> Scalar for Quantized<S, G> {
     /// documentation.
     fn powi(self, exponent: u16) -> Self {
         let n = i32::from(exponent);
-        // A coarser grid than the format's rounds the format's cosine again.
-        let narrowing = (G::resolution(1.0) - S::resolution(1.0)).max(0.0) / 2.0;
-        let cosine = COSINE_STEPS * S::UNIT_ERROR + narrowing;
+        // A cosine of unit vectors narrowed to a coarser grid than the format's rounds on it.
+        let narrowing = (G::resolution(1.0) - S::resolution(1.0)).max(0.0);
+        let cosine = COSINE_STEPS * (S::UNIT_ERROR + narrowing);
         let exact = self.0.clamp(0.0, 1.0).powi(n);
         let (up, down) = (
             (self.0 + cosine).clamp(0.0, 1.0),

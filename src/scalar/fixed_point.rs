@@ -19,7 +19,9 @@ use super::isqrt::{
     MANTISSA_BITS, MANTISSA_SCALE, ROOT_SCALE, RootPair, isqrt_u64, one_step_holds_unit, root_pair,
     rsqrt_fixed, rsqrt_mantissa,
 };
-use super::kernels::{div_i32_fixed, mul_i32_i16_wide, mul_i32_wide, mul_u32_wide, mul_u64_small};
+use super::kernels::{
+    div_i32_fixed, mul_i32_i16_wide, mul_i32_wide, square_u32_wide, square_u64_small,
+};
 use super::{Precision, Scalar};
 use core::cmp::Ordering;
 use core::fmt;
@@ -181,7 +183,7 @@ pub trait WideBits: Copy + Ord {
 }
 
 macro_rules! wide_bits {
-    ($($bits:ident => $wide:ident, mul: $mul:path, div: $div:path, fast: $fast:literal, root_error: $root_error:expr, roots: $sqrt:path, $rsqrt:path, $normalize:path);*) => {$(
+    ($($bits:ident => $wide:ident, mul: $mul:path, mul_level: $mul_level:path, div: $div:path, fast: $fast:literal, root_error: $root_error:expr, roots: $sqrt:path, $rsqrt:path, $normalize:path);*) => {$(
         impl WideBits for $bits {
             type Wide = $wide;
             const WORDS: usize = <$bits>::BITS.div_ceil(32) as usize;
@@ -234,7 +236,7 @@ macro_rules! wide_bits {
             }
             #[inline]
             fn quantize_raw(self, levels: u8, threshold: Self, frac: u32) -> u8 {
-                let scaled = ($mul(self, <$bits>::from(levels)) + <$wide>::from(threshold)) >> frac;
+                let scaled = ($mul_level(self, levels) + <$wide>::from(threshold)) >> frac;
                 u8::try_from(scaled.clamp(0, <$wide>::from(levels))).unwrap_or(levels)
             }
             #[inline]
@@ -248,7 +250,7 @@ macro_rules! wide_bits {
             fn div_raw_fast(self, b: Self, frac: u32) -> Self {
                 let (z, s) = rsqrt_mantissa(b.unsigned_abs().into(), true);
                 // r < 2³¹ fits every signed raw type here.
-                let r = <$bits>::try_from(mul_u64_small(z, z) >> MANTISSA_BITS).unwrap_or(<$bits>::MAX);
+                let r = <$bits>::try_from(square_u64_small(z) >> MANTISSA_BITS).unwrap_or(<$bits>::MAX);
                 let right = 2 * MANTISSA_SCALE - MANTISSA_BITS - 2 * s - frac;
                 Self::narrow_saturating(self.wide_mul(r), right)
             }
@@ -265,16 +267,33 @@ macro_rules! wide_bits {
 }
 wide_bits!(
     // The 16-bit narrow format: its roots and quotients are the 32-bit ones', narrowed.
-    i16 => i32, mul: mul_i16_wide, div: div_i16_fixed, fast: false, root_error: 0.0, roots: sqrt_raw_16, rsqrt_raw_16, normalize_raw_16;
-    i32 => i64, mul: mul_i32_wide, div: div_i32_fixed, fast: true, root_error: 0.0, roots: sqrt_raw_32, rsqrt_raw_32, normalize_raw_32;
+    i16 => i32, mul: mul_i16_wide, mul_level: mul_level_16, div: div_i16_fixed, fast: false, root_error: 0.0, roots: sqrt_raw_16, rsqrt_raw_16, normalize_raw_16;
+    i32 => i64, mul: mul_i32_wide, mul_level: mul_level_32, div: div_i32_fixed, fast: true, root_error: 0.0, roots: sqrt_raw_32, rsqrt_raw_32, normalize_raw_32;
     // The root pair keeps about 30 bits, short of the 64-bit formats' fraction.
-    i64 => i128, mul: mul_i64_wide, div: div_i64_fixed, fast: false, root_error: 1.0 / (1_u64 << 29) as f64, roots: sqrt_raw_64, rsqrt_raw_64, normalize_raw_64
+    i64 => i128, mul: mul_i64_wide, mul_level: mul_level_64, div: div_i64_fixed, fast: false, root_error: 1.0 / (1_u64 << 29) as f64, roots: sqrt_raw_64, rsqrt_raw_64, normalize_raw_64
 );
 
 /// a·b exactly, for the narrow formats (one `muls` on the M0).
 #[inline]
 fn mul_i16_wide(a: i16, b: i16) -> i32 {
     i32::from(a) * i32::from(b)
+}
+
+/// a times a display's levels (at most 255, a 16-bit factor), exactly: one product on the M0
+/// for a narrow number, two partial products for a 32-bit one.
+#[inline]
+fn mul_level_16(a: i16, levels: u8) -> i32 {
+    mul_i16_wide(a, i16::from(levels))
+}
+
+#[inline]
+fn mul_level_32(a: i32, levels: u8) -> i64 {
+    mul_i32_i16_wide(a, i16::from(levels))
+}
+
+#[inline]
+fn mul_level_64(a: i64, levels: u8) -> i128 {
+    mul_i64_wide(a, i64::from(levels))
 }
 
 /// a·2^frac / b truncated towards zero for the narrow formats, by the 32-bit formats' division.
@@ -396,10 +415,7 @@ fn div_i64_fixed(a: i64, b: i64, frac: u32) -> Option<i64> {
 /// else the two of the exact vectors.
 #[inline]
 fn normalize_raw_32(v: [i32; 3], frac: u32, fast: bool) -> Option<([i32; 3], i32)> {
-    let y: u64 = v
-        .iter()
-        .map(|&c| mul_u32_wide(c.unsigned_abs(), c.unsigned_abs()))
-        .sum();
+    let y: u64 = v.iter().map(|&c| square_u32_wide(c.unsigned_abs())).sum();
     if y == 0 {
         return None;
     }

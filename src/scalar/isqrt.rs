@@ -15,7 +15,7 @@
 //! every product has operands below 2³², which the Cortex-M0 multiplies without a library call
 //! ([`mul_u64_small`]).
 
-use super::kernels::mul_u64_small;
+use super::kernels::{leading_zeros_u64, mul_u64_small, square_u64_small};
 
 /// The bits of m that index [`RSQRT_SEEDS`].
 const SEED_BITS: u32 = 9;
@@ -83,7 +83,7 @@ const FAST: u32 = 1;
 /// (m, z ≈ 2³⁰/√(m/2³²), 2k) after `steps` Newton steps.
 #[inline]
 fn rsqrt_q30(y: u64, steps: u32) -> (u64, u64, u32) {
-    let shift = y.leading_zeros() & !1;
+    let shift = leading_zeros_u64(y) & !1;
     let m = (y << shift) >> 32;
     // m ≥ 2³⁰, so m >> 23 is in 128..512.
     let index = usize::try_from(m >> (32 - SEED_BITS))
@@ -92,7 +92,7 @@ fn rsqrt_q30(y: u64, steps: u32) -> (u64, u64, u32) {
     let mut z = u64::from(RSQRT_SEEDS.get(index).copied().unwrap_or(1 << 30));
     for _ in 0..steps {
         // z < 2³¹ and m·z² < 3·2⁶², so every product fits u64.
-        let z_squared = mul_u64_small(z, z) >> 30;
+        let z_squared = square_u64_small(z) >> 30;
         let m_z_squared = mul_u64_small(m, z_squared) >> 32;
         z = mul_u64_small(z, (3 << 30) - m_z_squared) >> 31;
     }
@@ -117,10 +117,10 @@ pub fn isqrt_u64(y: u64, fast: bool) -> u64 {
     let mut root = (mul_u64_small(m, z) >> 30) >> (shift / 2);
     if !fast {
         // root < 2³¹, so its square and its successor's fit u32 products.
-        while mul_u64_small(root, root) > y {
+        while square_u64_small(root) > y {
             root -= 1;
         }
-        while mul_u64_small(root + 1, root + 1) <= y {
+        while square_u64_small(root + 1) <= y {
             root += 1;
         }
     }

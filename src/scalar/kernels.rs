@@ -21,6 +21,27 @@ pub fn mul_u32_wide(a: u32, b: u32) -> u64 {
     }
 }
 
+/// a² exactly: three 16×16→32 partial products on the M0, as a₁a₀ serves twice.
+#[inline(always)]
+pub fn square_u32_wide(a: u32) -> u64 {
+    #[cfg(armv6m)]
+    {
+        square_u32_partial(a)
+    }
+    #[cfg(not(armv6m))]
+    {
+        u64::from(a) * u64::from(a)
+    }
+}
+
+/// a² exactly, for a below 2³² held in `u64` (the roots' Newton steps): [`square_u32_wide`] of
+/// its low half.
+#[inline(always)]
+pub fn square_u64_small(a: u64) -> u64 {
+    debug_assert!(a >> 32 == 0, "{a}² : an operand above 2³²");
+    square_u32_wide(a as u32)
+}
+
 /// a·b exactly, for a and b below 2³² held in `u64` (the roots' Newton steps): [`mul_u32_wide`]
 /// of their low halves.
 #[inline(always)]
@@ -84,6 +105,14 @@ fn mul_i32_partial(a: i32, b: i32) -> i64 {
     (i64::from(a1 * b1) << 32) + (middle << 16) + i64::from(low)
 }
 
+/// a² exactly, from the products of its 16-bit halves: a₁²·2³² + a₁a₀·2¹⁷ + a₀².
+#[cfg(any(armv6m, test))]
+#[inline(always)]
+fn square_u32_partial(a: u32) -> u64 {
+    let (a0, a1) = (a & 0xFFFF, a >> 16);
+    (u64::from(a1 * a1) << 32) + (u64::from(a1 * a0) << 17) + u64::from(a0 * a0)
+}
+
 /// a·b exactly, from the products of their 16-bit halves: (a₁b₁·2³² + (a₁b₀ + a₀b₁)·2¹⁶ + a₀b₀),
 /// each partial product below 2³².
 #[cfg(any(armv6m, test))]
@@ -93,6 +122,56 @@ fn mul_u32_partial(a: u32, b: u32) -> u64 {
     let (b0, b1) = (b & 0xFFFF, b >> 16);
     let middle = u64::from(a1 * b0) + u64::from(a0 * b1);
     (u64::from(a1 * b1) << 32) + (middle << 16) + u64::from(a0 * b0)
+}
+
+/// The leading zeros of `x` (32 for 0). The M0 has no `clz`, and for `leading_zeros` its
+/// compiler calls `__clzsi2`, a branching search; inline, the bits below the top one are set,
+/// which leaves one of 32 values, and a multiplication by a de Bruijn constant names it (Leiserson,
+/// Prokop and Randall, "Using de Bruijn sequences to index a 1 in a computer word", 1998).
+#[inline(always)]
+pub fn leading_zeros_u32(x: u32) -> u32 {
+    #[cfg(armv6m)]
+    {
+        leading_zeros_de_bruijn(x)
+    }
+    #[cfg(not(armv6m))]
+    {
+        x.leading_zeros()
+    }
+}
+
+/// The leading zeros of `x` (64 for 0), from its halves' ([`leading_zeros_u32`]).
+#[inline(always)]
+pub fn leading_zeros_u64(x: u64) -> u32 {
+    let high = (x >> 32) as u32;
+    if high == 0 {
+        32 + leading_zeros_u32(x as u32)
+    } else {
+        leading_zeros_u32(high)
+    }
+}
+
+/// [`leading_zeros_u32`] by a de Bruijn multiplication: with every bit below the top one set,
+/// `x` is 2^(k+1) − 1 for the top bit k, and the top five bits of its product with 0x07C4ACDD
+/// differ for each k.
+#[cfg(any(armv6m, test))]
+#[inline(always)]
+fn leading_zeros_de_bruijn(x: u32) -> u32 {
+    const TOP_BIT: [u8; 32] = [
+        0, 9, 1, 10, 13, 21, 2, 29, 11, 14, 16, 18, 22, 25, 3, 30, 8, 12, 20, 28, 15, 17, 24, 7,
+        19, 27, 23, 6, 26, 5, 4, 31,
+    ];
+    if x == 0 {
+        return 32;
+    }
+    let mut v = x;
+    v |= v >> 1;
+    v |= v >> 2;
+    v |= v >> 4;
+    v |= v >> 8;
+    v |= v >> 16;
+    let index = (v.wrapping_mul(0x07C4_ACDD) >> 27) as usize;
+    31 - u32::from(TOP_BIT.get(index).copied().unwrap_or(0))
 }
 
 /// ⌊n / d⌋ for d > 0, or `None` when it does not fit 32 bits: long division in 16-bit digits by
@@ -106,7 +185,7 @@ pub fn div_u64_u32(n: u64, d: u32) -> Option<u32> {
     }
     // Normalise: the divisor's top bit set, the dividend shifted alike (it still fits, as
     // high < d).
-    let s = d.leading_zeros();
+    let s = leading_zeros_u32(d);
     let d = d << s;
     let (d1, d0) = (d >> 16, d & 0xFFFF);
     let high = if s == 0 {
@@ -222,6 +301,32 @@ mod tests {
                 "{a} × {b}"
             );
         });
+    }
+
+    #[test]
+    fn leading_zeros_are_counted() {
+        for a in operands() {
+            assert_eq!(leading_zeros_u32(a), a.leading_zeros(), "{a}");
+            assert_eq!(leading_zeros_de_bruijn(a), a.leading_zeros(), "{a}");
+            for b in [0, 1, a, u32::MAX] {
+                let x = u64::from(a) << 32 | u64::from(b);
+                assert_eq!(leading_zeros_u64(x), x.leading_zeros(), "{x}");
+                assert_eq!(
+                    leading_zeros_u64(u64::from(a)),
+                    u64::from(a).leading_zeros()
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn squares_are_exact() {
+        for a in operands() {
+            let exact = u64::from(a) * u64::from(a);
+            assert_eq!(square_u32_wide(a), exact, "{a}²");
+            assert_eq!(square_u32_partial(a), exact, "{a}² by partial products");
+            assert_eq!(square_u64_small(u64::from(a)), exact, "{a}²");
+        }
     }
 
     #[test]

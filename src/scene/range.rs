@@ -50,7 +50,7 @@
 //! | area light | the shadow rays' transmittances, summed in 16-bit fractions | integers: at most [`MAX_SAMPLES`](crate::pattern::MAX_SAMPLES) · 2¹⁶ < 2³² (const-asserted) |
 //! | refraction | (d + cos·n)·η, its squared length | η² in Snell's law |
 //! | colour | each level's ambient, Lambert, Phong times the light, times its weight; the sum | a pixel's sum of colours over its ray tree |
-//! | narrow | cosines narrowed, surface colours, material weights, Lambert's and Phong's factors, a shadow's transmittance, the weights along the ray tree, their products and the sum reflection + transmission | within 1, a cosine a few steps beyond: 1.0625 at most, within every narrow format's 2 (const-asserted) |
+//! | narrow | unit vectors narrowed for shading's cosines, the cosines, surface colours, material weights, Lambert's and Phong's factors, a shadow's transmittance, the weights along the ray tree, their products and the sum reflection + transmission | within 1, a cosine a few steps beyond: 1.0625 at most, within every narrow format's 2 (const-asserted) |
 //! | narrow | light times a narrow number: the ambient and each light filtered by a surface, a sky's rise by its cosine, a ray's colour by its weight | no larger than the light: within a pixel's sum of colours |
 //! | quotients, roots | every division and root | total: they saturate (fixed point) or reach infinity (floats) |
 

@@ -510,12 +510,12 @@ fn object_shifts<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods, pixel: f64)
 /// How far format `S`'s rounding may move a pixel's colour, as a share of full intensity: the
 /// rounding of Lambert's cosine times the diffuse weight, times the light that reaches a
 /// surface, and the rounding of the colour's products and sums, over every level of the ray
-/// tree; where the narrow format ([`Scalar::Narrow`]) is the coarser, the cosine's narrowing and
-/// the narrow products' rounding too. (The highlights' rounding is in the render of the
+/// tree; where the narrow format ([`Scalar::Narrow`]) is the coarser, the rounding of the unit
+/// vectors the cosine is taken of and of the narrow products too. (The highlights' rounding is in the render of the
 /// constants.)
 fn shading_error<S: Scalar>(desc: &SceneDesc<'_>) -> f64 {
     let narrowing = coarser::<S>();
-    let cosine = COSINE_STEPS * S::UNIT_ERROR + narrowing / 2.0;
+    let cosine = COSINE_STEPS * (S::UNIT_ERROR + narrowing);
     let local = desc
         .objects
         .iter()
