@@ -110,6 +110,19 @@ fn a_highlight_whose_cosines_round_up_is_predicted_so() {
 }
 
 #[test]
+fn a_sky_brighter_than_the_display_is_predicted_so() {
+    let scene = hostile("bright-sky");
+    let methods = Methods {
+        roots: RootMethod::Approx,
+        bias: BiasMethod::Exclude,
+        ..Methods::LECTURE
+    };
+    for format in [Format::I16f16, Format::I12f20, Format::I20f12] {
+        refused_or_held(&scene, format, methods, (33, 28), &["resolve"]);
+    }
+}
+
+#[test]
 fn a_highlight_at_its_peak_everywhere_is_predicted_so() {
     let scene = hostile("headlight");
     for format in [Format::I16f16, Format::I18f14, Format::F32] {

@@ -92,23 +92,8 @@ impl Scalar for F32Approx {
         Self(f32::from_int(n))
     }
 
-    /// Its narrow numbers are its own, as `f32`'s.
-    type Narrow = Self;
-
-    #[inline]
-    fn narrow(self) -> Self {
-        self
-    }
-
-    #[inline]
-    fn widen(narrow: Self) -> Self {
-        narrow
-    }
-
-    #[inline]
-    fn mul_narrow(self, k: Self) -> Self {
-        self * k
-    }
+    // Its narrow numbers are its own, as `f32`'s.
+    super::narrow_is_itself!();
 
     #[inline]
     fn from_q16(bits: i32) -> Self {

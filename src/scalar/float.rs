@@ -55,23 +55,8 @@ macro_rules! float_scalar {
                 n as $t
             }
 
-            /// A float's narrow numbers are its own.
-            type Narrow = Self;
-
-            #[inline]
-            fn narrow(self) -> Self {
-                self
-            }
-
-            #[inline]
-            fn widen(narrow: Self) -> Self {
-                narrow
-            }
-
-            #[inline]
-            fn mul_narrow(self, k: Self) -> Self {
-                self * k
-            }
+            // A float's narrow numbers are its own.
+            super::narrow_is_itself!();
 
             #[inline]
             #[allow(clippy::cast_precision_loss, reason = "rounded as documented")]

@@ -293,6 +293,30 @@ pub trait Scalar:
     }
 }
 
+/// The narrow items of [`Scalar`] for a format whose narrow numbers are its own (the floats):
+/// `narrow_is_itself!();` in its `impl Scalar`.
+macro_rules! narrow_is_itself {
+    () => {
+        type Narrow = Self;
+
+        #[inline]
+        fn narrow(self) -> Self {
+            self
+        }
+
+        #[inline]
+        fn widen(narrow: Self) -> Self {
+            narrow
+        }
+
+        #[inline]
+        fn mul_narrow(self, k: Self) -> Self {
+            self * k
+        }
+    };
+}
+pub(crate) use narrow_is_itself;
+
 /// [`Scalar::quantize`] as written: `⌊clamp(v, 0, 1)·levels + threshold⌋` by the format's
 /// floor, at most `levels`. The default, and what a format's own version must equal.
 #[inline]

@@ -45,7 +45,8 @@ use obscura::scalar::FAST_ROOT_ERROR;
 use obscura::scene::range;
 use obscura::shape::CHECKER_PERIOD;
 use obscura::{
-    Item, Methods, RayMethod, RootMethod, Scalar, SceneDesc, ShapeDesc, TriangleMethod, Vec3,
+    BackgroundDesc, Item, Methods, RayMethod, RootMethod, Scalar, SceneDesc, ShapeDesc,
+    TriangleMethod, Vec3,
 };
 use obscura_scene::{Format, FormatJob};
 use rayon::prelude::*;
@@ -511,7 +512,8 @@ fn object_shifts<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods, pixel: f64)
 /// rounding of Lambert's cosine times the diffuse weight, times the light that reaches a
 /// surface, and the rounding of the colour's products and sums, over every level of the ray
 /// tree; where the narrow format ([`Scalar::Narrow`]) is the coarser, the rounding of the unit
-/// vectors the cosine is taken of and of the narrow products too. (The highlights' rounding is in the render of the
+/// vectors the cosine is taken of and of the narrow products too; and a sky's gradient, its
+/// rise times the rounding of its cosine. (The highlights' rounding is in the render of the
 /// constants.)
 fn shading_error<S: Scalar>(desc: &SceneDesc<'_>) -> f64 {
     let narrowing = coarser::<S>();
@@ -534,7 +536,21 @@ fn shading_error<S: Scalar>(desc: &SceneDesc<'_>) -> f64 {
         .sum();
     let colour = brightest(desc.ambient) + 2.0 * light;
     let rounding = S::resolution(colour.max(1.0)) + narrowing;
-    levels * (light * local + COLOUR_STEPS * rounding * colour)
+    // A sky is its horizon plus its rise times the cosine of a ray with its up: the cosine's
+    // rounding times the rise, which a sky far brighter than the display multiplies.
+    let sky = match desc.background {
+        BackgroundDesc::Gradient {
+            horizon, zenith, ..
+        } => {
+            let rise = (0..3)
+                .map(|i| f64::from((zenith[i] - horizon[i]).abs()))
+                .fold(0.0, f64::max);
+            let brightest = brightest(horizon).max(brightest(zenith));
+            rise * cosine + COLOUR_STEPS * S::resolution(brightest.max(1.0)) * brightest
+        }
+        BackgroundDesc::Solid(_) => 0.0,
+    };
+    levels * (light * local + COLOUR_STEPS * rounding * colour + sky)
 }
 
 #[cfg(test)]
