@@ -376,9 +376,6 @@ impl<S: Scalar> Scalar for Counted<S> {
     fn narrow(self) -> Self::Narrow {
         Counted(self.0.narrow())
     }
-    fn widen(narrow: Self::Narrow) -> Self {
-        Self(S::widen(narrow.0))
-    }
     #[track_caller]
     fn mul_narrow(self, k: Self::Narrow) -> Self {
         count(Operations::PRODUCT);

@@ -85,10 +85,6 @@ impl Scalar for Peak {
         self
     }
 
-    fn widen(narrow: Self) -> Self {
-        narrow
-    }
-
     fn mul_narrow(self, k: Self) -> Self {
         self * k
     }

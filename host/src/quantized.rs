@@ -124,10 +124,6 @@ impl<S: Scalar, G: Scalar> Scalar for Quantized<S, G> {
         Quantized::new(self.0)
     }
 
-    fn widen(narrow: Self::Narrow) -> Self {
-        Self::new(narrow.0)
-    }
-
     fn mul_narrow(self, k: Self::Narrow) -> Self {
         Self::new(self.0 * k.0)
     }
@@ -158,8 +154,7 @@ impl<S: Scalar, G: Scalar> Scalar for Quantized<S, G> {
     fn powi(self, exponent: u16) -> Self {
         let n = i32::from(exponent);
         // A cosine of unit vectors narrowed to a coarser grid than the format's rounds on it.
-        let narrowing = (G::resolution(1.0) - S::resolution(1.0)).max(0.0);
-        let cosine = COSINE_STEPS * (S::UNIT_ERROR + narrowing);
+        let cosine = COSINE_STEPS * (S::UNIT_ERROR + coarser::<S, G>());
         let exact = self.0.clamp(0.0, 1.0).powi(n);
         let (up, down) = (
             (self.0 + cosine).clamp(0.0, 1.0),
@@ -199,11 +194,11 @@ impl<S: Scalar, G: Scalar> Precision for Quantized<S, G> {
     const UNIT_ERROR: f64 = S::UNIT_ERROR;
 }
 
-/// How much coarser format `S`'s narrow format ([`Scalar::Narrow`]) is than `S` at 1: the
-/// step a narrowing may add to a number's rounding (nothing where the narrow format is the
-/// finer, or the format itself).
-pub fn coarser<S: Scalar>() -> f64 {
-    (<S::Narrow as Precision>::resolution(1.0) - S::resolution(1.0)).max(0.0)
+/// How much coarser format `G` is than `S` at 1 — for `S`'s narrow format ([`Scalar::Narrow`]),
+/// the step a narrowing may add to a number's rounding: nothing where `G` is the finer, or `S`
+/// itself.
+pub fn coarser<S: Scalar, G: Scalar>() -> f64 {
+    (G::resolution(1.0) - S::resolution(1.0)).max(0.0)
 }
 
 /// How far [`Scalar::powi`]'s products, each rounded by up to `rounding`, may move xⁿ for x in
@@ -248,8 +243,8 @@ mod tests {
         let third = Narrow::from_f64(1.0 / 3.0).unwrap();
         assert_eq!(third.to_f64(), 5_461.0 / 16_384.0);
         assert_eq!(Narrow::RANGE, 2.0 - 1.0 / 16_384.0);
-        assert_eq!(coarser::<Q16>(), 3.0 / 65_536.0);
-        assert_eq!(coarser::<Quantized<f32>>(), 0.0);
+        assert_eq!(coarser::<Q16, Narrow>(), 3.0 / 65_536.0);
+        assert_eq!(coarser::<f32, f32>(), 0.0);
         // A cosine narrowed is rounded once more before its power: the power moves further.
         let cosine = 1.0 - 1.0 / 64.0;
         let wide = Q16::from_f64(cosine).unwrap().powi(40).to_f64();

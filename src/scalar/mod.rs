@@ -122,9 +122,10 @@ pub trait Scalar:
 
     /// The format's narrow numbers: what is bounded by construction within ±2 — cosines,
     /// colours of surfaces, material weights, the weights along a ray tree — stored and
-    /// multiplied in the width it needs. A 32-bit fixed format's are signed 2.14 (a product
-    /// of two is one 16×16→32 multiply, a product with one of the format's is 32×16), the
-    /// 64-bit format's signed 2.30, a float's the float itself.
+    /// multiplied in the width it needs. A 32-bit fixed format of at most 16 fraction bits
+    /// has signed 2.14 (a product of two is one 16×16→32 multiply, a product with one of the
+    /// format's is 32×16); the finer 32-bit formats and the 64-bit one signed 2.30, which keeps
+    /// their accuracy ([`Narrowed`]); a float the float itself.
     type Narrow: Scalar;
 
     /// `self` rounded to the narrow format (to nearest, ties up); exact while it fits, which
@@ -132,10 +133,6 @@ pub trait Scalar:
     #[must_use]
     #[track_caller]
     fn narrow(self) -> Self::Narrow;
-
-    /// A narrow number in the format, rounded to nearest (ties up) where the format is coarser.
-    #[must_use]
-    fn widen(narrow: Self::Narrow) -> Self;
 
     /// `self · k`, rounded to nearest as `×` rounds: a 32×16 product in a 32-bit fixed format.
     #[must_use]
@@ -305,11 +302,6 @@ macro_rules! narrow_is_itself {
         }
 
         #[inline]
-        fn widen(narrow: Self) -> Self {
-            narrow
-        }
-
-        #[inline]
         fn mul_narrow(self, k: Self) -> Self {
             self * k
         }
@@ -366,10 +358,6 @@ pub struct FormatInfo {
     pub unit_error: f64,
     /// [`Scalar::FAST_ROOTS`].
     pub fast_roots: bool,
-    /// The name of the narrow format ([`Scalar::Narrow`]).
-    pub narrow: &'static str,
-    /// The narrow format's [`Precision::resolution`] at 1.
-    pub narrow_resolution: f64,
 }
 
 impl FormatInfo {
@@ -382,18 +370,7 @@ impl FormatInfo {
             resolution: S::resolution,
             unit_error: S::UNIT_ERROR,
             fast_roots: S::FAST_ROOTS,
-            narrow: <S::Narrow as Precision>::NAME,
-            narrow_resolution: narrow_resolution::<S>(),
         }
-    }
-}
-
-/// The spacing of `S`'s narrow numbers at 1, which a `const fn` cannot ask of
-/// [`Precision::resolution`]: a fixed narrow format's LSB, a float's epsilon.
-const fn narrow_resolution<S: Scalar>() -> f64 {
-    match <S::Narrow as Precision>::SPLIT {
-        Some((_, fraction)) => 1.0 / (1_u64 << fraction) as f64,
-        None => <S::Narrow as Precision>::UNIT_ERROR,
     }
 }
 

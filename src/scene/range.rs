@@ -59,7 +59,7 @@ use super::error::{Item, Remedy, SceneError};
 use crate::desc::{BackgroundDesc, ObjectDesc, SceneDesc, ShapeDesc};
 use crate::methods::{MethodName, Methods, RootMethod, SphereMethod, TriangleMethod};
 use crate::scalar::FAST_ROOT_ERROR;
-use crate::scalar::{FormatInfo, FormatSet, Scalar};
+use crate::scalar::{FormatInfo, FormatSet, Fx, Precision, Scalar};
 use crate::shape::CHECKER_PERIOD;
 use crate::vec3::Vec3;
 
@@ -294,11 +294,11 @@ const SMOOTH_NORMAL: f64 = 5.0;
 /// The largest number the tracer keeps in a narrow format ([`crate::Scalar::Narrow`]): a
 /// cosine of two unit vectors, 1 plus the rounding of their coordinates (a few steps of the
 /// coarsest format's 2⁻⁸, far within this); a colour, a weight, or a product of them, at most
-/// 1. Every narrow format's range is 2, less a step.
+/// 1. Every narrow format's range is 2, less a step: 2.14's, the coarser, is the bound.
 const NARROW: f64 = 1.0625;
 
 const _: () = assert!(
-    NARROW * RANGE_HEADROOM < 2.0 - 1.0 / 16_384.0,
+    NARROW * RANGE_HEADROOM < <Fx<fixed::types::I2F14> as Precision>::RANGE,
     "the narrow numbers fit the narrow formats"
 );
 

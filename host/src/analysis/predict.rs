@@ -516,7 +516,7 @@ fn object_shifts<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods, pixel: f64)
 /// rise times the rounding of its cosine. (The highlights' rounding is in the render of the
 /// constants.)
 fn shading_error<S: Scalar>(desc: &SceneDesc<'_>) -> f64 {
-    let narrowing = coarser::<S>();
+    let narrowing = coarser::<S, S::Narrow>();
     let cosine = COSINE_STEPS * (S::UNIT_ERROR + narrowing);
     let local = desc
         .objects
