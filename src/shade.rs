@@ -10,7 +10,7 @@ use crate::methods::{BiasMethod, Methods, RootMethod};
 use crate::occlusion::Cone;
 use crate::pattern::{Pattern, SHADOW_PROBES, SampleId};
 use crate::ray::{Ray, Span};
-use crate::scalar::{RayKind, Scalar, Work};
+use crate::scalar::{RayKind, Scalar, Work, shl_u64};
 use crate::scene::{Object, Scene, Settings};
 use crate::shape::mesh::{Meshes, Search};
 use crate::shape::{Intersection, PerRay, Shape};
@@ -636,7 +636,8 @@ fn perpendiculars<S: Scalar>(n: Vec3<S>, roots: RootMethod) -> [Vec3<S>; 2] {
 /// The bit of object `index` in [`Sample::met`].
 #[inline]
 fn bit(index: usize) -> u64 {
-    1 << index.min(63)
+    // Below 64, so the conversion is exact.
+    shl_u64(1, u32::try_from(index.min(63)).unwrap_or(63))
 }
 
 /// Pushes a task. It cannot fail: a task of depth k leaves at most one sibling per level on

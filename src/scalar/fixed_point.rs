@@ -20,7 +20,8 @@ use super::isqrt::{
     rsqrt_fixed, rsqrt_mantissa,
 };
 use super::kernels::{
-    div_i32_fixed, mul_i32_i16_wide, mul_i32_wide, square_u32_wide, square_u64_small,
+    div_i32_fixed, mul_i32_i16_wide, mul_i32_wide, round_shr_i64, round_shr_u64, square_u32_wide,
+    square_u64_small,
 };
 use super::{Precision, Scalar};
 use core::cmp::Ordering;
@@ -423,9 +424,11 @@ fn normalize_raw_32(v: [i32; 3], frac: u32, fast: bool) -> Option<([i32; 3], i32
     // inverse < 2³¹: a 32×32→64 product, not a 64×64 one (a library call on the M0).
     let z = i32::try_from(inverse).unwrap_or(i32::MAX);
     let right = MANTISSA_SCALE - s - frac;
-    let unit = v.map(|c| i32::narrow_saturating(mul_i32_wide(c, z), right));
-    // root < 2⁶³ and the shift at least 30: the rounding bias cannot carry out of u64.
-    let length = (root + (1 << (ROOT_SCALE + s - 1))) >> (ROOT_SCALE + s);
+    // |vᵢ·z| ≤ 2⁶², and the coordinate |vᵢ|/√y·2^f at most 2^f (1 + 2⁻²⁹) (z is 1/√y's
+    // mantissa to 30 bits), within i32 for f ≤ 30.
+    let unit =
+        v.map(|c| i32::try_from(round_shr_i64(mul_i32_wide(c, z), right)).unwrap_or(i32::MAX));
+    let length = round_shr_u64(root, ROOT_SCALE + s);
     let length = i32::try_from(length).unwrap_or(i32::MAX);
     Some((unit, length))
 }

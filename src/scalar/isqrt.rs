@@ -15,7 +15,9 @@
 //! every product has operands below 2³², which the Cortex-M0 multiplies without a library call
 //! ([`mul_u64_small`]).
 
-use super::kernels::{leading_zeros_u64, mul_u64_small, square_u64_small};
+use super::kernels::{
+    leading_zeros_u64, mul_u64_small, round_shr_u64, shl_u64, shr_u64, square_u64_small,
+};
 
 /// The bits of m that index [`RSQRT_SEEDS`].
 const SEED_BITS: u32 = 9;
@@ -84,7 +86,7 @@ const FAST: u32 = 1;
 #[inline]
 fn rsqrt_q30(y: u64, steps: u32) -> (u64, u64, u32) {
     let shift = leading_zeros_u64(y) & !1;
-    let m = (y << shift) >> 32;
+    let m = shl_u64(y, shift) >> 32;
     // m ≥ 2³⁰, so m >> 23 is in 128..512.
     let index = usize::try_from(m >> (32 - SEED_BITS))
         .unwrap_or(usize::MAX)
@@ -114,7 +116,7 @@ pub fn isqrt_u64(y: u64, fast: bool) -> u64 {
         return 0;
     }
     let (m, z, shift) = rsqrt_q30(y, steps(fast));
-    let mut root = (mul_u64_small(m, z) >> 30) >> (shift / 2);
+    let mut root = shr_u64(mul_u64_small(m, z) >> 30, shift / 2);
     if !fast {
         // root < 2³¹, so its square and its successor's fit u32 products.
         while square_u64_small(root) > y {
@@ -143,8 +145,8 @@ pub fn rsqrt_fixed(x: u32, frac: u32, fast: bool) -> u32 {
     let (_, z, shift) = rsqrt_q30(u64::from(x), steps(fast));
     let exponent = 3 * frac / 2 + shift / 2;
     let raw = match 62_u32.checked_sub(exponent) {
-        None | Some(0) => z << (exponent - 62).min(32),
-        Some(right) => (z + (1 << (right - 1))) >> right,
+        None | Some(0) => shl_u64(z, (exponent - 62).min(32)),
+        Some(right) => round_shr_u64(z, right),
     };
     u32::try_from(raw).unwrap_or(u32::MAX)
 }

@@ -6,7 +6,12 @@
 //!
 //! A 32-bit format's quotient a·2^f / b is a 64-by-32-bit division, for which every 32-bit
 //! compiler calls `__aeabi_ldivmod`, a full 64-by-64 division. [`div_u64_u32`] divides by 32-bit
-//! steps instead (the M4F's `udiv`, one library call each on the M0), with the same quotient.
+//! steps instead (the M4F's `udiv`; on the M0, which has no divider, a product by the divisor's
+//! reciprocal), with the same quotient.
+//!
+//! The M0 has no 64-bit shifts either: for a shift by an amount that is not a constant its
+//! compiler calls `__aeabi_llsl`, `__aeabi_llsr` or `__aeabi_lasr`, which [`shl_u64`],
+//! [`shr_u64`] and [`shr_i64`] replace by two 32-bit shifts inline.
 
 /// a·b exactly.
 #[inline(always)]
@@ -124,6 +129,120 @@ fn mul_u32_partial(a: u32, b: u32) -> u64 {
     (u64::from(a1 * b1) << 32) + (middle << 16) + u64::from(a0 * b0)
 }
 
+/// x >> n (arithmetic), for n < 64. The M0 has no 64-bit shifts, and for a shift by an amount
+/// that is not a constant its compiler calls `__aeabi_lasr`; inline, it is two 32-bit shifts
+/// ([`shr_i64_halves`]).
+#[inline(always)]
+pub fn shr_i64(x: i64, n: u32) -> i64 {
+    debug_assert!(n < 64, "a shift by {n}");
+    #[cfg(armv6m)]
+    {
+        shr_i64_halves(x, n)
+    }
+    #[cfg(not(armv6m))]
+    {
+        x >> n
+    }
+}
+
+/// x >> n (logical), for n < 64: [`shr_i64`]'s unsigned twin (`__aeabi_llsr` on the M0).
+#[inline(always)]
+pub fn shr_u64(x: u64, n: u32) -> u64 {
+    debug_assert!(n < 64, "a shift by {n}");
+    #[cfg(armv6m)]
+    {
+        shr_u64_halves(x, n)
+    }
+    #[cfg(not(armv6m))]
+    {
+        x >> n
+    }
+}
+
+/// x << n, for n < 64 (`__aeabi_llsl` on the M0).
+#[inline(always)]
+pub fn shl_u64(x: u64, n: u32) -> u64 {
+    debug_assert!(n < 64, "a shift by {n}");
+    #[cfg(armv6m)]
+    {
+        shl_u64_halves(x, n)
+    }
+    #[cfg(not(armv6m))]
+    {
+        x << n
+    }
+}
+
+/// x >> n (arithmetic) in 32-bit halves: the high half shifted, and the bits it passes to the
+/// low half, (high << 1) << (31 − n), which is also right for n = 0. (By the logical shift of
+/// x ^ sign, which would share [`shr_u64_halves`], it costs the M0's `whitted` 100 instructions
+/// a pixel more.)
+#[cfg(any(armv6m, test))]
+#[inline(always)]
+#[allow(
+    clippy::cast_possible_truncation,
+    clippy::cast_possible_wrap,
+    clippy::cast_sign_loss,
+    reason = "the halves of a 64-bit integer"
+)]
+fn shr_i64_halves(x: i64, n: u32) -> i64 {
+    let (high, low) = ((x >> 32) as i32, x as u32);
+    if n >= 32 {
+        i64::from(high >> (n - 32))
+    } else {
+        let carried = ((high as u32) << 1) << (31 - n);
+        (i64::from(high >> n) << 32) | i64::from((low >> n) | carried)
+    }
+}
+
+/// [`shr_i64_halves`], logical.
+#[cfg(any(armv6m, test))]
+#[inline(always)]
+#[allow(
+    clippy::cast_possible_truncation,
+    reason = "the halves of a 64-bit integer"
+)]
+fn shr_u64_halves(x: u64, n: u32) -> u64 {
+    let (high, low) = ((x >> 32) as u32, x as u32);
+    if n >= 32 {
+        u64::from(high >> (n - 32))
+    } else {
+        let carried = (high << 1) << (31 - n);
+        (u64::from(high >> n) << 32) | u64::from((low >> n) | carried)
+    }
+}
+
+/// x << n in 32-bit halves, as [`shr_u64_halves`] the other way.
+#[cfg(any(armv6m, test))]
+#[inline(always)]
+#[allow(
+    clippy::cast_possible_truncation,
+    reason = "the halves of a 64-bit integer"
+)]
+fn shl_u64_halves(x: u64, n: u32) -> u64 {
+    let (high, low) = ((x >> 32) as u32, x as u32);
+    if n >= 32 {
+        u64::from(low << (n - 32)) << 32
+    } else {
+        let carried = (low >> 1) >> (31 - n);
+        (u64::from((high << n) | carried) << 32) | u64::from(low << n)
+    }
+}
+
+/// (x + 2^(n−1)) >> n, x/2ⁿ rounded to nearest (ties up), for 1 ≤ n < 64, without the sum
+/// that could overflow: ((x >> (n − 1)) + 1) >> 1 is the same number (with x = q·2^(n−1) + r,
+/// r < 2^(n−1), both are ⌊(q + 1)/2⌋), for every x but the largest when n = 1.
+#[inline(always)]
+pub fn round_shr_i64(x: i64, n: u32) -> i64 {
+    (shr_i64(x, n - 1) + 1) >> 1
+}
+
+/// [`round_shr_i64`] for an unsigned x.
+#[inline(always)]
+pub fn round_shr_u64(x: u64, n: u32) -> u64 {
+    (shr_u64(x, n - 1) + 1) >> 1
+}
+
 /// The leading zeros of `x` (32 for 0). The M0 has no `clz`, and for `leading_zeros` its
 /// compiler calls `__clzsi2`, a branching search; inline, the bits below the top one are set,
 /// which leaves one of 32 values, and a multiplication by a de Bruijn constant names it (Leiserson,
@@ -195,10 +314,21 @@ pub fn div_u64_u32(n: u64, d: u32) -> Option<u32> {
     };
     let low = low << s;
     let (n1, n0) = (low >> 16, low & 0xFFFF);
+    #[cfg(armv6m)]
+    let inverse = digit_inverse(d1);
+    let div_rem = |upper: u32| {
+        #[cfg(armv6m)]
+        {
+            div_rem_by_inverse(upper, d1, inverse)
+        }
+        #[cfg(not(armv6m))]
+        {
+            (upper / d1, upper % d1)
+        }
+    };
     // Each quotient digit, estimated from the top digits and corrected at most twice.
     let digit = |upper: u32, next: u32| {
-        let mut q = upper / d1;
-        let mut r = upper - q * d1;
+        let (mut q, mut r) = div_rem(upper);
         while q >= DIGIT || mul_u32_wide(q, d0) > (u64::from(r) << 16) + u64::from(next) {
             q -= 1;
             r += d1;
@@ -215,6 +345,52 @@ pub fn div_u64_u32(n: u64, d: u32) -> Option<u32> {
         .wrapping_sub(q1.wrapping_mul(d));
     let q0 = digit(middle, n0);
     Some(q1 * DIGIT + q0)
+}
+
+/// ⌊2³¹/d⌋ from below for d in each of 256 intervals [(i + 256)·2⁷, (i + 257)·2⁷) of the
+/// divisor digits 2¹⁵ ≤ d < 2¹⁶: 2²⁴/(i + 257), within 2⁻⁸ of 2³¹/d across the interval.
+#[cfg(any(armv6m, test))]
+#[allow(
+    clippy::indexing_slicing,
+    clippy::cast_possible_truncation,
+    reason = "evaluated at compile time: i < 256, and 2²⁴/257 < 2¹⁶"
+)]
+static DIGIT_INVERSES: [u16; 256] = {
+    let mut table = [0_u16; 256];
+    let mut i = 0;
+    while i < 256 {
+        table[i] = ((1 << 24) / (i as u32 + 257)) as u16;
+        i += 1;
+    }
+    table
+};
+
+/// v ≤ 2³¹/d, at most 2 below it, for a divisor digit 2¹⁵ ≤ d < 2¹⁶: [`DIGIT_INVERSES`]'
+/// estimate v₀ from below and one Newton step v₀ + v₀·e/2³¹, e = 2³¹ − d·v₀ < 2²⁴, which
+/// stays below 1/d (the step's error is d·(1/d − v₀)² ≥ 0) and squares the error to 2⁻¹⁶.
+/// e's low eight bits are dropped so that v₀·e fits 32 bits (costing under a unit).
+#[cfg(any(armv6m, test))]
+#[inline(always)]
+fn digit_inverse(d: u32) -> u32 {
+    let index = usize::try_from((d >> 7).wrapping_sub(256)).unwrap_or(usize::MAX);
+    let v = u32::from(DIGIT_INVERSES.get(index).copied().unwrap_or(0));
+    let e = (1_u32 << 31).wrapping_sub(d.wrapping_mul(v));
+    v + (v.wrapping_mul(e >> 8) >> 23)
+}
+
+/// ⌊u/d⌋ and u mod d for a divisor digit 2¹⁵ ≤ d < 2¹⁶ with its [`digit_inverse`] v: the
+/// estimate u·v/2³¹ is at most 4 short (tested on every d), and steps up to the quotient.
+#[cfg(any(armv6m, test))]
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation, reason = "u·v/2³¹ ≤ u/d < 2¹⁷")]
+fn div_rem_by_inverse(u: u32, d: u32, v: u32) -> (u32, u32) {
+    let mut q = (mul_u32_wide(u, v) >> 31) as u32;
+    let mut r = u.wrapping_sub(q.wrapping_mul(d));
+    while r >= d {
+        q += 1;
+        r -= d;
+    }
+    (q, r)
 }
 
 /// a·2^`frac` / b truncated towards zero, for the 32-bit formats' division, or `None` when b is
@@ -271,6 +447,26 @@ mod tests {
         });
     }
 
+    #[test]
+    fn digits_divide_by_their_inverses() {
+        let mut worst = 0;
+        for d in 1_u32 << 15..1 << 16 {
+            let v = digit_inverse(d);
+            assert!(
+                u64::from(v) * u64::from(d) <= 1 << 31,
+                "{d}: {v} above 2³¹/d"
+            );
+            assert!((1 << 31) / d - v <= 2, "{d}: {v} more than 2 below 2³¹/d");
+            let sweep = d.wrapping_mul(0x9E37_79B9);
+            for u in [0, 1, d - 1, d, u32::MAX, u32::MAX - d, sweep, sweep / d * d] {
+                assert_eq!(div_rem_by_inverse(u, d, v), (u / d, u % d), "{u} / {d}");
+                let estimate = ((u64::from(u) * u64::from(v)) >> 31) as u32;
+                worst = worst.max(u / d - estimate);
+            }
+        }
+        assert!(worst <= 4, "the estimate is {worst} short");
+    }
+
     /// [`div_i32_fixed`] against `fixed`'s `checked_div` in the 32-bit format `F`.
     fn division_is_fixeds<F: Fixed<Bits = i32>>(a: i32, b: i32) {
         let expected = F::from_bits(a).checked_div(F::from_bits(b)).map(F::to_bits);
@@ -301,6 +497,34 @@ mod tests {
                 "{a} × {b}"
             );
         });
+    }
+
+    #[test]
+    fn shifts_are_the_machines() {
+        for a in operands() {
+            for b in [0, 1, a, !a, u32::MAX] {
+                let x = u64::from(a) << 32 | u64::from(b);
+                for n in 0..64 {
+                    assert_eq!(shr_u64(x, n), x >> n, "{x} >> {n}");
+                    assert_eq!(shr_u64_halves(x, n), x >> n, "{x} >> {n} in halves");
+                    assert_eq!(shl_u64(x, n), x << n, "{x} << {n}");
+                    assert_eq!(shl_u64_halves(x, n), x << n, "{x} << {n} in halves");
+                    let signed = x as i64;
+                    assert_eq!(shr_i64(signed, n), signed >> n, "{signed} >> {n}");
+                    assert_eq!(shr_i64_halves(signed, n), signed >> n, "{signed} >> {n}");
+                    // Rounded, for every x but the largest when n = 1.
+                    let bias = 1_u128 << n >> 1;
+                    if n > 1 || (n == 1 && signed < i64::MAX) {
+                        let rounded = (i128::from(signed) + bias as i128) >> n;
+                        assert_eq!(i128::from(round_shr_i64(signed, n)), rounded, "{signed}");
+                    }
+                    if n > 1 || (n == 1 && x < u64::MAX) {
+                        let rounded = (u128::from(x) + bias) >> n;
+                        assert_eq!(u128::from(round_shr_u64(x, n)), rounded, "{x}");
+                    }
+                }
+            }
+        }
     }
 
     #[test]

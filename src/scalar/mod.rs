@@ -39,6 +39,7 @@ pub use bits::{Bits, NumberBits};
 pub use fixed_point::{
     Fx, I16F16, I20F12, I32F32, NarrowOf32, Narrowed, Operation, Overflow, Proven, WideBits,
 };
+pub(crate) use kernels::shl_u64;
 
 /// The relative error of the 32-bit fixed formats' fast roots and quotients (14 bits, and a
 /// bit to spare).
