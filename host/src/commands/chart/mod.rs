@@ -297,11 +297,12 @@ fn fronts(points: &[SpeedPoint], cost: fn(&SpeedPoint) -> Option<f64>, psnr: boo
 }
 
 /// Writes the chart's points as CSV to `path`: the columns [`cost`] reads back, then each
-/// point's accuracy and whether it lies on each machine's Pareto fronts (1 or 0).
+/// point's accuracy, its format's narrow format, and whether it lies on each machine's Pareto
+/// fronts (1 or 0).
 fn write_csv(points: &[SpeedPoint], path: &Path) -> Result<()> {
     let mut all_fronts = Vec::new();
     let mut header: Vec<String> = cost::COLUMNS.iter().map(|c| (*c).to_owned()).collect();
-    header.extend(["psnr_db".to_owned(), "object_mismatch_pct".to_owned()]);
+    header.extend(["psnr_db", "object_mismatch_pct", "narrow"].map(str::to_owned));
     for (name, cost) in COSTS {
         for (metric, psnr) in [("psnr", true), ("mismatch", false)] {
             header.push(format!("pareto_{name}_{metric}"));
@@ -325,6 +326,7 @@ fn write_csv(points: &[SpeedPoint], path: &Path) -> Result<()> {
                 format!("{:.3}", p.psnr_db)
             },
             format!("{:.4}", p.object_mismatch_pct),
+            narrow_of(&p.format).to_owned(),
         ];
         record.extend(
             all_fronts
@@ -337,11 +339,17 @@ fn write_csv(points: &[SpeedPoint], path: &Path) -> Result<()> {
     Ok(())
 }
 
+/// The name of the narrow format of the format named `format` (its cosines, colours and
+/// weights: [`Format::narrow`]), or "–" for a name that is none of the formats.
+fn narrow_of(format: &str) -> &'static str {
+    Format::from_name(format).map_or("–", Format::narrow)
+}
+
 fn print_table(points: &[SpeedPoint]) -> io::Result<()> {
     say!(
-        "| scene | format | methods | M4F instr/px | M0 instr/px | host ns/px | PSNR (dB) | object mismatch |"
+        "| scene | format | narrow | methods | M4F instr/px | M0 instr/px | host ns/px | PSNR (dB) | object mismatch |"
     )?;
-    say!("|---|---|---|---:|---:|---:|---:|---:|")?;
+    say!("|---|---|---|---|---:|---:|---:|---:|---:|")?;
     let count = |x: Option<f64>| x.map_or("–".to_owned(), |x| format!("{x:.0}"));
     for p in points {
         let psnr = if p.psnr_db.is_infinite() {
@@ -350,9 +358,10 @@ fn print_table(points: &[SpeedPoint]) -> io::Result<()> {
             format!("{:.2}", p.psnr_db)
         };
         say!(
-            "| {} | {} | {} | {} | {} | {:.0} | {psnr} | {:.4} % |",
+            "| {} | {} | {} | {} | {} | {} | {:.0} | {psnr} | {:.4} % |",
             p.scene,
             p.format,
+            narrow_of(&p.format),
             p.variant,
             count(p.m4f_instructions_per_pixel),
             count(p.m0_instructions_per_pixel),
@@ -408,4 +417,19 @@ fn print_recommendations(measured: &[&Variant], points: &[SpeedPoint]) -> io::Re
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_table_names_each_formats_narrow_format() {
+        assert_eq!(narrow_of("i16f16"), "i2f14");
+        assert_eq!(narrow_of("i24f8"), "i2f14");
+        assert_eq!(narrow_of("i12f20"), "i2f30");
+        assert_eq!(narrow_of("i32f32"), "i2f30");
+        assert_eq!(narrow_of("f32"), "f32");
+        assert_eq!(narrow_of("no such format"), "–");
+    }
 }
