@@ -64,8 +64,8 @@ done
 cargo clippy --release -p obscura-black-pill --target "$M4F" --locked -- -D warnings
 cargo clippy --release -p obscura-pico --target "$M0" --locked -- -D warnings
 
-step "documentation"
-RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --locked --quiet
+step "documentation, private items too (their links are checked as the public ones)"
+RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --locked --quiet --document-private-items
 
 for target in "$M4F" "$M0"; do
     step "no_std core for $target"

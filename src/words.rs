@@ -197,7 +197,7 @@ pub(crate) fn write_with<S: Bits>(
     (out.sink)(sum);
 }
 
-/// The words [`write`] wrote of `what` in format `S`, between the tag and the checksum, where
+/// The words [`write()`] wrote of `what` in format `S`, between the tag and the checksum, where
 /// they are such words.
 pub(crate) fn body<'a, S: Bits>(
     what: &'static str,
@@ -214,7 +214,7 @@ pub(crate) fn body<'a, S: Bits>(
     Ok(body.get(1..).unwrap_or_default())
 }
 
-/// Reads what [`write`] wrote of `what` in format `S`. Out of line: with it inlined, a
+/// Reads what [`write()`] wrote of `what` in format `S`. Out of line: with it inlined, a
 /// firmware's image is larger.
 #[inline(never)]
 pub(crate) fn read<S: Bits, T: Words>(what: &'static str, words: &[u32]) -> Result<T, WordsError> {

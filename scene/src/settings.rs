@@ -1,4 +1,4 @@
-//! The settings of a render besides its scene, each declared once (in [`settings!`]'s uses
+//! The settings of a render besides its scene, each declared once (in `settings!`'s uses
 //! below): its field is the command line's flag (`samples`, `--samples`), it names its
 //! environment variable (`OBSCURA_SAMPLES`: the firmware's build reads it, and every command's
 //! flag falls back on it, through clap's `env`), its default (where it has one) and the parser

@@ -49,7 +49,7 @@ pub const ONE_STEP_BITS: u32 = 17;
 /// Whether one Newton step keeps a unit vector in a format with `frac` fraction bits within
 /// its LSB (half an LSB of rounding and 2^−[`ONE_STEP_BITS`] ≤ half an LSB): the fast unit
 /// vectors take one step where it does, two where it does not, so that they are as exact as
-/// the error model's unit ([`crate::scalar::Scalar::UNIT_ERROR`]) in every format. Integer
+/// the error model's unit ([`crate::scalar::Precision::UNIT_ERROR`]) in every format. Integer
 /// arithmetic: it runs per vector where the compiler does not see `frac` as a constant.
 #[must_use]
 pub const fn one_step_holds_unit(frac: u32) -> bool {

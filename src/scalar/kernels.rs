@@ -131,7 +131,7 @@ fn mul_u32_partial(a: u32, b: u32) -> u64 {
 
 /// x >> n (arithmetic), for n < 64. The M0 has no 64-bit shifts, and for a shift by an amount
 /// that is not a constant its compiler calls `__aeabi_lasr`; inline, it is two 32-bit shifts
-/// ([`shr_i64_halves`]).
+/// (`shr_i64_halves`).
 #[inline(always)]
 pub fn shr_i64(x: i64, n: u32) -> i64 {
     debug_assert!(n < 64, "a shift by {n}");

@@ -12,7 +12,7 @@
 //! 2. **The rounding of each operation.** It turns what a ray sees by at most a small angle:
 //!    everywhere by a unit vector's steps, a point's rounding seen from the nearest surface,
 //!    the drift of stepped rays and the error of fast roots ([`global_angle`]); and where a ray
-//!    tree meets an object, by that object's own error ([`object_angles`]): a sphere's
+//!    tree meets an object, by that object's own error ([`object_shifts`]): a sphere's
 //!    silhouette moved by its discriminant's error, a triangle's edges by its determinants', a
 //!    checkerboard's edges by the rounding of their coordinates, a glass's refraction
 //!    multiplying the rounding inside by η. A pixel whose ray tree met objects i (the f64
@@ -27,9 +27,8 @@
 //!    times the light that reaches a pixel; a highlight's, which its exponent multiplies, is in
 //!    the render of 1.
 //!
-//! The rounding of an operation lands anywhere within its bound, on average half of it
-//! ([`EVEN`]), and so the model counts it; the sources are independent, so their mean squared
-//! errors add. The prediction is the error to expect, and the tests and the fuzzer hold it to
+//! The rounding of an operation lands anywhere within its bound, and the model counts the
+//! bound; the sources are independent, so their mean squared errors add. The prediction is the error to expect, and the tests and the fuzzer hold it to
 //! measurement: a measured error may exceed it by chance, by little (see
 //! [`crate::fuzz::MARGIN`]). Nothing is rendered in the format itself.
 

@@ -4,7 +4,7 @@
 //! pixel sends through its lens points must meet the others on the focal plane: each one's
 //! miss there, over the lens's radius, is the error of the focus distance at the lens's edge,
 //! and a format that accepts the lens must keep it within a sixteenth (the range proof's
-//! [`MIN_FEATURE_STEPS`](obscura::scene::range::MIN_FEATURE_STEPS)); below that it must refuse.
+//! [`MIN_FEATURE_STEPS`]); below that it must refuse.
 
 use super::{CAMERA, MATTE, SIZE, bare, log_sweep, refused};
 use crate::checked::Checked;

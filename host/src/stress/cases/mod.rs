@@ -119,7 +119,7 @@ fn sphere_truth(desc: &SceneDesc<'_>) -> anyhow::Result<HostScene<f64>> {
 /// The images the cases compare are this many pixels square.
 pub(super) const SIZE: u32 = 48;
 
-/// The row of `desc` in format `S` by `methods` ([`image`]) where the stressed parameter is
+/// The row of `desc` in format `S` by `methods` ([`image()`]) where the stressed parameter is
 /// `x`: `y` of the check, within its bound when no pixel is off unexcused; or the build's
 /// refusal.
 fn image_row<S: Scalar>(
