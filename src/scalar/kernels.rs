@@ -347,19 +347,29 @@ pub fn div_u64_u32(n: u64, d: u32) -> Option<u32> {
     Some(q1 * DIGIT + q0)
 }
 
-/// ⌊2³¹/d⌋ from below for d in each of 256 intervals [(i + 256)·2⁷, (i + 257)·2⁷) of the
-/// divisor digits 2¹⁵ ≤ d < 2¹⁶: 2²⁴/(i + 257), within 2⁻⁸ of 2³¹/d across the interval.
+/// The bits of a divisor digit (2¹⁵ ≤ d < 2¹⁶) below its top one that index
+/// [`DIGIT_INVERSES`].
+#[cfg(any(armv6m, test))]
+const INVERSE_INDEX_BITS: u32 = 8;
+
+/// The shift that leaves a digit's top bit and its [`INVERSE_INDEX_BITS`].
+#[cfg(any(armv6m, test))]
+const INVERSE_INDEX_SHIFT: u32 = 15 - INVERSE_INDEX_BITS;
+
+/// ⌊2³¹/d⌋ from below for d in each of the 2⁸ intervals [(i + 2⁸)·2⁷, (i + 2⁸ + 1)·2⁷) of the
+/// divisor digits 2¹⁵ ≤ d < 2¹⁶: 2³¹⁻⁷/(i + 2⁸ + 1), within 2⁻⁸ of 2³¹/d across the interval.
 #[cfg(any(armv6m, test))]
 #[allow(
     clippy::indexing_slicing,
     clippy::cast_possible_truncation,
-    reason = "evaluated at compile time: i < 256, and 2²⁴/257 < 2¹⁶"
+    reason = "evaluated at compile time: i < 2⁸, and 2²⁴/(2⁸ + 1) < 2¹⁶"
 )]
-static DIGIT_INVERSES: [u16; 256] = {
-    let mut table = [0_u16; 256];
+static DIGIT_INVERSES: [u16; 1 << INVERSE_INDEX_BITS] = {
+    const FIRST: u32 = 1 << INVERSE_INDEX_BITS;
+    let mut table = [0_u16; 1 << INVERSE_INDEX_BITS];
     let mut i = 0;
-    while i < 256 {
-        table[i] = ((1 << 24) / (i as u32 + 257)) as u16;
+    while i < table.len() {
+        table[i] = ((1 << (31 - INVERSE_INDEX_SHIFT)) / (i as u32 + FIRST + 1)) as u16;
         i += 1;
     }
     table
@@ -368,14 +378,16 @@ static DIGIT_INVERSES: [u16; 256] = {
 /// v ≤ 2³¹/d, at most 2 below it, for a divisor digit 2¹⁵ ≤ d < 2¹⁶: [`DIGIT_INVERSES`]'
 /// estimate v₀ from below and one Newton step v₀ + v₀·e/2³¹, e = 2³¹ − d·v₀ < 2²⁴, which
 /// stays below 1/d (the step's error is d·(1/d − v₀)² ≥ 0) and squares the error to 2⁻¹⁶.
-/// e's low eight bits are dropped so that v₀·e fits 32 bits (costing under a unit).
+/// e's low [`INVERSE_INDEX_BITS`] bits are dropped so that v₀·e fits 32 bits (costing under a
+/// unit).
 #[cfg(any(armv6m, test))]
 #[inline(always)]
 fn digit_inverse(d: u32) -> u32 {
-    let index = usize::try_from((d >> 7).wrapping_sub(256)).unwrap_or(usize::MAX);
+    let index = usize::try_from((d >> INVERSE_INDEX_SHIFT).wrapping_sub(1 << INVERSE_INDEX_BITS))
+        .unwrap_or(usize::MAX);
     let v = u32::from(DIGIT_INVERSES.get(index).copied().unwrap_or(0));
     let e = (1_u32 << 31).wrapping_sub(d.wrapping_mul(v));
-    v + (v.wrapping_mul(e >> 8) >> 23)
+    v + (v.wrapping_mul(e >> INVERSE_INDEX_BITS) >> (31 - INVERSE_INDEX_BITS))
 }
 
 /// ⌊u/d⌋ and u mod d for a divisor digit 2¹⁵ ≤ d < 2¹⁶ with its [`digit_inverse`] v: the
