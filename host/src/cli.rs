@@ -87,14 +87,16 @@ pub struct AutoArgs {
     pub cost_on: Machine,
 }
 
-/// When a format predicted to stray far from f64 is refused.
+/// When a format given that strays far from f64 is refused.
 #[derive(Clone, Copy, Debug, Args)]
 pub struct RefusalArgs {
-    /// Refuse a format the model (`obscura analyze`'s) predicts below this PSNR against f64,
-    /// in dB, naming the formats and methods predicted to reach it.
+    /// Refuse a format given whose image measures below this PSNR against f64's, in dB (drawn
+    /// on the host), naming the formats and methods the model (`obscura analyze`'s) predicts
+    /// to reach it.
     #[arg(long, value_name = "DB", default_value_t = USELESS_PSNR, value_parser = parse_psnr)]
     pub refuse_below: f64,
-    /// Draw in the format given even where it is predicted below --refuse-below.
+    /// Draw in the format given even where it measures below --refuse-below, or f64 cannot
+    /// draw the scene to check it by.
     #[arg(long)]
     pub force: bool,
 }

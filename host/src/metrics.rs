@@ -71,6 +71,15 @@ pub fn accuracy(
     }
 }
 
+/// The PSNR of `image` against `reference` over all RGB888 channels, in dB; infinite for
+/// identical images.
+///
+/// # Panics
+/// If the sizes differ.
+pub fn psnr_db(image: &RgbImage, reference: &RgbImage) -> f64 {
+    accuracy(image, reference, &[], &[]).psnr_db
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

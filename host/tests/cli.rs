@@ -346,7 +346,7 @@ fn firmware_refuses_what_it_cannot_draw_before_building() {
 }
 
 #[test]
-fn a_format_predicted_useless_is_refused_unless_forced() {
+fn a_format_measured_useless_is_refused_unless_forced() {
     let checker = concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/scenes/hostile/checker-1e6.toml"
@@ -361,7 +361,7 @@ fn a_format_predicted_useless_is_refused_unless_forced() {
     assert!(!output.status.success());
     let message = stderr(&output);
     assert!(
-        message.contains("i16f16 by lecture is predicted to reach only")
+        message.contains("i16f16 by lecture measures only")
             && message.contains("below the 20 dB of --refuse-below")
             && message.contains("formats predicted to reach it: i32f32")
             && message.contains("--force"),
@@ -370,7 +370,7 @@ fn a_format_predicted_useless_is_refused_unless_forced() {
     assert!(!Path::new(file).exists(), "nothing is drawn");
     let output = obscura(&[&render[..], &["--force"]].concat());
     assert!(output.status.success(), "{}", stderr(&output));
-    // The floor is the user's: whitted in i16f16, predicted about 30 dB, passes 20 and not 60.
+    // The floor is the user's: whitted in i16f16, about 41 dB, passes 20 and not 60.
     let whitted = [
         "render", "whitted", "--format", "i16f16", "--size", "64x64", "-o", file,
     ];
@@ -392,7 +392,7 @@ fn a_format_predicted_useless_is_refused_unless_forced() {
     assert!(!output.status.success());
     let message = stderr(&output);
     assert!(
-        message.contains("checker-1e6: i16f16 by lecture is predicted to reach only"),
+        message.contains("checker-1e6: i16f16 by lecture measures only"),
         "{message}"
     );
     let preview = dir.join("preview.png");

@@ -10,9 +10,10 @@ pub use predict::{Prediction, Reference};
 
 use crate::checked::Checked;
 use crate::cost::{Machine, cost};
-use crate::metrics::accuracy;
+use crate::metrics::psnr_db;
 use crate::render::{HostScene, Request, all_cores, exact_roots, prepare, prepare_reference};
 use anyhow::{Result, bail};
+use image::RgbImage;
 use obscura::methods::MethodName;
 use obscura::scalar::FormatInfo;
 use obscura::scene::range::{self, Feature, Magnitude};
@@ -136,15 +137,38 @@ impl Analysis {
     /// [`Self::of`] for the f64 `reference` of the scene, already rendered at the size to
     /// analyse.
     pub fn with_reference(scene: &OwnedScene, methods: Methods, reference: &Reference) -> Self {
+        Self::with_verdicts(scene, methods, |format| {
+            Verdict::of(format, scene, methods, reference)
+        })
+    }
+
+    /// [`Self::of`] without the model's predictions, which cost several renders of the scene:
+    /// which formats hold it, for `--format auto`, which measures what it picks.
+    ///
+    /// # Errors
+    /// As [`Self::of`].
+    pub fn fits(scene: &OwnedScene, methods: Methods, width: u32, height: u32) -> Result<Self> {
+        let size = (width, height);
+        builds(Format::F64, &scene.desc(), methods, size)
+            .map_err(|error| anyhow::Error::new(error).context("no format can hold the scene"))?;
+        Ok(Self::with_verdicts(scene, methods, |format| Verdict {
+            format,
+            fit: fit(format, scene, methods, size),
+            prediction: None,
+        }))
+    }
+
+    /// The analysis of `scene` by `methods` with each format's `verdict`.
+    fn with_verdicts(
+        scene: &OwnedScene,
+        methods: Methods,
+        verdict: impl Fn(Format) -> Verdict,
+    ) -> Self {
         let desc = scene.desc();
-        let verdicts = Format::ALL
-            .iter()
-            .map(|&format| Verdict::of(format, scene, methods, reference))
-            .collect();
         Self {
             extents: extents(&desc),
             bits: bits(&desc, methods),
-            verdicts,
+            verdicts: Format::ALL.iter().map(|&format| verdict(format)).collect(),
             has_triangles: desc.has_triangles(),
         }
     }
@@ -319,23 +343,51 @@ pub fn pick(
             closest = Some(measured);
         }
     }
-    Ok(closest.map_or(Choice::Nothing, Choice::Closest))
+    let Some(mut closest) = closest else {
+        return Ok(Choice::Nothing);
+    };
+    if closest.predicted_db.is_none() {
+        closest.predicted_db = predicted_worst(&closest, scenes, methods, size);
+    }
+    Ok(Choice::Closest(closest))
+}
+
+/// The lowest PSNR the model predicts for `pick`'s format over `scenes` at `size` by `methods`
+/// (each rescaled as the pick renders it), for analyses made without predictions; `None` where
+/// it predicts none.
+fn predicted_worst(
+    pick: &Pick,
+    scenes: &[(&OwnedScene, &Analysis)],
+    methods: Methods,
+    size: (u32, u32),
+) -> Option<f64> {
+    scenes
+        .iter()
+        .map(|&(scene, _)| {
+            let reference = reference(&scene.desc(), methods, size).ok()?;
+            let scene = pick
+                .rescaled
+                .map_or_else(|| scene.clone(), |f| scene.scaled(f as f32));
+            let prediction = predict::predict(pick.format, &scene.desc(), methods, &reference);
+            prediction.ok().map(|p| p.psnr_db)
+        })
+        .try_fold(f64::INFINITY, |worst, db| db.map(|db| worst.min(db)))
 }
 
 /// The PSNR against f64, in dB, that `--format auto` and `analyze` aim for unless told.
 pub const TARGET_PSNR: f64 = 40.0;
 
 /// The PSNR against f64, in dB, below which `render`, `compare`, `preview` and `obscura
-/// firmware` refuse a format the model predicts there, unless told to draw it anyway: a picture
-/// that far from f64 is no longer the scene's. (`chart`, `stress` and `fuzz` measure such
-/// formats on purpose.)
+/// firmware` refuse a format given that measures there, unless told to draw it anyway: a
+/// picture that far from f64 is no longer the scene's. (`chart`, `stress` and `fuzz` measure
+/// such formats on purpose.)
 pub const USELESS_PSNR: f64 = 20.0;
 
-/// Refuses `format` for `scene` at `size` by `methods` where the model predicts it below
-/// `floor` dB against f64, with the prediction, the formats predicted to reach `floor` as the
-/// scene is, and the changes of one method that make `format` reach it; refuses it too where
-/// the f64 reference cannot hold the scene, which leaves nothing to check it by. f64, and a
-/// format that cannot build the scene (its build says why), pass.
+/// Refuses `drawn`, `format`'s image of `scene` by `methods`, where it measures below `floor`
+/// dB against `truth`, f64's image of it: with the measurement, the formats the model
+/// predicts to reach `floor` as the scene is, and the changes of one method that it predicts
+/// make `format` reach it. (The model is consulted only to refuse: a measurement costs one f64
+/// render, a prediction several.)
 ///
 /// # Errors
 /// The refusal.
@@ -343,39 +395,27 @@ pub fn refuse_useless(
     format: Format,
     scene: &OwnedScene,
     methods: Methods,
-    size: (u32, u32),
+    [drawn, truth]: [&RgbImage; 2],
     floor: f64,
 ) -> Result<()> {
-    if format == Format::F64 {
-        return Ok(());
-    }
-    let desc = scene.desc();
-    let f64s = match reference(&desc, methods, size) {
-        Ok(f64s) => f64s,
-        // A render nothing can check is refused like one predicted useless: no prediction,
-        // no measurement and no `auto` can vouch for it.
-        Err(error) if builds(format, &desc, methods, size).is_ok() => {
-            return Err(error.context(format!(
-                "{format} by {methods} holds the scene, but the f64 reference does not, so \
-                 nothing can check what {format} draws; change the scene until f64 holds it \
-                 (`obscura analyze` says how), or give --force to draw it unchecked"
-            )));
-        }
-        Err(_) => return Ok(()),
-    };
-    let predicted = |format: Format, methods: Methods, reference: &Reference| {
-        predict::predict(format, &desc, methods, reference).map_or(f64::INFINITY, |p| p.psnr_db)
-    };
-    let psnr = predicted(format, methods, &f64s);
+    let psnr = psnr_db(drawn, truth);
     if psnr >= floor {
         return Ok(());
     }
-    let formats: Vec<&str> = Analysis::with_reference(scene, methods, &f64s)
-        .verdicts
-        .iter()
-        .filter(|v| v.fit == Fit::Holds && v.prediction.is_some_and(|p| p.psnr_db >= floor))
-        .map(|v| v.format.name())
-        .collect();
+    let desc = scene.desc();
+    let size = drawn.dimensions();
+    let predicted = |format: Format, methods: Methods, reference: &Reference| {
+        predict::predict(format, &desc, methods, reference).map_or(f64::INFINITY, |p| p.psnr_db)
+    };
+    let formats: Vec<&str> = match reference(&desc, methods, size) {
+        Ok(f64s) => Analysis::with_reference(scene, methods, &f64s)
+            .verdicts
+            .into_iter()
+            .filter(|v| v.fit == Fit::Holds && v.prediction.is_some_and(|p| p.psnr_db >= floor))
+            .map(|v| v.format.name())
+            .collect(),
+        Err(_) => Vec::new(),
+    };
     let changes: Vec<String> = one_change(methods)
         .into_iter()
         .filter(|&other| {
@@ -388,8 +428,8 @@ pub fn refuse_useless(
         .collect();
     let (width, height) = size;
     let mut message = format!(
-        "{format} by {methods} is predicted to reach only {psnr:.1} dB against f64 at \
-         {width}x{height}, below the {floor} dB of --refuse-below (`obscura analyze` says why)"
+        "{format} by {methods} measures only {psnr:.1} dB against f64 at {width}x{height}, \
+         below the {floor} dB of --refuse-below (`obscura analyze` says why)"
     );
     if !formats.is_empty() {
         message += &format!("; formats predicted to reach it: {}", formats.join(" "));
@@ -437,7 +477,7 @@ pub fn firmware_format(
     let analyses = scenes
         .iter()
         .map(|named| {
-            Analysis::of(&named.scene, methods, SIDE, SIDE).map_err(|error| named.locate(error))
+            Analysis::fits(&named.scene, methods, SIDE, SIDE).map_err(|error| named.locate(error))
         })
         .collect::<Result<Vec<_>>>()?;
     let pairs: Vec<_> = scenes.iter().map(|s| &s.scene).zip(&analyses).collect();
@@ -470,14 +510,10 @@ pub fn measure(
     let threads = all_cores();
     let contender = prepare(format, &request)?;
     let reference = prepare_reference(&request)?;
-    let none = vec![None; (width * height) as usize];
-    Ok(accuracy(
+    Ok(psnr_db(
         &contender.render(threads, None)?,
         &reference.render(threads, None)?,
-        &none,
-        &none,
-    )
-    .psnr_db)
+    ))
 }
 
 /// The f64 reference of `desc` at `size` by `methods` (exact roots).

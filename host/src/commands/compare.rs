@@ -2,14 +2,14 @@
 
 use crate::cli::CompareArgs;
 use crate::heatmap::heatmap;
-use crate::metrics::{Accuracy, accuracy};
+use crate::metrics::{Accuracy, accuracy, psnr_db};
 use crate::output::{self, say};
 use crate::render::{AnyFormat, Request, all_cores, prepare, prepare_reference, rgb565_image};
 use crate::timing::interleaved_median_ms;
 use anyhow::{Context, Result};
 use obscura::methods::MethodName;
 use obscura::{Dither, Presentation};
-use obscura_scene::{Format, NamedScene, OwnedScene};
+use obscura_scene::{Format, FormatChoice, NamedScene, OwnedScene};
 use serde::Serialize;
 use std::io;
 use std::path::PathBuf;
@@ -91,6 +91,10 @@ fn compare(args: &CompareArgs, named: &NamedScene) -> Result<()> {
     let truth = baseline
         .render(all_cores(), None)
         .with_context(|| rendering(REFERENCE))?;
+    if let FormatChoice::Given(format) = args.scene.format {
+        let (refusal, drawn) = (&args.scene.refusal, &image);
+        super::refuse_useless(refusal, format, &scene, methods, drawn, Some(&truth))?;
+    }
     let times = time(args, format, contender.as_ref(), baseline.as_ref());
     let files = [
         (args.out_dir.join(format!("{format}.png")), &image),
@@ -108,7 +112,7 @@ fn compare(args: &CompareArgs, named: &NamedScene) -> Result<()> {
         differing_pixels_pct,
         object_mismatch_pct,
     } = accuracy(&image, &truth, &objects, &baseline.object_map()?);
-    let rgb565 = rgb565_figures(args, format, contender.as_ref(), &truth, &objects)?;
+    let rgb565 = rgb565_figures(args, format, contender.as_ref(), &truth)?;
     let converged = args
         .converged
         .map(|samples| converged(samples, &scene, &request, [&image, &truth], &objects))
@@ -170,7 +174,6 @@ fn rgb565_figures(
     format: Format,
     contender: &dyn AnyFormat,
     truth: &image::RgbImage,
-    objects: &[Option<usize>],
 ) -> Result<Vec<(f64, PathBuf)>> {
     let mut figures = Vec::new();
     for dither in [Dither::None, Dither::Ordered] {
@@ -186,7 +189,7 @@ fn rgb565_figures(
             .out_dir
             .join(format!("{format}-rgb565-dither-{}.png", dither.name()));
         super::save(&frame, &path)?;
-        figures.push((accuracy(&frame, truth, objects, objects).psnr_db, path));
+        figures.push((psnr_db(&frame, truth), path));
     }
     Ok(figures)
 }

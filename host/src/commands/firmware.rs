@@ -65,8 +65,14 @@ fn configure(args: &FirmwareArgs) -> Result<(FirmwareSettings, Configuration)> {
         let format = super::firmware_format(choice, &scenes, methods, machine, args.target_psnr)?;
         if choice == FormatChoice::Given(format) {
             for named in &scenes {
-                super::refuse_useless(&args.refusal, format, &named.scene, methods, (SIDE, SIDE))
-                    .with_context(|| named.name.clone())?;
+                super::refuse_useless_unseen(
+                    &args.refusal,
+                    format,
+                    &named.scene,
+                    methods,
+                    (SIDE, SIDE),
+                )
+                .with_context(|| named.name.clone())?;
             }
         }
         if !formats.contains(&format) {

@@ -14,7 +14,9 @@ use crate::analysis::{self, Analysis, Choice, Pick, pick};
 use crate::cli::{AutoArgs, Command, RefusalArgs, SceneArgs};
 use crate::cost::Machine;
 use crate::output::say;
+use crate::render::{Request, all_cores, prepare, prepare_reference};
 use anyhow::{Context, Result, bail};
+use image::RgbImage;
 use obscura::Methods;
 use obscura::scenes;
 use obscura_scene::{Format, FormatChoice, NamedScene, OwnedScene, Sampling};
@@ -118,9 +120,6 @@ pub fn firmware_format(
 pub fn resolve(named: &NamedScene, args: &SceneArgs) -> Result<Resolved> {
     let methods = args.methods.methods();
     let (format, scene) = pick_format(args.format, named, methods, args.size, &args.auto)?;
-    if let FormatChoice::Given(format) = args.format {
-        refuse_useless(&args.refusal, format, &scene, methods, args.size)?;
-    }
     Ok(Resolved {
         name: named.name.clone(),
         format,
@@ -129,20 +128,75 @@ pub fn resolve(named: &NamedScene, args: &SceneArgs) -> Result<Resolved> {
     })
 }
 
-/// Refuses a format given for `scene` at `size` by `methods` where it is predicted below
-/// `refusal`'s floor ([`analysis::refuse_useless`]), unless told `--force`. (A format `auto`
-/// picks was measured to reach its target.)
+/// Refuses `drawn`, the image of `scene` by `methods` in a format given, where it measures
+/// below `refusal`'s floor against f64 ([`analysis::refuse_useless`]), unless told `--force`;
+/// and where f64 cannot draw the scene, which leaves nothing to check it by. `truth` is f64's
+/// image where the command has drawn it already. (A format `auto` picks was measured to reach
+/// its target.)
 pub fn refuse_useless(
     refusal: &RefusalArgs,
     format: Format,
     scene: &OwnedScene,
     methods: Methods,
-    size: (u32, u32),
+    drawn: &RgbImage,
+    truth: Option<&RgbImage>,
 ) -> Result<()> {
-    if refusal.force {
+    if refusal.force || format == Format::F64 {
         return Ok(());
     }
-    analysis::refuse_useless(format, scene, methods, size, refusal.refuse_below)
+    let (width, height) = drawn.dimensions();
+    let desc = scene.desc();
+    let request = Request {
+        desc: &desc,
+        width,
+        height,
+        methods,
+    };
+    let rendered;
+    let truth = match truth {
+        Some(truth) => truth,
+        None => {
+            rendered = prepare_reference(&request)
+                .and_then(|f64s| f64s.render(all_cores(), Some("drawing f64 to check it by")))
+                .with_context(|| {
+                    format!(
+                        "{format} by {methods} holds the scene, but the f64 reference does not, \
+                         so nothing can check what {format} draws; change the scene until f64 \
+                         holds it (`obscura analyze` says how), or give --force to draw it \
+                         unchecked"
+                    )
+                })?;
+            &rendered
+        }
+    };
+    analysis::refuse_useless(format, scene, methods, [drawn, truth], refusal.refuse_below)
+}
+
+/// [`refuse_useless`] for a command that draws elsewhere (in a window, on a board): draws the
+/// image on the host first, at `size`, where the format builds the scene.
+pub fn refuse_useless_unseen(
+    refusal: &RefusalArgs,
+    format: Format,
+    scene: &OwnedScene,
+    methods: Methods,
+    (width, height): (u32, u32),
+) -> Result<()> {
+    if refusal.force || format == Format::F64 {
+        return Ok(());
+    }
+    let desc = scene.desc();
+    let request = Request {
+        desc: &desc,
+        width,
+        height,
+        methods,
+    };
+    // A format that cannot build the scene passes: the command's own build says why.
+    let Ok(prepared) = prepare(format, &request) else {
+        return Ok(());
+    };
+    let drawn = prepared.render(all_cores(), None)?;
+    refuse_useless(refusal, format, scene, methods, &drawn, None)
 }
 
 /// The format to render `named` in at `size` by `methods`, and the scene to render.
@@ -154,7 +208,7 @@ fn pick_format(
     auto: &AutoArgs,
 ) -> Result<(Format, OwnedScene)> {
     let FormatChoice::Given(format) = choice else {
-        let analysis = Analysis::of(&named.scene, methods, width, height)?;
+        let analysis = Analysis::fits(&named.scene, methods, width, height)?;
         let size = (width, height);
         let picked = pick(
             &[(&named.scene, &analysis)],
@@ -200,7 +254,7 @@ fn pick_format(
 }
 
 /// Writes a PNG, saying which file could not be written.
-pub fn save(image: &image::RgbImage, path: &std::path::Path) -> Result<()> {
+pub fn save(image: &RgbImage, path: &std::path::Path) -> Result<()> {
     use anyhow::Context;
     image
         .save(path)

@@ -32,7 +32,7 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
         args.target_psnr,
     )?;
     if let FormatChoice::Given(format) = args.format {
-        super::refuse_useless(&args.refusal, format, &named.scene, methods, (SIDE, SIDE))?;
+        super::refuse_useless_unseen(&args.refusal, format, &named.scene, methods, (SIDE, SIDE))?;
     }
     let desc = named.scene.desc();
     let request = Request {

@@ -5,7 +5,7 @@ use crate::operations;
 use crate::output::{self, say};
 use crate::render::{Request, prepare};
 use anyhow::{Context, Result};
-use obscura_scene::NamedScene;
+use obscura_scene::{FormatChoice, NamedScene};
 use std::time::Instant;
 
 pub fn run(args: &RenderArgs) -> Result<()> {
@@ -37,6 +37,9 @@ fn render(args: &RenderArgs, named: &NamedScene) -> Result<()> {
         .render(usize::from(args.threads), Some(&label))
         .with_context(|| format!("rendering {name} in {format}"))?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
+    if let FormatChoice::Given(format) = args.scene.format {
+        super::refuse_useless(&args.scene.refusal, format, &scene, methods, &image, None)?;
+    }
     super::save(&image, &args.output)?;
     say!(
         "{} {width}x{height} in {format} on {} threads: {ms:.1} ms; wrote {}",
