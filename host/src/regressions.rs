@@ -123,6 +123,28 @@ fn a_sky_brighter_than_the_display_is_predicted_so() {
 }
 
 #[test]
+fn a_crack_between_a_meshs_triangles_is_predicted_so() {
+    let scene = hostile("mesh-crack");
+    let methods = Methods {
+        triangle: TriangleMethod::MollerTrumbore,
+        roots: RootMethod::Approx,
+        bias: BiasMethod::Exclude,
+        ..Methods::LECTURE
+    };
+    for format in [Format::I16f16, Format::I18f14, Format::I20f12] {
+        refused_or_held(&scene, format, methods, (34, 30), &["resolve"]);
+    }
+}
+
+#[test]
+fn a_small_triangles_numerators_are_counted_at_their_size() {
+    let scene = hostile("speck-in-a-mesh");
+    for format in [Format::I8f24, Format::I10f22, Format::I32f32, Format::F32] {
+        refused_or_held(&scene, format, Methods::LECTURE, (30, 24), &["resolve"]);
+    }
+}
+
+#[test]
 fn a_highlight_at_its_peak_everywhere_is_predicted_so() {
     let scene = hostile("headlight");
     for format in [Format::I16f16, Format::I18f14, Format::F32] {

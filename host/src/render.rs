@@ -239,7 +239,20 @@ impl<S: Scalar> Prepared<S> {
     /// # Errors
     /// As [`Self::render`].
     pub fn object_map(&self) -> Result<Vec<Option<usize>>> {
-        self.per_pixel(|_, _, ray| self.scene.first_hit(&ray).map(|(object, _)| object))
+        Ok(self
+            .hit_map()?
+            .into_iter()
+            .map(|hit| hit.map(|(object, _)| object))
+            .collect())
+    }
+
+    /// What each pixel's primary ray hits first, row by row, as (object, part): the part is
+    /// the triangle of a mesh, 0 for other objects.
+    ///
+    /// # Errors
+    /// As [`Self::render`].
+    pub fn hit_map(&self) -> Result<Vec<Option<(usize, u32)>>> {
+        self.per_pixel(|_, _, ray| self.scene.first_hit(&ray))
     }
 }
 
@@ -341,6 +354,15 @@ impl Prepared<f64> {
         }
         let mean = Rgb::<f64>::from_f64(sum.map(|total| total / f64::from(samples.max(1))))?;
         Some((mean.quantize(), first.flatten()))
+    }
+
+    /// What pixel (x, y)'s first ray, moved by `offset` (across, down) pixels, hits first, as
+    /// [`Self::hit_map`] gives it; `None` where it hits nothing or leaves the image.
+    pub fn hit_at(&self, x: u32, y: u32, offset: [f64; 2]) -> Option<(usize, u32)> {
+        let ray = self
+            .camera
+            .ray_through_lens(x, y, offset, Pattern::lens(x, y).disc(0))?;
+        self.scene.first_hit(&ray)
     }
 }
 

@@ -152,7 +152,7 @@ pub struct Terms {
 
 impl Terms {
     /// The most terms an error has here.
-    pub const CAPACITY: usize = 8;
+    pub const CAPACITY: usize = 12;
 
     /// The error of these terms, each (coefficient, magnitude) a multiple of the resolution at
     /// the magnitude (at most [`Self::CAPACITY`] in all; more are a bug, and dropped).
@@ -616,7 +616,8 @@ fn locating(shape: &ShapeDesc, methods: &Methods, from: f64, eye: [f32; 3]) -> T
             let (e1, e2) = (b - a, c - a);
             let longest = e1.length().max(e2.length());
             let area = e1.cross(e2).length();
-            let determinant = area_error(from + longest, longest, area).times(from / area);
+            let determinant =
+                area_error(methods.triangle, from + longest, longest, area).times(from / area);
             let reciprocal = if methods.triangle == TriangleMethod::MollerTrumbore {
                 Terms::new(&[(from * area, 1.0 / area)])
             } else {
@@ -663,11 +664,26 @@ pub(crate) fn finding_error<S: Scalar>(
     ))
 }
 
-/// The error of a triangle's determinant (twice its area seen along a ray) for a ray `s` from
-/// its corner: the rounding of the unit direction times |s|·|e| with e the longest edge, and
-/// the area's own rounding.
-fn area_error(s: f64, longest: f64, area: f64) -> Terms {
-    Terms::new(&[(1.0, area)]).units(s * longest)
+/// The error of a triangle's determinant (twice its area seen along a ray) and of its
+/// barycentric numerators by `method`, for a ray `s` from its corner: the rounding of the unit
+/// direction times |s|·|e| with e the longest edge, the area's own rounding, and the rounding
+/// of the numerators' products. Cramer's rule rounds s × e's products and their dot product
+/// with d, each as large as |s|·|e| (2√3 + 3 roundings); Möller–Trumbore rounds d × e at its
+/// size and multiplies it by s (2√3·|s| of them), then rounds the dot product's (3). Watertight
+/// tests the signs of its edge functions exactly.
+fn area_error(method: TriangleMethod, s: f64, longest: f64, area: f64) -> Terms {
+    const SQRT_3: f64 = 1.732_050_807_568_877_2;
+    const CROSS_AND_DOT: f64 = 2.0 * SQRT_3 + 3.0;
+    let numerators = match method {
+        TriangleMethod::Cramer => Terms::new(&[(CROSS_AND_DOT, s * longest)]),
+        TriangleMethod::MollerTrumbore => {
+            Terms::new(&[(2.0 * SQRT_3 * s, longest), (3.0, s * longest)])
+        }
+        TriangleMethod::Watertight => Terms::new(&[]),
+    };
+    Terms::new(&[(1.0, area)])
+        .units(s * longest)
+        .plus(numerators)
 }
 
 /// Every feature the scene's computations by `methods` must resolve, object by object and then
@@ -737,10 +753,12 @@ pub fn features<'a>(
 }
 
 /// How many features [`object_features`] gives an object at most.
-const OBJECT_FEATURES: usize = 4;
+pub const OBJECT_FEATURES: usize = 4;
 
-/// The features of object `i` of `desc`, by `methods` (see [`features`]).
-fn object_features(
+/// The features of object `i` of `desc`, by `methods` (see [`features`]): `object` is the
+/// object itself, or one of a mesh's triangles ([`SceneDesc::primitives`]).
+#[must_use]
+pub fn object_features(
     desc: &SceneDesc<'_>,
     methods: &Methods,
     i: usize,
@@ -882,7 +900,7 @@ fn object_features(
                 Some(feature(
                     "twice the triangle's area",
                     area,
-                    area_error(s, longest, area),
+                    area_error(methods.triangle, s, longest, area),
                     Remedy::FatterTriangle,
                 )),
                 Some(clearance(reach)),

@@ -13,10 +13,15 @@
 //!    everywhere by a unit vector's steps, a point's rounding seen from the nearest surface,
 //!    the drift of stepped rays and the error of fast roots ([`global_angle`]); and where a ray
 //!    tree meets an object, by that object's own error ([`object_shifts`]): a sphere's
-//!    silhouette moved by its discriminant's error, a triangle's edges by its determinants', a
-//!    checkerboard's edges by the rounding of their coordinates, a glass's refraction
-//!    multiplying the rounding inside by η. A pixel whose ray tree met objects i (the f64
-//!    reference records them, shadows included) may move: the edge between two neighbours by
+//!    silhouette moved by its discriminant's error, a triangle's edges by its determinant's
+//!    and its numerators', a mesh's edges (those between its triangles too) by the most any of
+//!    its triangles' move, a checkerboard's edges by the rounding of their coordinates, a
+//!    glass's refraction multiplying the rounding inside by η. Where a mesh's triangles test a
+//!    shared edge each by its own rounding (Möller–Trumbore; Cramer's rule in a float), a ray
+//!    between two of them may miss both: a pixel within reach of such an edge may show what
+//!    lies behind the mesh ([`Reference`] traces the scene without it). A pixel whose ray tree
+//!    met objects i (the f64 reference records them, shadows included) may move: the edge
+//!    between two neighbours by
 //!    the global angle, by an object's silhouette's where one of their ray trees met the object
 //!    and the other did not, and by its inner edges' where both did, which changes them by
 //!    about that share δ of a pixel times their squared step (for δ < 1), and beyond that by
@@ -44,7 +49,7 @@ use obscura::scalar::FAST_ROOT_ERROR;
 use obscura::scene::range;
 use obscura::shape::CHECKER_PERIOD;
 use obscura::{
-    BackgroundDesc, Item, Methods, RayMethod, RootMethod, Scalar, SceneDesc, ShapeDesc,
+    BackgroundDesc, Methods, ObjectDesc, RayMethod, RootMethod, Scalar, SceneDesc, ShapeDesc,
     TriangleMethod, Vec3,
 };
 use obscura_scene::{Format, FormatJob};
@@ -70,6 +75,13 @@ pub struct Reference {
     pub objects: Vec<Option<usize>>,
     /// The objects each pixel's ray tree meets ([`obscura::Sample::met`]).
     pub met: Vec<u64>,
+    /// The triangle of its mesh each pixel's primary ray hits (0 for other objects).
+    parts: Vec<u32>,
+    /// The meshes whose neighbouring triangles' tests may both miss a ray between them (by a
+    /// test that is not watertight), a bit each, and the f64 scene without them: what shows
+    /// through such a crack (`None` where there are none, or the scene without them is empty).
+    crackable: u64,
+    behind: Option<Prepared<f64>>,
     /// A pixel's rays, and whether they are several or through a lens: then a moved pixel is
     /// all of them moved, against all of them where they are.
     samples: u16,
@@ -97,14 +109,48 @@ impl Reference {
     pub fn render(request: &Request<'_>) -> Result<Self> {
         let prepared = Prepared::<f64>::new(request)?;
         let image = prepared.render(threads_here(), None)?;
-        let objects = prepared.object_map()?;
+        let hits = prepared.hit_map()?;
+        let objects = hits
+            .iter()
+            .map(|hit| hit.map(|(object, _)| object))
+            .collect();
+        let parts = hits
+            .iter()
+            .map(|hit| hit.map_or(0, |(_, part)| part))
+            .collect();
         let met = prepared.met_map()?;
-        let samples = request.desc.samples;
+        let desc = request.desc;
+        let mesh = |object: &ObjectDesc| matches!(object.shape, ShapeDesc::Mesh { .. });
+        let crackable = if request.methods.triangle == TriangleMethod::Watertight {
+            0
+        } else {
+            (0..)
+                .zip(desc.objects)
+                .filter(|(_, object)| mesh(object))
+                .fold(0, |bits, (i, _)| bits | object_bit(i))
+        };
+        let kept: Vec<ObjectDesc> = desc.objects.iter().filter(|o| !mesh(o)).copied().collect();
+        let without = SceneDesc {
+            objects: &kept,
+            ..*desc
+        };
+        let behind = (crackable != 0)
+            .then(|| {
+                Prepared::<f64>::new(&Request {
+                    desc: &without,
+                    ..*request
+                })
+            })
+            .and_then(Result::ok);
+        let samples = desc.samples;
         Ok(Self {
             prepared,
             image,
             objects,
             met,
+            parts,
+            crackable,
+            behind,
             samples,
             sampled: samples > 1 || request.desc.camera.aperture > 0.0,
         })
@@ -117,7 +163,7 @@ impl Reference {
     /// eight directions, may see whatever the f64 scene shows there (worst case: the most
     /// different). A pixel alike its eight neighbours, whose edges move by less than a pixel,
     /// is left alone. Past the image's edge, a pixel may show anything.
-    fn moved(&self, shift: impl Fn(usize, usize) -> f64 + Sync) -> (f64, f64) {
+    fn moved(&self, shift: impl Fn(usize, usize) -> f64 + Sync, cracks: bool) -> (f64, f64) {
         let (width, height) = self.image.dimensions();
         let index = |x: u32, y: u32| (y * width + x) as usize;
         let own_row = |y: u32| -> Vec<f64> {
@@ -155,6 +201,7 @@ impl Reference {
                 self.image.get_pixel(nx, ny).0 == colour
                     && self.objects.get(index(nx, ny)) == self.objects.get(here)
                     && self.met.get(index(nx, ny)) == self.met.get(here)
+                    && self.parts.get(index(nx, ny)) == self.parts.get(here)
             });
             if alike && delta < 1.0 {
                 return (0.0, 0.0);
@@ -169,6 +216,15 @@ impl Reference {
             let Some((colour, object)) = unmoved else {
                 return (0.0, 0.0);
             };
+            let squared = |seen: Rgb888| -> f64 {
+                [seen.r(), seen.g(), seen.b()]
+                    .iter()
+                    .zip([colour.r(), colour.g(), colour.b()])
+                    .map(|(&a, b)| (f64::from(a) - f64::from(b)).powi(2))
+                    .sum()
+            };
+            let part = self.parts.get(here).copied().unwrap_or(0);
+            let crackable = cracks && object.is_some_and(|o| self.crackable & object_bit(o) != 0);
             let mut worst = 0.0_f64;
             let mut mismatched = false;
             for (across, down) in NUDGES {
@@ -177,13 +233,21 @@ impl Reference {
                 else {
                     continue;
                 };
-                let squared: f64 = [seen.r(), seen.g(), seen.b()]
-                    .iter()
-                    .zip([colour.r(), colour.g(), colour.b()])
-                    .map(|(&a, b)| (f64::from(a) - f64::from(b)).powi(2))
-                    .sum();
-                worst = worst.max(squared);
+                worst = worst.max(squared(seen));
                 mismatched |= seen_object != object;
+                // Across an edge between two of a crackable mesh's triangles, the ray may miss
+                // both and see what lies behind the mesh (anything, where nothing does).
+                let across_mesh = crackable
+                    && self
+                        .prepared
+                        .hit_at(x, y, offset)
+                        .is_some_and(|(o, p)| Some(o) == object && p != part);
+                if across_mesh {
+                    let through = self.behind.as_ref();
+                    let through = through.and_then(|b| b.pixel(x, y, offset, self.samples));
+                    worst = worst.max(through.map_or(3.0 * LEVELS * LEVELS, |(c, _)| squared(c)));
+                    mismatched = true;
+                }
             }
             (worst, if mismatched { 1.0 } else { 0.0 })
         };
@@ -204,6 +268,11 @@ impl Reference {
         let pixels = f64::from(width) * f64::from(height);
         (squared / (3.0 * pixels), mismatched / pixels)
     }
+}
+
+/// Object `i`'s bit in a [`Reference::met`] mask (objects 64 and beyond share bit 63).
+fn object_bit(i: usize) -> u64 {
+    1 << i.min(63)
 }
 
 /// The pixels around (x, y) in an image of `width` × `height`: its eight neighbours, less
@@ -329,7 +398,7 @@ fn predict_in<S: Scalar>(
             .iter()
             .enumerate()
             .map(|(object, shift)| {
-                let bit = 1 << object.min(63);
+                let bit = object_bit(object);
                 match (a & bit != 0, b & bit != 0) {
                     (true, true) => shift.inner,
                     (true, false) | (false, true) => shift.silhouette,
@@ -348,7 +417,18 @@ fn predict_in<S: Scalar>(
     // Rounding a colour that errs by e levels to the nearest level changes it by one level in
     // an e share of pixels.
     let shading_mse = shading_levels * shading_levels + shading_levels.min(1.0);
-    let (moved_mse, moved_share) = reference.moved(shift);
+    // Two neighbouring triangles of a mesh may both miss a ray between them where each tests
+    // its edges by its own rounding (`obscura stress`'s mesh case measures it): by
+    // Möller–Trumbore, whose rounded 1/det moves each triangle's edges its own way, and by
+    // Cramer's rule in a float, whose rounding differs between the two; Cramer's rule almost
+    // never does in the fixed formats, the watertight test never.
+    let floating = S::resolution(2.0) > S::resolution(1.0);
+    let cracks = match methods.triangle {
+        TriangleMethod::MollerTrumbore => true,
+        TriangleMethod::Cramer => floating,
+        TriangleMethod::Watertight => false,
+    };
+    let (moved_mse, moved_share) = reference.moved(shift, cracks);
     // No image strays further than every channel of every pixel by full scale: 0 dB.
     let total = (constants_mse + moved_mse + shading_mse).min(LEVELS * LEVELS);
     let mismatch_pct = measured.object_mismatch_pct + 100.0 * moved_share;
@@ -451,20 +531,46 @@ fn object_shifts<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods, pixel: f64)
             }
         })
         .collect();
-    for feature in range::features(desc, methods) {
-        let Item::Object(i) = feature.item else {
-            continue;
-        };
+    // A mesh's edges are its triangles', its silhouette and the edges within it alike: they
+    // move by the most any of its triangles' do.
+    for (i, primitive) in desc.primitives() {
         let (Some(object), Some(shift)) = (desc.objects.get(i), shifts.get_mut(i)) else {
             continue;
         };
-        let seen = range::clearance(object, eye).max(nearest);
+        let own = primitive_shifts::<S>(desc, methods, i, &primitive, pixel, nearest, eye);
+        let mesh = matches!(object.shape, ShapeDesc::Mesh { .. });
+        shift.silhouette = shift.silhouette.max(own.silhouette);
+        shift.inner = shift
+            .inner
+            .max(if mesh { own.silhouette } else { own.inner });
+    }
+    shifts
+}
+
+/// How far format `S`'s rounding may move the edges of `primitive`, object `i` of `desc` or one
+/// of its mesh's triangles, seen from `eye` (no nearer than `nearest`), for pixels `pixel`
+/// radians apart: the sum over its features' errors.
+fn primitive_shifts<S: Scalar>(
+    desc: &SceneDesc<'_>,
+    methods: &Methods,
+    i: usize,
+    primitive: &ObjectDesc,
+    pixel: f64,
+    nearest: f64,
+    eye: Vec3<f64>,
+) -> Shifts {
+    let mut shift = Shifts::default();
+    let seen = range::clearance(primitive, eye).max(nearest);
+    let longest = |vertices: [[f32; 3]; 3]| {
+        let [a, b, c] = vertices.map(Vec3::from_f32);
+        (b - a).length().max((c - a).length()).max((c - b).length())
+    };
+    for feature in range::object_features(desc, methods, i, primitive)
+        .into_iter()
+        .flatten()
+    {
         let error = feature.error::<S>();
-        let longest = |vertices: [[f32; 3]; 3]| {
-            let [a, b, c] = vertices.map(Vec3::from_f32);
-            (b - a).length().max((c - a).length()).max((c - b).length())
-        };
-        match (object.shape, feature.quantity) {
+        match (primitive.shape, feature.quantity) {
             // The silhouette moves by the discriminant's error over 2r, seen from the eye.
             (ShapeDesc::Sphere { center, radius }, "radius² seen from the eye") => {
                 let r = f64::from(radius);
@@ -485,7 +591,7 @@ fn object_shifts<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods, pixel: f64)
             // the eye, R away, at the sine h/R of its angle with the plane.
             (ShapeDesc::Plane { .. }, range::VISIBLE_DISC) => {
                 let world = f64::from(desc.far);
-                let height = range::clearance(object, eye);
+                let height = range::clearance(primitive, eye);
                 shift.silhouette += error * height / (world * world) / pixel;
             }
             // A checker coordinate, counted in squares, is rounded at its size: a point seen at
@@ -504,7 +610,7 @@ fn object_shifts<S: Scalar>(desc: &SceneDesc<'_>, methods: &Methods, pixel: f64)
             _ => {}
         }
     }
-    shifts
+    shift
 }
 
 /// How far format `S`'s rounding may move a pixel's colour, as a share of full intensity: the
@@ -591,17 +697,17 @@ mod tests {
     #[test]
     fn a_nudge_finds_the_pixels_within_its_reach_of_an_edge() {
         let reference = ball();
-        assert_eq!(reference.moved(|_, _| 0.0), (0.0, 0.0));
+        assert_eq!(reference.moved(|_, _| 0.0, false), (0.0, 0.0));
         // Half a pixel's nudge reaches the silhouette from the pixels next to it, no farther.
-        let (half, half_share) = reference.moved(|_, _| 0.5);
-        let (two, two_share) = reference.moved(|_, _| 2.0);
+        let (half, half_share) = reference.moved(|_, _| 0.5, false);
+        let (two, two_share) = reference.moved(|_, _| 2.0, false);
         assert!(half > 0.0 && half_share > 0.0);
         assert!(two > half && two_share > half_share);
         // Each pixel that may change may change by all of white to black.
         let pixels = 32.0 * 32.0;
         assert!((half - half_share * 255.0 * 255.0).abs() * pixels < 1e-6);
         // Past the image's edge, anything.
-        assert_eq!(reference.moved(|_, _| 40.0), (255.0 * 255.0, 1.0));
+        assert_eq!(reference.moved(|_, _| 40.0, false), (255.0 * 255.0, 1.0));
     }
 
     #[test]
