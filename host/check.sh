@@ -10,6 +10,7 @@ step() { printf '\n==> [%4d s] %s\n' "$SECONDS" "$*"; }
 
 M4F=thumbv7em-none-eabihf
 M0=thumbv6m-none-eabi
+M33=thumbv8m.main-none-eabihf
 # The firmware's configuration (obscura_scene::firmware): every scene, format and method.
 EVERYTHING=(OBSCURA_SCENES=whitted,shapes OBSCURA_FORMATS=i16f16,i20f12,i32f32,f32-approx,f32
     OBSCURA_VARIANTS=each)
@@ -20,7 +21,7 @@ for component in rustfmt clippy; do
     grep -q "^$component" <<<"$installed_components" || rustup component add "$component"
 done
 installed_targets=$(rustup target list --installed)
-for target in "$M4F" "$M0"; do
+for target in "$M4F" "$M0" "$M33"; do
     grep -qx "$target" <<<"$installed_targets" || rustup target add "$target"
 done
 
@@ -67,11 +68,6 @@ cargo clippy --release -p obscura-pico --target "$M0" --locked -- -D warnings
 step "documentation, private items too (their links are checked as the public ones)"
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --locked --quiet --document-private-items
 
-for target in "$M4F" "$M0"; do
-    step "no_std core for $target"
-    cargo build -p obscura --release --target "$target" --locked
-done
-
 step "the core as crates.io would take it: cargo package"
 cargo package -p obscura --locked --quiet
 
@@ -111,6 +107,10 @@ for target in m4f m0; do
     cargo run --release --locked -p obscura-host -- firmware --target "$target" \
         --scene host/scenes/pyramid.toml --format auto --budget --profile
 done
+
+step "firmware under QEMU (m33, the Pico 2's Arm core), bit for bit against the host, within its budget"
+cargo run --release --locked -p obscura-host -- firmware --target m33 \
+    --scene whitted,shapes --format i16f16,f32 --budget
 
 step "one scene in one format, under QEMU: within 32 KiB of flash, bit for bit against the host"
 cargo run --release --locked -p obscura-host -- firmware --target m0 --scene whitted \

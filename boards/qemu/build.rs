@@ -1,11 +1,16 @@
 //! Links with cortex-m-rt's `link.x`, which includes the workspace's `memory.x` (the firmware
 //! crate's build script puts it on the linker's path): on the Cortex-M0, the nRF51 map of QEMU's
-//! micro:bit, which `memory.x` switches to when `__nrf51` is defined; otherwise the STM32F4's.
+//! micro:bit, which `memory.x` switches to when `__nrf51` is defined; on the Cortex-M33, the
+//! AN505 map of QEMU's mps2-an505 (`__an505`); otherwise the STM32F4's.
 
 fn main() {
     println!("cargo::rerun-if-changed=build.rs");
-    if std::env::var("TARGET").is_ok_and(|t| t.starts_with("thumbv6m")) {
+    let target = std::env::var("TARGET").unwrap_or_default();
+    if target.starts_with("thumbv6m") {
         println!("cargo::rustc-link-arg-bins=--defsym=__nrf51=1");
+    }
+    if target.starts_with("thumbv8m") {
+        println!("cargo::rustc-link-arg-bins=--defsym=__an505=1");
     }
     println!("cargo::rustc-link-arg-bins=-Tlink.x");
 }

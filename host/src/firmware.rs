@@ -21,6 +21,9 @@ pub enum Target {
     M4f,
     /// Cortex-M0, no FPU, 16 KiB of RAM (nRF51 of the BBC micro:bit, QEMU's microbit).
     M0,
+    /// Cortex-M33 with a single-precision FPU and the DSP extension, the Arm cores of the
+    /// RP2350 (Raspberry Pi Pico 2), on Arm's AN505 image (QEMU's mps2-an505).
+    M33,
 }
 
 impl Target {
@@ -29,6 +32,7 @@ impl Target {
         match self {
             Self::M4f => "thumbv7em-none-eabihf",
             Self::M0 => "thumbv6m-none-eabi",
+            Self::M33 => "thumbv8m.main-none-eabihf",
         }
     }
 
@@ -37,6 +41,7 @@ impl Target {
         match self {
             Self::M4f => "m4f",
             Self::M0 => "m0",
+            Self::M33 => "m33",
         }
     }
 
@@ -45,6 +50,7 @@ impl Target {
         match self {
             Self::M4f => ["-cpu", "cortex-m4", "-machine", "netduinoplus2"],
             Self::M0 => ["-cpu", "cortex-m0", "-machine", "microbit"],
+            Self::M33 => ["-cpu", "cortex-m33", "-machine", "mps2-an505"],
         }
     }
 
@@ -54,6 +60,7 @@ impl Target {
         match self {
             Self::M4f => 168_000_000,
             Self::M0 => 16_000_000,
+            Self::M33 => 20_000_000,
         }
     }
 
@@ -65,7 +72,7 @@ impl Target {
             Format::FIRMWARE.iter().copied().filter(kind).collect()
         };
         let fixed_32_per_image = match self {
-            Self::M4f => 4,
+            Self::M4f | Self::M33 => 4,
             Self::M0 => 2,
         };
         // Each kind, and how many of it one image holds.
@@ -82,7 +89,8 @@ impl Target {
 
     /// What a firmware for this microcontroller may occupy: on the M4F a quarter of the F411's
     /// 512 KiB of flash, so that it shares the chip with an application; on the M0 the nRF51's
-    /// 256 KiB; on both the 16 KiB of RAM of the micro:bit, stack included.
+    /// 256 KiB; on the M33 the M4F's, which the RP2350's 4 MiB of flash hold many times over;
+    /// on all three the 16 KiB of RAM of the micro:bit, stack included.
     pub fn budget(self) -> ImageSize {
         match self {
             Self::M4f => ImageSize {
@@ -91,6 +99,10 @@ impl Target {
             },
             Self::M0 => ImageSize {
                 flash: 256 * 1024,
+                ram: 16 * 1024,
+            },
+            Self::M33 => ImageSize {
+                flash: 128 * 1024,
                 ram: 16 * 1024,
             },
         }
@@ -108,6 +120,11 @@ impl Target {
             Self::M0 => Board {
                 name: "Raspberry Pi Pico (RP2040, Cortex-M0+)",
                 core_hz: 125_000_000,
+                cores: 2,
+            },
+            Self::M33 => Board {
+                name: "Raspberry Pi Pico 2 (RP2350, Cortex-M33)",
+                core_hz: 150_000_000,
                 cores: 2,
             },
         }
