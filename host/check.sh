@@ -11,31 +11,35 @@ step() { printf '\n==> [%4d s] %s\n' "$SECONDS" "$*"; }
 M4F=thumbv7em-none-eabihf
 M0=thumbv6m-none-eabi
 M33=thumbv8m.main-none-eabihf
+RV32=riscv32imac-unknown-none-elf
 # The firmware's configuration (obscura_scene::firmware): every scene, format and method.
 EVERYTHING=(OBSCURA_SCENES=whitted,shapes OBSCURA_FORMATS=i16f16,i20f12,i32f32,f32-approx,f32
     OBSCURA_VARIANTS=each)
 
-step "toolchain: rustfmt, clippy and the thumb targets"
+step "toolchain: rustfmt, clippy and the microcontrollers' targets"
 installed_components=$(rustup component list --installed)
 for component in rustfmt clippy; do
     grep -q "^$component" <<<"$installed_components" || rustup component add "$component"
 done
 installed_targets=$(rustup target list --installed)
-for target in "$M4F" "$M0" "$M33"; do
+for target in "$M4F" "$M0" "$M33" "$RV32"; do
     grep -qx "$target" <<<"$installed_targets" || rustup target add "$target"
 done
 
-step "QEMU"
-if ! command -v qemu-system-arm >/dev/null; then
-    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
-        apt-get update -qq
-        DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends qemu-system-arm
-    else
-        echo "qemu-system-arm is missing; install it with: sudo apt-get install qemu-system-arm" >&2
-        exit 1
+step "QEMU, for Arm and for RISC-V"
+for qemu in qemu-system-arm:qemu-system-arm qemu-system-riscv32:qemu-system-misc; do
+    binary=${qemu%%:*} package=${qemu##*:}
+    if ! command -v "$binary" >/dev/null; then
+        if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
+            apt-get update -qq
+            DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "$package"
+        else
+            echo "$binary is missing; install it with: sudo apt-get install $package" >&2
+            exit 1
+        fi
     fi
-fi
-qemu-system-arm --version | head -n 1
+    "$binary" --version | head -n 1
+done
 
 step "SDL2, for obscura preview's window"
 if ! dpkg -s libsdl2-dev >/dev/null 2>&1; then
@@ -58,8 +62,8 @@ cargo clippy -p obscura-host --all-targets --features window --locked -- -D warn
 step "clippy, core on a 32-bit target"
 cargo clippy -p obscura --target "$M0" --locked -- -D warnings
 
-step "clippy, the firmware on both targets and the two boards"
-for target in "$M4F" "$M0"; do
+step "clippy, the firmware on the Arm targets and RISC-V, and the two boards"
+for target in "$M4F" "$M0" "$RV32"; do
     env "${EVERYTHING[@]}" cargo clippy --release -p obscura-firmware -p obscura-qemu --target "$target" --locked -- -D warnings
 done
 cargo clippy --release -p obscura-black-pill --target "$M4F" --locked -- -D warnings
@@ -108,9 +112,11 @@ for target in m4f m0; do
         --scene host/scenes/pyramid.toml --format auto --budget --profile
 done
 
-step "firmware under QEMU (m33, the Pico 2's Arm core), bit for bit against the host, within its budget"
+step "firmware under QEMU (m33 and rv32, the Pico 2's cores), bit for bit against the host, within its budget"
 cargo run --release --locked -p obscura-host -- firmware --target m33 \
     --scene whitted,shapes --format i16f16,f32 --budget
+cargo run --release --locked -p obscura-host -- firmware --target rv32 \
+    --scene whitted,shapes --format i16f16 --budget
 
 step "one scene in one format, under QEMU: within 32 KiB of flash, bit for bit against the host"
 cargo run --release --locked -p obscura-host -- firmware --target m0 --scene whitted \

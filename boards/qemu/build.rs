@@ -12,5 +12,10 @@ fn main() {
     if target.starts_with("thumbv8m") {
         println!("cargo::rustc-link-arg-bins=--defsym=__an505=1");
     }
+    if target.starts_with("riscv32") {
+        let here = std::env::var("CARGO_MANIFEST_DIR").unwrap_or_default();
+        println!("cargo::rustc-link-search={here}");
+        println!("cargo::rustc-link-arg-bins=-Tmemory-riscv.x");
+    }
     println!("cargo::rustc-link-arg-bins=-Tlink.x");
 }

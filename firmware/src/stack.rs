@@ -27,10 +27,25 @@ fn bounds() -> (usize, usize) {
     )
 }
 
+/// The stack pointer.
+#[cfg(target_arch = "arm")]
+fn stack_pointer() -> usize {
+    cortex_m::register::msp::read() as usize
+}
+
+/// The stack pointer.
+#[cfg(target_arch = "riscv32")]
+fn stack_pointer() -> usize {
+    let sp: usize;
+    // SAFETY: reads the stack pointer into a register, nothing else.
+    unsafe { core::arch::asm!("mv {}, sp", out(reg) sp) };
+    sp
+}
+
 /// Paints the free stack, from its lowest address to just below the current stack pointer.
 pub fn paint() {
     let (bottom, _) = bounds();
-    let sp = cortex_m::register::msp::read() as usize;
+    let sp = stack_pointer();
     let mut word = bottom;
     while word + 4 * MARGIN_WORDS < sp {
         // SAFETY: `word` lies between the end of the statics and the stack pointer, memory that

@@ -48,6 +48,9 @@ impl From<Target> for Machine {
             // Not charted: priced as the M4F, whose instruction set and FPU it shares
             // (`whitted` on both: within 2 % in i16f16 and f32).
             Target::M33 => Self::M4f,
+            // Likewise priced as the M0, the other core without an FPU: the formats' order is
+            // what `auto` takes from it.
+            Target::Rv32 => Self::M0,
         }
     }
 }

@@ -93,6 +93,10 @@ impl Alike {
             (Target::M33, Self::Mesh) => include_str!("../images/firmware/m33-teapot.json"),
             (Target::M33, Self::Lens) => include_str!("../images/firmware/m33-focus.json"),
             (Target::M33, Self::AreaLights) => include_str!("../images/firmware/m33-soft.json"),
+            (Target::Rv32, Self::Lecture) => include_str!("../images/firmware/rv32-whitted.json"),
+            (Target::Rv32, Self::Mesh) => include_str!("../images/firmware/rv32-teapot.json"),
+            (Target::Rv32, Self::Lens) => include_str!("../images/firmware/rv32-focus.json"),
+            (Target::Rv32, Self::AreaLights) => include_str!("../images/firmware/rv32-soft.json"),
         };
         serde_json::from_str(json).expect("the committed firmware runs are obscura firmware's JSON")
     }
@@ -207,7 +211,7 @@ mod tests {
 
     #[test]
     fn every_firmware_format_is_priced_on_both_targets_in_every_kind_of_scene() {
-        for target in [Target::M4f, Target::M0, Target::M33] {
+        for target in [Target::M4f, Target::M0, Target::M33, Target::Rv32] {
             for alike in ALIKE {
                 for &format in Format::FIRMWARE {
                     let pricing = Pricing::of(target, format, alike);
@@ -232,7 +236,7 @@ mod tests {
         for alike in ALIKE {
             let scene = alike.load().unwrap();
             assert_eq!(Alike::of(&scene.scene.desc()), alike);
-            for target in [Target::M4f, Target::M0, Target::M33] {
+            for target in [Target::M4f, Target::M0, Target::M33, Target::Rv32] {
                 for run in alike.runs(target) {
                     let format = Format::from_name(&run.format).unwrap();
                     assert_eq!(Pricing::of(target, format, alike).unwrap().scene, alike);

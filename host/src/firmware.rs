@@ -24,6 +24,8 @@ pub enum Target {
     /// Cortex-M33 with a single-precision FPU and the DSP extension, the Arm cores of the
     /// RP2350 (Raspberry Pi Pico 2), on Arm's AN505 image (QEMU's mps2-an505).
     M33,
+    /// RV32IMAC without an FPU, as the RP2350's Hazard3 cores (QEMU's RISC-V `virt` machine).
+    Rv32,
 }
 
 impl Target {
@@ -33,6 +35,7 @@ impl Target {
             Self::M4f => "thumbv7em-none-eabihf",
             Self::M0 => "thumbv6m-none-eabi",
             Self::M33 => "thumbv8m.main-none-eabihf",
+            Self::Rv32 => "riscv32imac-unknown-none-elf",
         }
     }
 
@@ -42,15 +45,25 @@ impl Target {
             Self::M4f => "m4f",
             Self::M0 => "m0",
             Self::M33 => "m33",
+            Self::Rv32 => "rv32",
         }
     }
 
-    /// QEMU's CPU and machine.
-    fn qemu_machine(self) -> [&'static str; 4] {
+    /// The QEMU that emulates it, and the Debian package that has it.
+    fn qemu(self) -> (&'static str, &'static str) {
         match self {
-            Self::M4f => ["-cpu", "cortex-m4", "-machine", "netduinoplus2"],
-            Self::M0 => ["-cpu", "cortex-m0", "-machine", "microbit"],
-            Self::M33 => ["-cpu", "cortex-m33", "-machine", "mps2-an505"],
+            Self::M4f | Self::M0 | Self::M33 => ("qemu-system-arm", "qemu-system-arm"),
+            Self::Rv32 => ("qemu-system-riscv32", "qemu-system-misc"),
+        }
+    }
+
+    /// QEMU's CPU and machine (on RISC-V, without firmware: the reset ROM jumps to the image).
+    fn qemu_machine(self) -> &'static [&'static str] {
+        match self {
+            Self::M4f => &["-cpu", "cortex-m4", "-machine", "netduinoplus2"],
+            Self::M0 => &["-cpu", "cortex-m0", "-machine", "microbit"],
+            Self::M33 => &["-cpu", "cortex-m33", "-machine", "mps2-an505"],
+            Self::Rv32 => &["-cpu", "rv32", "-machine", "virt", "-bios", "none"],
         }
     }
 
@@ -61,6 +74,8 @@ impl Target {
             Self::M4f => 168_000_000,
             Self::M0 => 16_000_000,
             Self::M33 => 20_000_000,
+            // Its ticks are the instructions retired: as if a tick were a nanosecond.
+            Self::Rv32 => 1_000_000_000,
         }
     }
 
@@ -73,7 +88,7 @@ impl Target {
         };
         let fixed_32_per_image = match self {
             Self::M4f | Self::M33 => 4,
-            Self::M0 => 2,
+            Self::M0 | Self::Rv32 => 2,
         };
         // Each kind, and how many of it one image holds.
         let kinds = [
@@ -89,8 +104,8 @@ impl Target {
 
     /// What a firmware for this microcontroller may occupy: on the M4F a quarter of the F411's
     /// 512 KiB of flash, so that it shares the chip with an application; on the M0 the nRF51's
-    /// 256 KiB; on the M33 the M4F's, which the RP2350's 4 MiB of flash hold many times over;
-    /// on all three the 16 KiB of RAM of the micro:bit, stack included.
+    /// 256 KiB; on the M33 and RV32 the M4F's, which the RP2350's 4 MiB of flash hold many
+    /// times over; on all of them the 16 KiB of RAM of the micro:bit, stack included.
     pub fn budget(self) -> ImageSize {
         match self {
             Self::M4f => ImageSize {
@@ -101,7 +116,7 @@ impl Target {
                 flash: 256 * 1024,
                 ram: 16 * 1024,
             },
-            Self::M33 => ImageSize {
+            Self::M33 | Self::Rv32 => ImageSize {
                 flash: 128 * 1024,
                 ram: 16 * 1024,
             },
@@ -124,6 +139,11 @@ impl Target {
             },
             Self::M33 => Board {
                 name: "Raspberry Pi Pico 2 (RP2350, Cortex-M33)",
+                core_hz: 150_000_000,
+                cores: 2,
+            },
+            Self::Rv32 => Board {
+                name: "Raspberry Pi Pico 2 (RP2350, Hazard3 RISC-V)",
                 core_hz: 150_000_000,
                 cores: 2,
             },
@@ -180,14 +200,15 @@ pub fn check_prerequisites(target: Target) -> Result<()> {
             triple = target.triple()
         );
     }
-    let qemu = Command::new("qemu-system-arm")
+    let (qemu, package) = target.qemu();
+    let found = Command::new(qemu)
         .arg("--version")
         .stdout(Stdio::null())
         .status();
-    if !qemu.is_ok_and(|status| status.success()) {
+    if !found.is_ok_and(|status| status.success()) {
         bail!(
-            "qemu-system-arm is not installed; install it with: sudo apt-get install \
-             qemu-system-arm (Debian, Ubuntu), or see https://www.qemu.org/download/"
+            "{qemu} is not installed; install it with: sudo apt-get install {package} (Debian, \
+             Ubuntu), or see https://www.qemu.org/download/"
         );
     }
     Ok(())
@@ -274,7 +295,8 @@ pub fn run(
         option.push(plugin.argument);
         [OsString::from("-plugin"), option]
     });
-    let mut child = Command::new("qemu-system-arm")
+    let (qemu, _) = target.qemu();
+    let mut child = Command::new(qemu)
         .current_dir(dir)
         .args(target.qemu_machine())
         .args(["-nographic", "-monitor", "none", "-serial", "none"])
@@ -291,7 +313,7 @@ pub fn run(
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
-        .context("cannot start qemu-system-arm")?;
+        .with_context(|| format!("cannot start {qemu}"))?;
     let start = Instant::now();
     let status = loop {
         if let Some(status) = child.try_wait()? {
@@ -455,7 +477,8 @@ pub fn image_size(elf: &Path) -> Result<ImageSize> {
     let mut size = ImageSize { flash: 0, ram: 0 };
     for section in file.sections() {
         let allocated = matches!(section.flags(), SectionFlags::Elf { sh_flags } if sh_flags & u64::from(object::elf::SHF_ALLOC) != 0);
-        if !allocated {
+        // riscv-rt reserves the rest of RAM for the stack as a section; the stack is measured.
+        if !allocated || section.name() == Ok(".stack") {
             continue;
         }
         match section.kind() {

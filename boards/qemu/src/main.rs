@@ -1,5 +1,5 @@
-//! The QEMU back-end: each frame streams, row by row, into a file on the host through ARM
-//! semihosting (240×240 big-endian RGB565, row after row, in QEMU's working directory, named
+//! The QEMU back-end, for Arm (cortex-m-rt) and RISC-V (riscv-rt): each frame streams, row by
+//! row, into a file on the host through semihosting (240×240 big-endian RGB565, row after row, in QEMU's working directory, named
 //! after the scene, the format and the methods), and each report is a line on the host's
 //! standard output:
 //!
@@ -23,8 +23,11 @@
 )]
 
 use core::fmt::{self, Write as _};
+#[cfg(target_arch = "arm")]
 use cortex_m_rt::{ExceptionFrame, exception};
+#[cfg(target_arch = "arm")]
 use cortex_m_semihosting::debug::{self, EXIT_FAILURE, EXIT_SUCCESS};
+#[cfg(target_arch = "arm")]
 use cortex_m_semihosting::{hio, nr, syscall};
 use embedded_graphics_core::pixelcolor::{IntoStorage, Rgb565};
 use embedded_graphics_core::prelude::*;
@@ -33,14 +36,24 @@ use obscura::methods::MethodName;
 use obscura_firmware::SIDE;
 use obscura_firmware::clock::Clock;
 use obscura_firmware::frames::{self, Backend, Job, Report};
+#[cfg(target_arch = "riscv32")]
+use riscv_semihosting::debug::{self, EXIT_FAILURE, EXIT_SUCCESS};
+#[cfg(target_arch = "riscv32")]
+use riscv_semihosting::{hio, nr, syscall};
 
 /// Renders every configured frame, then exits QEMU with the outcome.
-#[cortex_m_rt::entry]
+#[cfg_attr(target_arch = "arm", cortex_m_rt::entry)]
+#[cfg_attr(target_arch = "riscv32", riscv_rt::entry)]
 fn main() -> ! {
-    let Some(peripherals) = cortex_m::Peripherals::take() else {
-        exit(false);
+    #[cfg(target_arch = "arm")]
+    let clock = {
+        let Some(peripherals) = cortex_m::Peripherals::take() else {
+            exit(false);
+        };
+        Clock::start(peripherals.SYST)
     };
-    let clock = Clock::start(peripherals.SYST);
+    #[cfg(target_arch = "riscv32")]
+    let clock = Clock::start();
     let mut host = Host {
         all_drawn: true,
         file: FrameFile { handle: None },
@@ -53,7 +66,10 @@ fn exit(success: bool) -> ! {
     debug::exit(if success { EXIT_SUCCESS } else { EXIT_FAILURE });
     // Without a debugger to end it, wait for one.
     loop {
+        #[cfg(target_arch = "arm")]
         cortex_m::asm::wfi();
+        #[cfg(target_arch = "riscv32")]
+        riscv::asm::wfi();
     }
 }
 
@@ -101,6 +117,7 @@ impl fmt::Display for Text<'_> {
     }
 }
 
+#[cfg(target_arch = "arm")]
 #[exception]
 unsafe fn HardFault(frame: &ExceptionFrame) -> ! {
     say!("error hard fault at pc={:#010x}", frame.pc());
