@@ -57,13 +57,21 @@ impl Target {
         }
     }
 
-    /// QEMU's CPU and machine (on RISC-V, without firmware: the reset ROM jumps to the image).
+    /// QEMU's CPU and machine (on RISC-V with Hazard3's bit manipulation, and without
+    /// firmware: the reset ROM jumps to the image).
     fn qemu_machine(self) -> &'static [&'static str] {
         match self {
             Self::M4f => &["-cpu", "cortex-m4", "-machine", "netduinoplus2"],
             Self::M0 => &["-cpu", "cortex-m0", "-machine", "microbit"],
             Self::M33 => &["-cpu", "cortex-m33", "-machine", "mps2-an505"],
-            Self::Rv32 => &["-cpu", "rv32", "-machine", "virt", "-bios", "none"],
+            Self::Rv32 => &[
+                "-cpu",
+                "rv32,zba=true,zbb=true,zbs=true,zbkb=true,zbc=false",
+                "-machine",
+                "virt",
+                "-bios",
+                "none",
+            ],
         }
     }
 
