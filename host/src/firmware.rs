@@ -116,16 +116,12 @@ impl Target {
     /// times over; on all of them the 16 KiB of RAM of the micro:bit, stack included.
     pub fn budget(self) -> ImageSize {
         match self {
-            Self::M4f => ImageSize {
+            Self::M4f | Self::M33 | Self::Rv32 => ImageSize {
                 flash: 128 * 1024,
                 ram: 16 * 1024,
             },
             Self::M0 => ImageSize {
                 flash: 256 * 1024,
-                ram: 16 * 1024,
-            },
-            Self::M33 | Self::Rv32 => ImageSize {
-                flash: 128 * 1024,
                 ram: 16 * 1024,
             },
         }
