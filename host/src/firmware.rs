@@ -173,10 +173,9 @@ pub struct Board {
 }
 
 impl Board {
-    /// The seconds a frame of `instructions` takes, estimated at one instruction per cycle
-    /// with the rows shared evenly between the cores.
-    pub fn seconds(self, instructions: u64) -> f64 {
-        instructions as f64 / f64::from(self.cores) / self.core_hz as f64
+    /// The seconds a frame of `cycles` takes, with the rows shared evenly between the cores.
+    pub fn seconds(self, cycles: u64) -> f64 {
+        cycles as f64 / f64::from(self.cores) / self.core_hz as f64
     }
 }
 

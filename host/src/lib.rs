@@ -11,6 +11,7 @@ mod cli;
 mod commands;
 mod cost;
 mod counted;
+mod cycles;
 mod estimate;
 mod firmware;
 mod fuzz;

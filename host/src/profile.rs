@@ -1,15 +1,17 @@
-//! Where a firmware run's instructions go (`obscura firmware --profile`). QEMU counts the
-//! instructions executed at each address with a small TCG plugin (`host/qemu/profile.c`, built
-//! here by the system's C compiler). Each address is attributed twice: to the function of the
+//! What a firmware run executed, and where its instructions go (`obscura firmware --profile`).
+//! QEMU counts the instructions executed at each address, in the run and in each frame, with a
+//! small TCG plugin (`host/qemu/profile.c`, built here by the system's C compiler; [`Counts`]),
+//! from which [`crate::cycles`] estimates the frames' cycles. Each address is attributed twice: to the function of the
 //! ELF image that holds it (what is out of line: the calls a frame makes), and to a phase of the
 //! tracer by the functions inlined there (the image's debug information: release builds keep
 //! line tables and inlining), as a sampling profiler with inline frames would.
 
+use crate::cycles::{Core, Count, Instruction};
 use crate::firmware::workspace;
 use addr2line::Loader;
 use anyhow::{Context, Result, anyhow, bail};
 use object::{Object, ObjectSymbol, SymbolKind};
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -139,6 +141,21 @@ fn functions(data: &[u8]) -> Result<Vec<Function>> {
     Ok(functions)
 }
 
+/// The entries of the firmware's frame markers, `obscura_frame_begins` and
+/// `obscura_frame_ends` (`boards/qemu`), which the plugin counts each frame between.
+pub fn frame_markers(elf: &Path) -> Result<(u64, u64)> {
+    let data = std::fs::read(elf).with_context(|| format!("cannot read {}", elf.display()))?;
+    let functions = functions(&data)?;
+    let entry = |name: &str| {
+        functions
+            .iter()
+            .find(|f| f.name == name)
+            .map(|f| f.start)
+            .with_context(|| format!("{} has no function `{name}`", elf.display()))
+    };
+    Ok((entry("obscura_frame_begins")?, entry("obscura_frame_ends")?))
+}
+
 /// The function holding `address`, if any.
 fn holding(functions: &[Function], address: u64) -> Option<&Function> {
     let after = functions.partition_point(|f| f.start <= address);
@@ -199,8 +216,8 @@ impl Profile {
         }
     }
 
-    /// The profile of a run of the image `elf` whose plugin wrote `counts`.
-    pub fn read(elf: &Path, counts: &Path) -> Result<Self> {
+    /// The profile of a run of the image `elf` whose plugin counted `counts`.
+    pub fn read(elf: &Path, counts: &Counts) -> Result<Self> {
         let data = std::fs::read(elf).with_context(|| format!("cannot read {}", elf.display()))?;
         let functions = functions(&data)?;
         let debug = Loader::new(elf).map_err(|e| {
@@ -224,11 +241,11 @@ impl Profile {
             }
             Ok(inlined)
         };
-        let text = std::fs::read_to_string(counts)
-            .with_context(|| format!("the profiling plugin wrote no {}", counts.display()))?;
-        let executed = parse_counts(&text)?
-            .into_iter()
-            .map(|(address, times)| {
+        let executed = counts
+            .run
+            .iter()
+            .map(|(&address, count)| {
+                let times = count.executed;
                 let function = holding(&functions, address)
                     .map_or_else(|| format!("{address:#x}"), |f| f.name.clone());
                 Ok(Executed {
@@ -278,20 +295,74 @@ fn most_first(by_name: HashMap<&str, u64>) -> Vec<(String, u64)> {
     all
 }
 
-/// Parses the plugin's lines, `<address in hex> <times executed>`.
-fn parse_counts(text: &str) -> Result<Vec<(u64, u64)>> {
-    text.lines()
-        .enumerate()
-        .map(|(i, line)| {
-            let parsed = line.split_once(' ').and_then(|(address, executed)| {
-                Some((
-                    u64::from_str_radix(address, 16).ok()?,
-                    executed.parse().ok()?,
-                ))
-            });
-            parsed.with_context(|| format!("line {} of the plugin's counts: `{line}`", i + 1))
-        })
-        .collect()
+/// What QEMU's plugin counted in a run (`host/qemu/profile.c`): each instruction translated,
+/// and how often each ran and passed control elsewhere, in the whole run and in each frame
+/// (between the firmware's frame markers), an address translated twice counted once.
+#[derive(Debug, Default)]
+pub struct Counts {
+    /// The instructions at each address, as QEMU disassembled them for `core`.
+    pub instructions: BTreeMap<u64, Instruction>,
+    /// The whole run.
+    pub run: BTreeMap<u64, Count>,
+    /// Each frame, in the order drawn.
+    pub frames: Vec<BTreeMap<u64, Count>>,
+}
+
+impl Counts {
+    /// Reads the plugin's file at `path`, its instructions disassembled for `core`.
+    pub fn read(path: &Path, core: Core) -> Result<Self> {
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("the counting plugin wrote no {}", path.display()))?;
+        Self::parse(&text, core)
+    }
+
+    /// Parses the plugin's lines: `insn ADDRESS BYTES TEXT`, `run ADDRESS EXECUTED TAKEN` and
+    /// `frame N ADDRESS EXECUTED TAKEN` (addresses in hex, frames from 1).
+    fn parse(text: &str, core: Core) -> Result<Self> {
+        let mut counts = Self::default();
+        for (i, line) in text.lines().enumerate() {
+            let parsed = (|| -> Option<()> {
+                let (kind, rest) = line.split_once(' ')?;
+                let mut fields = rest.splitn(if kind == "insn" { 3 } else { 4 }, ' ');
+                let mut next = || fields.next();
+                let hex = |s: &str| u64::from_str_radix(s, 16).ok();
+                match kind {
+                    "insn" => {
+                        let address = hex(next()?)?;
+                        let size = next()?.parse().ok()?;
+                        let text = next().unwrap_or("");
+                        counts
+                            .instructions
+                            .insert(address, Instruction::parse(text, size, core));
+                    }
+                    "run" | "frame" => {
+                        let map = if kind == "run" {
+                            &mut counts.run
+                        } else {
+                            let n: usize = next()?.parse().ok()?;
+                            if n == 0 || n > counts.frames.len() + 1 {
+                                return None;
+                            }
+                            if n > counts.frames.len() {
+                                counts.frames.push(BTreeMap::new());
+                            }
+                            counts.frames.get_mut(n - 1)?
+                        };
+                        let address = hex(next()?)?;
+                        let executed: u64 = next()?.parse().ok()?;
+                        let taken: u64 = next()?.parse().ok()?;
+                        let count: &mut Count = map.entry(address).or_default();
+                        count.executed += executed;
+                        count.taken += taken;
+                    }
+                    _ => return None,
+                }
+                Some(())
+            })();
+            parsed.with_context(|| format!("line {} of the plugin's counts: `{line}`", i + 1))?;
+        }
+        Ok(counts)
+    }
 }
 
 /// The plugin's source, in the workspace.
@@ -473,8 +544,30 @@ mod tests {
 
     #[test]
     fn malformed_counts_name_their_line() {
-        let error = parse_counts("100 3\nzz 1\n").unwrap_err();
+        let error = Counts::parse("run 100 3 0\nrun zz 1 0\n", Core::CortexM4).unwrap_err();
         assert!(format!("{error:#}").contains("line 2"), "{error:#}");
-        assert_eq!(parse_counts("1a 3\n").unwrap(), [(0x1a, 3)]);
+        let counts = Counts::parse(
+            "insn 1a 2 adds r0, r1\nrun 1a 3 0\nframe 1 1a 2 0\nframe 2 1a 1 1\nrun 1a 1 0\n",
+            Core::CortexM4,
+        )
+        .unwrap();
+        assert_eq!(
+            counts.run[&0x1a],
+            Count {
+                executed: 4,
+                taken: 0
+            }
+        );
+        assert_eq!(counts.frames.len(), 2);
+        assert_eq!(
+            counts.frames[1][&0x1a],
+            Count {
+                executed: 1,
+                taken: 1
+            }
+        );
+        assert_eq!(counts.instructions[&0x1a].size, 2);
+        let skipped = Counts::parse("frame 2 1a 1 1\n", Core::CortexM4).unwrap_err();
+        assert!(format!("{skipped:#}").contains("line 1"), "{skipped:#}");
     }
 }

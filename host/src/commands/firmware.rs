@@ -2,11 +2,12 @@
 
 use crate::cli::FirmwareArgs;
 use crate::cost::Machine;
+use crate::cycles::{self, Core};
 use crate::firmware::{self, Target};
 use crate::heatmap::heatmap;
 use crate::operations;
 use crate::output::{self, say};
-use crate::profile::{self, Profile};
+use crate::profile::{self, Counts, Profile};
 use crate::render::{Request, rgb565_image};
 use anyhow::{Context, Result, bail};
 use obscura::Methods;
@@ -14,6 +15,7 @@ use obscura::methods::MethodName;
 use obscura_scene::firmware::{Configuration, SIDE};
 use obscura_scene::{FirmwareSettings, Format, FormatChoice, Variants};
 use serde::Serialize;
+use std::collections::BTreeMap;
 use std::io;
 use std::path::Path;
 use std::time::Duration;
@@ -33,6 +35,9 @@ struct Report {
     differing_pixels: usize,
     instructions_per_frame: u64,
     instructions_per_pixel: u64,
+    /// Cycles on the board's core, estimated from the instructions ([`crate::cycles`]).
+    cycles_per_frame: u64,
+    cycles_per_pixel: u64,
     stack_bytes: u64,
     flash_bytes: u64,
     ram_bytes: u64,
@@ -114,15 +119,16 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
     let elf = firmware::build(args.target, &settings)?;
     let size = firmware::image_size(&elf)?;
     let (frames, counts) = run_qemu(args, &elf, &dir)?;
-    let (reports, mismatched) = compare(args.target, &configuration, &frames, size, &dir)?;
+    let (reports, mismatched) = compare(args.target, &configuration, &frames, &counts, size, &dir)?;
     print_table(args.target, &reports)?;
-    if let Some(counts) = counts {
+    if args.profile {
         print_profile(
             args.target,
             &Profile::read(&elf, &counts)?,
             &reports,
             size.flash,
         )?;
+        print_cycles(args.target, &counts, &reports)?;
         for frame in configuration.frames()?.iter().filter(|f| f.proven.is_ok()) {
             let desc = frame.scene.scene.desc();
             print_operations(
@@ -163,35 +169,36 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
     Ok(())
 }
 
-/// Runs the firmware `elf` under QEMU in `dir` (with the profiling plugin, for `--profile`):
-/// the frames it reported, and the file of the plugin's counts.
-fn run_qemu(
-    args: &FirmwareArgs,
-    elf: &Path,
-    dir: &Path,
-) -> Result<(Vec<firmware::Frame>, Option<std::path::PathBuf>)> {
+/// Runs the firmware `elf` under QEMU in `dir` with the counting plugin: the frames it
+/// reported, and what the plugin counted.
+fn run_qemu(args: &FirmwareArgs, elf: &Path, dir: &Path) -> Result<(Vec<firmware::Frame>, Counts)> {
     eprintln!("running {} under QEMU in {}", elf.display(), dir.display());
     // QEMU runs in `dir`: the plugin names its file from there (a name only: QEMU's options
     // split at commas, which a path may hold).
-    const COUNTS: &str = "profile-counts.txt";
-    let library = if args.profile {
-        Some(profile::plugin()?)
-    } else {
-        None
-    };
-    let argument = format!("out={COUNTS}");
-    let plugin = library.as_deref().map(|library| firmware::Plugin {
-        library,
+    const COUNTS: &str = "counts.txt";
+    let library = profile::plugin()?;
+    let (begin, end) = profile::frame_markers(elf)?;
+    let argument = format!("out={COUNTS},begin={begin:x},end={end:x}");
+    let plugin = firmware::Plugin {
+        library: &library,
         argument: &argument,
-    });
+    };
     let frames = firmware::run(
         args.target,
         elf,
         dir,
         Duration::from_secs(args.timeout),
-        plugin,
+        Some(plugin),
     )?;
-    Ok((frames, args.profile.then(|| dir.join(COUNTS))))
+    let counts = Counts::read(&dir.join(COUNTS), Core::of(args.target))?;
+    if counts.frames.len() != frames.len() {
+        bail!(
+            "QEMU's plugin counted {} frames where the firmware reported {}",
+            counts.frames.len(),
+            frames.len()
+        );
+    }
+    Ok((frames, counts))
 }
 
 /// Each frame the firmware drew against the host's, its figures, and the fixed-point frames
@@ -200,6 +207,7 @@ fn compare(
     target: Target,
     configuration: &Configuration,
     frames: &[firmware::Frame],
+    counts: &Counts,
     size: firmware::ImageSize,
     dir: &Path,
 ) -> Result<(Vec<Report>, Vec<String>)> {
@@ -217,9 +225,10 @@ fn compare(
     let mut mismatched = Vec::new();
     for planned in configuration.frames()?.iter().filter(|f| f.proven.is_ok()) {
         let (scene, format, methods) = (planned.scene, planned.format, planned.methods);
-        let frame = frames
+        let (index, frame) = frames
             .iter()
-            .find(|f| {
+            .enumerate()
+            .find(|(_, f)| {
                 f.scene == scene.name
                     && f.format == format.name()
                     && f.methods == methods
@@ -260,6 +269,8 @@ fn compare(
         }
         let pixels = u64::from(frame.width) * u64::from(frame.height);
         let instructions = target.instructions(frame.ticks);
+        let cycles = frame_cycles(target, counts, index, instructions)
+            .with_context(|| format!("{} in {format} by {methods}", scene.name))?;
         reports.push(Report {
             target: target.name(),
             scene: frame.scene.clone(),
@@ -273,6 +284,8 @@ fn compare(
             differing_pixels: differing.len(),
             instructions_per_frame: instructions,
             instructions_per_pixel: instructions / pixels.max(1),
+            cycles_per_frame: cycles.cycles,
+            cycles_per_pixel: cycles.cycles / pixels.max(1),
             stack_bytes: frame.stack_bytes,
             flash_bytes: size.flash,
             ram_bytes: size.ram,
@@ -282,6 +295,32 @@ fn compare(
         });
     }
     Ok((reports, mismatched))
+}
+
+/// The cycle estimate of frame `index` of the run `counts` counted, whose clock counted
+/// `instructions`: the plugin's count of the frame must agree with the clock's.
+fn frame_cycles(
+    target: Target,
+    counts: &Counts,
+    index: usize,
+    instructions: u64,
+) -> Result<cycles::Estimate> {
+    let counted = counts
+        .frames
+        .get(index)
+        .with_context(|| format!("QEMU's plugin counted no frame {}", index + 1))?;
+    let estimate = cycles::estimate(Core::of(target), &counts.instructions, counted);
+    // The plugin's window is the clock's and the frame file's opening and closing; the clock
+    // counts by its ticks.
+    let tolerance = instructions / 1000 + 1000;
+    if estimate.instructions.abs_diff(instructions) > tolerance {
+        bail!(
+            "QEMU's plugin counted {} instructions in the frame where its clock counted \
+             {instructions}: the cycle estimate would be wrong",
+            estimate.instructions
+        );
+    }
+    Ok(estimate)
 }
 
 /// Says whether the image fits the target's budget with the most stack a frame took; what is
@@ -380,6 +419,46 @@ fn print_profile(target: Target, profile: &Profile, reports: &[Report], flash: u
     Ok(())
 }
 
+/// Where the frames' cycles go on the target's core, by class of instruction, per pixel drawn.
+fn print_cycles(target: Target, counts: &Counts, reports: &[Report]) -> Result<()> {
+    let pixels: u64 = reports
+        .iter()
+        .map(|r| u64::from(r.width) * u64::from(r.height))
+        .sum();
+    let mut frames: BTreeMap<u64, cycles::Count> = BTreeMap::new();
+    for (&address, count) in counts.frames.iter().flatten() {
+        let all = frames.entry(address).or_default();
+        all.executed += count.executed;
+        all.taken += count.taken;
+    }
+    let core = Core::of(target);
+    let estimate = cycles::estimate(core, &counts.instructions, &frames);
+    let per_pixel = |n: u64| n as f64 / pixels.max(1) as f64;
+    say!(
+        "\nwhere the cycles go on the {} (the frames alone, each instruction by its documented \
+         timing; per pixel of the {pixels} drawn):\n",
+        core.name()
+    )?;
+    say!(
+        "| instructions | per pixel | cycles per pixel | cycles per instruction | share of cycles |"
+    )?;
+    say!("|---|---:|---:|---:|---:|")?;
+    let row = |name: &str, n: u64, c: u64| {
+        say!(
+            "| {name} | {:.0} | {:.0} | {:.2} | {:.1} % |",
+            per_pixel(n),
+            per_pixel(c),
+            c as f64 / n.max(1) as f64,
+            100.0 * c as f64 / estimate.cycles.max(1) as f64
+        )
+    };
+    for &(class, n, c) in &estimate.by_class {
+        row(class.name(), n, c)?;
+    }
+    row("all", estimate.instructions, estimate.cycles)?;
+    Ok(())
+}
+
 /// The tracer's operations per pixel for `name` in `format` by `methods`, counted on the host
 /// (`render --count`), beside the instructions the target took for the frame.
 fn print_operations(
@@ -448,9 +527,10 @@ fn list_differences(
 
 fn print_table(target: Target, reports: &[Report]) -> io::Result<()> {
     say!(
-        "| target | scene | format | identical to host | differing pixels | instructions/frame | instructions/pixel | stack (bytes) | flash (bytes) | static RAM (bytes) | RAM + stack (bytes) | scene + ray stack (bytes): sized / fixed |"
+        "| target | scene | format | identical to host | differing pixels | instructions/frame | instructions/pixel | cycles/pixel ({}) | stack (bytes) | flash (bytes) | static RAM (bytes) | RAM + stack (bytes) | scene + ray stack (bytes): sized / fixed |",
+        Core::of(target).name()
     )?;
-    say!("|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")?;
+    say!("|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")?;
     let base = reports.first().map(|r| r.methods.as_str());
     for r in reports {
         // A variant's methods beside its scene (`--variants each`); the first row's below.
@@ -460,7 +540,7 @@ fn print_table(target: Target, reports: &[Report]) -> io::Result<()> {
             format!("{} by {}", r.scene, r.methods)
         };
         say!(
-            "| {} ({}) | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} / {} |",
+            "| {} ({}) | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} / {} |",
             r.target,
             target.triple(),
             scene,
@@ -469,6 +549,7 @@ fn print_table(target: Target, reports: &[Report]) -> io::Result<()> {
             r.differing_pixels,
             r.instructions_per_frame,
             r.instructions_per_pixel,
+            r.cycles_per_pixel,
             r.stack_bytes,
             r.flash_bytes,
             r.ram_bytes,
@@ -497,30 +578,18 @@ fn print_table(target: Target, reports: &[Report]) -> io::Result<()> {
         )?;
     }
     say!(
-        "(instructions, not cycles: QEMU counts one per instruction and models no wait states or \
-         multi-cycle instructions; \"fixed\": the host's capacities of 64 objects, 16 lights, 16 rays)"
+        "(instructions: QEMU's exact count; cycles: each instruction weighed by the {}'s \
+         documented timings, with no wait states — an estimate; \"fixed\": the host's capacities \
+         of 64 objects, 16 lights, 16 rays)",
+        Core::of(target).name()
     )?;
-    let mhz = target.core_hz() / 1_000_000;
-    for r in reports {
-        let frame_pixels = f64::from(r.width) * f64::from(r.height);
-        let seconds = |pixels: u64| {
-            r.instructions_per_frame as f64 * pixels as f64 / frame_pixels / target.core_hz() as f64
-        };
-        say!(
-            "{} in {} at {mhz} MHz, estimated at one instruction per cycle: {:.2} s per {}x{} frame, {:.1} s at 512x512",
-            r.scene,
-            r.format,
-            seconds(u64::from(r.width) * u64::from(r.height)),
-            r.width,
-            r.height,
-            seconds(512 * 512)
-        )?;
-    }
     let board = target.board();
     for r in reports {
-        let seconds = board.seconds(r.instructions_per_frame);
+        let frame_pixels = u64::from(r.width) * u64::from(r.height);
+        let seconds = board.seconds(r.cycles_per_frame);
         say!(
-            "{} in {} on a {}, {} core{} at {} MHz, estimated at one instruction per cycle: {seconds:.2} s per {}x{} frame ({:.2} frames a second)",
+            "{} in {} on a {}, {} core{} at {} MHz, estimated in cycles: {seconds:.2} s per {}x{} \
+             frame ({:.2} frames a second), {:.1} s at 512x512",
             r.scene,
             r.format,
             board.name,
@@ -529,7 +598,8 @@ fn print_table(target: Target, reports: &[Report]) -> io::Result<()> {
             board.core_hz / 1_000_000,
             r.width,
             r.height,
-            1.0 / seconds
+            1.0 / seconds,
+            seconds * (512 * 512) as f64 / frame_pixels.max(1) as f64
         )?;
     }
     Ok(())
