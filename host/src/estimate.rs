@@ -1,10 +1,10 @@
 //! What a frame of a scene takes on a board, estimated before any firmware is built: the
 //! scene's textbook operations per pixel, counted on the host ([`operations::count`]: every ray
 //! it traces, with its samples, shadow samples, reflections and a mesh's box tests), times the
-//! instructions an operation takes on the board's processor, at the board's clock with the rows
-//! shared between its cores.
+//! instructions and cycles an operation takes on the board's processor, at the board's clock
+//! with the rows shared between its cores.
 //!
-//! The instructions an operation takes are those of the committed QEMU run of the built-in
+//! The instructions and cycles ([`crate::cycles`]) an operation takes are those of the committed QEMU run of the built-in
 //! scene most like it ([`Alike`]) — `host/scenes/teapot.toml` for a scene with a mesh, `focus`
 //! with a lens, `soft` with area lights, `whitted` (the lecture's) otherwise — divided by that
 //! scene's operations counted in the same format: the count weighs a product, a quotient and a
@@ -29,6 +29,25 @@ use serde::Deserialize;
 struct Run {
     format: String,
     instructions_per_pixel: u64,
+    cycles_per_pixel: u64,
+}
+
+/// What a pixel took in a run, or takes in an estimate.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PerPixel {
+    /// Instructions.
+    pub instructions: f64,
+    /// Cycles on the board's core.
+    pub cycles: f64,
+}
+
+impl PerPixel {
+    fn scaled(self, factor: f64) -> Self {
+        Self {
+            instructions: self.instructions * factor,
+            cycles: self.cycles * factor,
+        }
+    }
 }
 
 /// The scenes whose firmware runs price an operation, by what a scene has.
@@ -104,11 +123,17 @@ impl Alike {
     /// Its run that prices `format`: the run in `format`, else for a 32-bit fixed split one in
     /// another split — `i16f16` last, whose shift by 16 the compiler folds into the M0's
     /// products (`whitted` on the M0: 7 000 instructions per pixel against `i12f20`'s 8 132).
-    fn run(self, target: Target, format: Format) -> Option<(Format, u64)> {
-        let runs: Vec<(Format, u64)> = self
+    fn run(self, target: Target, format: Format) -> Option<(Format, PerPixel)> {
+        let runs: Vec<(Format, PerPixel)> = self
             .runs(target)
             .iter()
-            .filter_map(|r| Some((Format::from_name(&r.format)?, r.instructions_per_pixel)))
+            .filter_map(|r| {
+                let took = PerPixel {
+                    instructions: r.instructions_per_pixel as f64,
+                    cycles: r.cycles_per_pixel as f64,
+                };
+                Some((Format::from_name(&r.format)?, took))
+            })
             .collect();
         let find = |priced: &dyn Fn(Format) -> bool| runs.iter().copied().find(|&(f, _)| priced(f));
         let split = |ran: Format| {
@@ -122,30 +147,31 @@ impl Alike {
 
 /// The run that prices an operation: of the scene most like the one estimated, or else of
 /// `whitted`, in `format` or its kin ([`Alike::run`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 struct Pricing {
     scene: Alike,
     format: Format,
-    instructions_per_pixel: u64,
+    took: PerPixel,
 }
 
 impl Pricing {
     fn of(target: Target, format: Format, alike: Alike) -> Option<Self> {
         [alike, Alike::Lecture].into_iter().find_map(|scene| {
-            let (format, instructions_per_pixel) = scene.run(target, format)?;
+            let (format, took) = scene.run(target, format)?;
             Some(Self {
                 scene,
                 format,
-                instructions_per_pixel,
+                took,
             })
         })
     }
 
-    /// The instructions an operation takes: the run's, over its scene's operations counted.
-    fn per_operation(self) -> Result<f64> {
+    /// The instructions and cycles an operation takes: the run's, over its scene's operations
+    /// counted.
+    fn per_operation(self) -> Result<PerPixel> {
         let scene = self.scene.load()?;
         let operations = operations_per_pixel(self.format, &scene.scene.desc(), Methods::LECTURE)?;
-        Ok(self.instructions_per_pixel as f64 / operations)
+        Ok(self.took.scaled(1.0 / operations))
     }
 }
 
@@ -154,8 +180,8 @@ impl Pricing {
 pub struct Estimate {
     /// The board.
     pub board: Board,
-    /// Instructions per pixel.
-    pub instructions_per_pixel: f64,
+    /// Instructions and cycles per pixel.
+    pub per_pixel: PerPixel,
     /// Seconds per frame.
     pub seconds: f64,
     /// The scene whose firmware run priced an operation, as `obscura firmware --scene` names it.
@@ -179,13 +205,14 @@ pub fn frame(
         return Ok(None);
     };
     let board = target.board();
-    let instructions_per_pixel =
-        pricing.per_operation()? * operations_per_pixel(format, desc, methods)?;
+    let per_pixel = pricing
+        .per_operation()?
+        .scaled(operations_per_pixel(format, desc, methods)?);
     let pixels = f64::from(SIDE) * f64::from(SIDE);
     Ok(Some(Estimate {
         board,
-        instructions_per_pixel,
-        seconds: board.seconds((instructions_per_pixel * pixels) as u64),
+        per_pixel,
+        seconds: board.seconds((per_pixel.cycles * pixels) as u64),
         priced_by: pricing.scene.scene(),
         priced_in: pricing.format,
     }))
@@ -216,7 +243,8 @@ mod tests {
                 for &format in Format::FIRMWARE {
                     let pricing = Pricing::of(target, format, alike);
                     assert!(
-                        pricing.is_some_and(|p| p.instructions_per_pixel > 0
+                        pricing.is_some_and(|p| p.took.instructions > 0.0
+                            && p.took.cycles >= p.took.instructions
                             && (p.format == format
                                 || p.format.is_fixed_32()
                                     && format.is_fixed_32()
@@ -252,11 +280,11 @@ mod tests {
         let estimate = frame(target, format, &named.scene.desc(), Methods::LECTURE)
             .unwrap()
             .unwrap();
-        let ratio = estimate.instructions_per_pixel / measured;
+        let ratio = estimate.per_pixel.instructions / measured;
         assert!(
             (ratio - 1.0).abs() < tolerance,
             "{scene} in {format} on {target:?}: {:.0} estimated, {measured} measured",
-            estimate.instructions_per_pixel
+            estimate.per_pixel.instructions
         );
     }
 

@@ -54,11 +54,12 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
         presentation.dither.name(),
         match &estimate {
             Ok(Some(e)) => format!(
-                "about {:.1} s a frame ({:.0} instructions a pixel, {} core{} at {} MHz), \
-                 estimated by the instructions an operation takes in `{}` in {} under QEMU \
-                 (`obscura firmware` measures it)",
+                "about {:.1} s a frame ({:.0} instructions, {:.0} cycles a pixel, {} core{} at \
+                 {} MHz), estimated by the instructions and cycles an operation takes in `{}` in \
+                 {} under QEMU (`obscura firmware` measures it)",
                 e.seconds,
-                e.instructions_per_pixel,
+                e.per_pixel.instructions,
+                e.per_pixel.cycles,
                 e.board.cores,
                 if e.board.cores == 1 { "" } else { "s" },
                 e.board.core_hz / 1_000_000,
