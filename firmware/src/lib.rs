@@ -4,13 +4,15 @@
 //! display, each reported with the SysTick ticks it took and the stack it used.
 //!
 //! Its binary `qemu` streams the frames to the host over semihosting; the boards' crates
-//! (`boards/`) draw them on a real display ([`screen::Screen`]).
+//! (`boards/`) draw them on a real display ([`screen::Screen`]), those with two cores tracing
+//! on both ([`two_cores`]).
 #![no_std]
 
 pub mod clock;
 pub mod frames;
 pub mod screen;
 pub mod stack;
+pub mod two_cores;
 
 /// The side of the square display, in pixels: the build's (`obscura_scene::firmware::SIDE`).
 pub use frames::SIDE;

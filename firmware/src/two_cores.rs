@@ -1,0 +1,179 @@
+//! Two cores tracing one frame, for the boards with two (the Pico's RP2040, the Pico 2's
+//! RP2350): of each pair of rows in the frame's order, core 1 traces the second into its own
+//! line buffer while core 0 traces the first into its own and sends it; core 0 then sends core
+//! 1's. The cores meet through a pair of mailboxes ([`Mailbox`]: the SIO's FIFOs on both
+//! chips): core 0 hands core 1 the frame's row tracer, then each row to trace, and core 1
+//! answers when the row is in its line.
+//!
+//! A board starts core 1 in [`core1_traces_rows`] and gives its display and its side of the
+//! mailboxes to [`TwoCores`], the back-end that shares each frame.
+#![allow(
+    unsafe_code,
+    reason = "the line and the row tracer the two cores share through the mailboxes"
+)]
+
+use crate::SIDE;
+use crate::frames::{Backend, CORNER_ROWS, FrameError, Job, Report};
+use crate::screen::Screen;
+use core::cell::UnsafeCell;
+use core::convert::Infallible;
+use core::fmt;
+use core::sync::atomic::{Ordering, fence};
+use embedded_graphics_core::draw_target::DrawTarget;
+use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+use obscura::mesh::MeshWords;
+use obscura::{Bits, Camera, Corner, Presentation, RenderError, Scene, send_row, trace_row};
+
+/// One core's side of the pair of mailboxes between the cores: words to the other core, and
+/// words from it, each call waiting until it can.
+pub trait Mailbox {
+    /// Sends `word` to the other core.
+    fn send(&mut self, word: u32);
+    /// The next word from the other core.
+    fn receive(&mut self) -> u32;
+}
+
+/// Core 1's line buffer: written by core 1 between a row's word and its answer, read by core 0
+/// after the answer; never by both at once.
+struct Line(UnsafeCell<[Rgb565; SIDE as usize]>);
+
+// SAFETY: the mailboxes order every access (see `Line`).
+unsafe impl Sync for Line {}
+
+static CORE1_LINE: Line = Line(UnsafeCell::new([Rgb565::BLACK; SIDE as usize]));
+
+/// Core 1's corner rows for adaptive anti-aliasing: core 1's alone.
+struct Corners(UnsafeCell<CornerRows>);
+
+// SAFETY: only core 1 touches them.
+unsafe impl Sync for Corners {}
+
+static CORE1_CORNERS: Corners = Corners(UnsafeCell::new([Corner::ZERO; CORNER_ROWS]));
+
+/// A core's corner rows for adaptive anti-aliasing: an empty array, and no adaptive code in the
+/// build, unless a scene takes adaptive samples.
+type CornerRows = [Corner; CORNER_ROWS];
+
+/// The word that ends a frame for core 1.
+const END_OF_FRAME: u32 = u32::MAX;
+
+/// Traces row `y` of the frame into a line: what core 0 hands core 1 for a frame.
+type Trace<'a> =
+    dyn Fn(u32, &mut [Rgb565], &mut CornerRows) -> Result<(), RenderError<Infallible>> + Sync + 'a;
+
+/// Core 1, for good: for each frame, takes the row tracer core 0 hands it through `mailbox`,
+/// then traces each row it is given into its line and answers (1 traced, 0 not), until the end
+/// of the frame.
+pub fn core1_traces_rows(mailbox: &mut impl Mailbox) -> ! {
+    loop {
+        let address = mailbox.receive() as usize;
+        // SAFETY: core 0 sent the address of a `&Trace` that lives until it has our answer to
+        // the end of the frame.
+        let trace: &&Trace<'_> = unsafe { &*(address as *const &Trace<'_>) };
+        loop {
+            let y = mailbox.receive();
+            if y == END_OF_FRAME {
+                break;
+            }
+            // SAFETY: core 0 reads the line only after our answer (see `Line`).
+            let line = unsafe { &mut *CORE1_LINE.0.get() };
+            // SAFETY: only core 1 uses its corner rows.
+            let corners = unsafe { &mut *CORE1_CORNERS.0.get() };
+            let traced = trace(y, line, corners).is_ok();
+            fence(Ordering::Release);
+            mailbox.send(u32::from(traced));
+        }
+        mailbox.send(END_OF_FRAME);
+    }
+}
+
+/// A display driven by two cores: core 0's back-end, with its side of the mailboxes to core 1
+/// (which runs [`core1_traces_rows`]).
+#[derive(Debug)]
+pub struct TwoCores<D, M> {
+    /// The display, and the clock that times its frames.
+    pub screen: Screen<D>,
+    /// Core 0's side of the mailboxes.
+    pub mailbox: M,
+}
+
+impl<D: DrawTarget<Color = Rgb565, Error: fmt::Debug>, M: Mailbox> Backend for TwoCores<D, M> {
+    type Display = D;
+
+    fn begin(&mut self, job: &Job<'_>) {
+        self.screen.begin(job);
+    }
+
+    fn display(&mut self) -> &mut D {
+        &mut self.screen.display
+    }
+
+    /// Shares the rows with core 1: of each pair in the frame's order, core 1 traces the second
+    /// while this core traces and sends the first; then this core sends core 1's.
+    fn draw_frame<
+        S: Bits,
+        const OBJECTS: usize,
+        const LIGHTS: usize,
+        const RAYS: usize,
+        const USES: u32,
+    >(
+        &mut self,
+        scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES, MeshWords<S>>,
+        camera: &Camera<S>,
+        presentation: Presentation,
+    ) -> Result<(), FrameError<Self>> {
+        let dither = presentation.dither;
+        let trace = |y: u32, line: &mut [Rgb565], corners: &mut CornerRows| {
+            trace_row(scene, camera, y, dither, line, corners)
+        };
+        let shared: &Trace<'_> = &trace;
+        // Core 1 holds this address until it answers the end of the frame, below.
+        self.mailbox.send(&raw const shared as usize as u32);
+        let mut line = [Rgb565::BLACK; SIDE as usize];
+        let mut corners = [Corner::ZERO; CORNER_ROWS];
+        let mut order = presentation.order.rows(SIDE);
+        let mut drawn = Ok(());
+        while let Some((first, first_rows)) = order.next() {
+            let second = order.next();
+            if let Some((y, _)) = second {
+                self.mailbox.send(y);
+            }
+            let own = trace(first, &mut line, &mut corners)
+                .map_err(RenderError::for_target)
+                .and_then(|()| send_row(self.display(), &line, first, first_rows));
+            if let Some((y, rows)) = second {
+                let traced = self.mailbox.receive() == 1;
+                fence(Ordering::Acquire);
+                // SAFETY: core 1 has answered: it is done with its line until the next row.
+                let theirs = unsafe { &*CORE1_LINE.0.get() };
+                let sent = if traced {
+                    send_row(self.display(), theirs, y, rows)
+                } else {
+                    Err(RenderError::RowsOutOfRange {
+                        end: y.saturating_add(1),
+                        height: SIDE,
+                    })
+                };
+                drawn = drawn.and(own).and(sent);
+            } else {
+                drawn = drawn.and(own);
+            }
+        }
+        self.mailbox.send(END_OF_FRAME);
+        // Core 1 answers the end of the frame: `shared` may go.
+        while self.mailbox.receive() != END_OF_FRAME {}
+        drawn
+    }
+
+    fn report(&mut self, report: &Report<'_>) {
+        self.screen.report(report);
+    }
+
+    fn failed(&mut self, job: &Job<'_>, why: &dyn fmt::Display) {
+        self.screen.failed(job, why);
+    }
+
+    fn refused(&mut self, job: &Job<'_>, why: &dyn fmt::Display) {
+        self.screen.refused(job, why);
+    }
+}
