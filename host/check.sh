@@ -12,6 +12,9 @@ M4F=thumbv7em-none-eabihf
 M0=thumbv6m-none-eabi
 M33=thumbv8m.main-none-eabihf
 RV32=riscv32imac-unknown-none-elf
+# The harness, built once for every step that runs it (with the preview's window, which one
+# step needs: a second build without it would cost minutes).
+OBSCURA=(cargo run --release --locked -p obscura-host --features window --)
 # The firmware's configuration (obscura_scene::firmware): every scene, format and method.
 EVERYTHING=(OBSCURA_SCENES=whitted,shapes OBSCURA_FORMATS=i16f16,i20f12,i32f32,f32-approx,f32
     OBSCURA_VARIANTS=each)
@@ -62,12 +65,15 @@ cargo clippy -p obscura-host --all-targets --features window --locked -- -D warn
 step "clippy, core on a 32-bit target"
 cargo clippy -p obscura --target "$M0" --locked -- -D warnings
 
-step "clippy, the firmware on the Arm targets and RISC-V, and the two boards"
+step "clippy, the firmware on the Arm targets and RISC-V, and the three boards (the Pico 2's on both of its architectures)"
 for target in "$M4F" "$M0" "$RV32"; do
     env "${EVERYTHING[@]}" cargo clippy --release -p obscura-firmware -p obscura-qemu --target "$target" --locked -- -D warnings
 done
 cargo clippy --release -p obscura-black-pill --target "$M4F" --locked -- -D warnings
 cargo clippy --release -p obscura-pico --target "$M0" --locked -- -D warnings
+for target in "$M33" "$RV32"; do
+    cargo clippy --release -p obscura-pico2 --target "$target" --locked -- -D warnings
+done
 
 step "documentation, private items too (their links are checked as the public ones)"
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --locked --quiet --document-private-items
@@ -82,7 +88,7 @@ if cargo tree -p obscura -e normal --locked --prefix none | grep -E "cortex-m|st
 fi
 
 step "the firmware's build graph: the core and the scene crate, no desktop crate"
-for board in obscura-qemu obscura-black-pill obscura-pico; do
+for board in obscura-qemu obscura-black-pill obscura-pico obscura-pico2; do
     if cargo tree -p "$board" --target all -e normal,build --locked --prefix none \
         | grep -E "^(obscura-host|clap|plotters|rayon|image|indicatif) "; then
         echo "the firmware's build ($board) depends on a desktop crate (above)" >&2
@@ -90,11 +96,13 @@ for board in obscura-qemu obscura-black-pill obscura-pico; do
     fi
 done
 
-step "firmware for the ST7789 on an STM32F411 Black Pill and on a Raspberry Pi Pico, from a scene file, as the README builds them"
+step "firmware for the ST7789 on an STM32F411 Black Pill, a Raspberry Pi Pico and a Pico 2 (both architectures), from a scene file, as the README builds them"
 OBSCURA_SCENES=host/scenes/pyramid.toml OBSCURA_FORMATS=f32 cargo build --release -p obscura-black-pill --target "$M4F" --locked
 OBSCURA_SCENES=host/scenes/pyramid.toml OBSCURA_FORMATS=i16f16 cargo build --release -p obscura-pico --target "$M0" --locked
 OBSCURA_SCENES=host/scenes/pyramid.toml OBSCURA_SAMPLES=16 OBSCURA_ADAPTIVE_SAMPLES=true \
     cargo build --release -p obscura-pico --target "$M0" --locked
+OBSCURA_SCENES=host/scenes/pyramid.toml OBSCURA_FORMATS=f32 cargo build --release -p obscura-pico2 --target "$M33" --locked
+OBSCURA_SCENES=host/scenes/pyramid.toml OBSCURA_FORMATS=i16f16 cargo build --release -p obscura-pico2 --target "$RV32" --locked
 
 step "a scene the format cannot hold fails the firmware's build, at its line and column"
 if OBSCURA_SCENES=host/scenes/hostile/low-light.toml OBSCURA_FORMATS=i16f16 \
@@ -106,75 +114,75 @@ grep -F "low-light.toml:14:1: the scene cannot be built in i16f16" target/refuse
 
 for target in m4f m0; do
     step "firmware under QEMU ($target), bit for bit against the host, within its budget"
-    cargo run --release --locked -p obscura-host -- firmware --target "$target" \
+    "${OBSCURA[@]}" firmware --target "$target" \
         --scene whitted,shapes --format i16f16 --budget
-    cargo run --release --locked -p obscura-host -- firmware --target "$target" \
+    "${OBSCURA[@]}" firmware --target "$target" \
         --scene host/scenes/pyramid.toml --format auto --budget --profile
 done
 
 step "firmware under QEMU (m33 and rv32, the Pico 2's cores), bit for bit against the host, within its budget"
-cargo run --release --locked -p obscura-host -- firmware --target m33 \
+"${OBSCURA[@]}" firmware --target m33 \
     --scene whitted,shapes --format i16f16,f32 --budget
-cargo run --release --locked -p obscura-host -- firmware --target rv32 \
+"${OBSCURA[@]}" firmware --target rv32 \
     --scene whitted,shapes --format i16f16 --budget
 
 step "one scene in one format, under QEMU: within 32 KiB of flash, bit for bit against the host"
-cargo run --release --locked -p obscura-host -- firmware --target m0 --scene whitted \
+"${OBSCURA[@]}" firmware --target m0 --scene whitted \
     --format i16f16 --max-flash 32768
 for scene in whitted host/scenes/marbles.toml; do
-    cargo run --release --locked -p obscura-host -- firmware --target m4f --scene "$scene" \
+    "${OBSCURA[@]}" firmware --target m4f --scene "$scene" \
         --format f32 --max-flash 32768
 done
 
 step "firmware under QEMU (m4f), the other formats, methods, row order and dither, bit for bit against the host"
-cargo run --release --locked -p obscura-host -- firmware --target m4f --scene whitted,shapes \
+"${OBSCURA[@]}" firmware --target m4f --scene whitted,shapes \
     --format i16f16,i20f12 --sphere stable --triangle watertight --sqrt approx --rays stepped --bias exclude \
     --order progressive --dither ordered
-cargo run --release --locked -p obscura-host -- firmware --target m4f --scene whitted,shapes \
+"${OBSCURA[@]}" firmware --target m4f --scene whitted,shapes \
     --format i32f32,f32-approx,f32 --triangle moller-trumbore
 
 step "firmware under QEMU (m4f), four rays per pixel, bit for bit against the host"
-cargo run --release --locked -p obscura-host -- firmware --target m4f --scene whitted,shapes \
+"${OBSCURA[@]}" firmware --target m4f --scene whitted,shapes \
     --format i16f16,f32 --samples 4
 
 step "firmware under QEMU, adaptive anti-aliasing (corner rows on the stack), bit for bit against the host"
-cargo run --release --locked -p obscura-host -- firmware --target m4f --scene whitted \
+"${OBSCURA[@]}" firmware --target m4f --scene whitted \
     --format i16f16,f32 --samples 16 --adaptive-samples true
-cargo run --release --locked -p obscura-host -- firmware --target m0 --scene whitted \
+"${OBSCURA[@]}" firmware --target m0 --scene whitted \
     --format i16f16 --samples 4 --adaptive-samples true
 
 step "firmware under QEMU, a mesh through its hierarchy in flash, bit for bit against the host"
-cargo run --release --locked -p obscura-host -- firmware --target m4f --scene host/scenes/teapot.toml \
+"${OBSCURA[@]}" firmware --target m4f --scene host/scenes/teapot.toml \
     --format f32
-cargo run --release --locked -p obscura-host -- firmware --target m0 --scene host/scenes/teapot.toml \
+"${OBSCURA[@]}" firmware --target m0 --scene host/scenes/teapot.toml \
     --format i10f22
 
 step "firmware under QEMU (m4f), soft shadows from a disc light, bit for bit against the host"
-cargo run --release --locked -p obscura-host -- firmware --target m4f --scene soft --format i16f16
+"${OBSCURA[@]}" firmware --target m4f --scene soft --format i16f16
 
 step "firmware under QEMU (m4f), depth of field through a lens, bit for bit against the host"
-cargo run --release --locked -p obscura-host -- firmware --target m4f --scene focus --format i16f16
+"${OBSCURA[@]}" firmware --target m4f --scene focus --format i16f16
 
 step "firmware under QEMU, the 32-bit splits that hold a 240x240 scene, bit for bit against the host"
-cargo run --release --locked -p obscura-host -- firmware --target m4f --scene whitted,shapes \
+"${OBSCURA[@]}" firmware --target m4f --scene whitted,shapes \
     --format i12f20,i14f18,i18f14
-cargo run --release --locked -p obscura-host -- firmware --target m0 --scene whitted \
+"${OBSCURA[@]}" firmware --target m0 --scene whitted \
     --format i12f20 --sqrt approx --bias exclude
 for target in m4f m0; do
-    cargo run --release --locked -p obscura-host -- firmware --target "$target" \
+    "${OBSCURA[@]}" firmware --target "$target" \
         --scene host/scenes/tabletop.toml --format i10f22
 done
 
 step "the preview, headless, against the firmware's frame under QEMU, byte for byte"
-cargo run --release --locked -p obscura-host -- firmware --target m4f \
+"${OBSCURA[@]}" firmware --target m4f \
     --scene host/scenes/pyramid.toml --format i16f16 --order progressive --dither ordered
-cargo run --release --locked -p obscura-host --features window -- preview \
+"${OBSCURA[@]}" preview \
     host/scenes/pyramid.toml --format i16f16 --order progressive --dither ordered --headless \
     -o target/preview.png
 cmp target/preview.png out/firmware/m4f/pyramid-i16f16-lecture.png
 
 step "fuzz: random scenes for 150 s from a fixed seed, held to every promise"
-cargo run --release --locked -p obscura-host -- fuzz --seconds 150 --seed 1 --out-dir target/fuzz
+"${OBSCURA[@]}" fuzz --seconds 150 --seed 1 --out-dir target/fuzz
 
 step "tests"
 cargo test --locked

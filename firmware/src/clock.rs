@@ -1,32 +1,42 @@
-//! Time measured in ticks: on Arm, SysTick's of the core clock — under QEMU with `-icount
-//! shift=0` every instruction advances the virtual clock by one nanosecond, so ticks count
-//! instructions exactly and repeatably (one tick of a 168 MHz core is 1000/168 instructions) —;
-//! on RISC-V, the instructions retired themselves (`minstret`).
+//! Time measured in ticks of the core clock: on Arm SysTick's, on RISC-V `mcycle`'s. Under QEMU
+//! with `-icount shift=0` every instruction advances the virtual clock by one nanosecond, so
+//! ticks count instructions exactly and repeatably (one tick of a 168 MHz core is 1000/168
+//! instructions; RISC-V's `mcycle` reads the instructions themselves); on a board they count
+//! cycles.
 
 #[cfg(target_arch = "riscv32")]
 pub use riscv_clock::Clock;
 #[cfg(target_arch = "arm")]
 pub use systick::Clock;
 
-/// On RISC-V: the instructions retired (`minstret`), which need no timer.
+/// On RISC-V: the cycle counter, `mcycle`, which needs no timer.
 #[cfg(target_arch = "riscv32")]
 mod riscv_clock {
-    /// Instructions retired, read from `minstret`.
+    /// Cycles, read from `mcycle`.
     #[derive(Debug)]
     pub struct Clock;
 
     impl Clock {
-        /// The counter runs from reset.
+        /// Lets the cycle counter run: Hazard3 (the RP2350's) resets with it inhibited.
+        #[allow(
+            unsafe_code,
+            reason = "a write to mcountinhibit, which only stops or starts the counters"
+        )]
         pub fn start() -> Self {
+            // SAFETY: clearing the inhibit bits of mcycle and minstret affects nothing else.
+            unsafe {
+                riscv::register::mcountinhibit::clear_cy();
+                riscv::register::mcountinhibit::clear_ir();
+            }
             Self
         }
 
-        /// Instructions retired since reset.
+        /// Cycles since reset.
         pub fn ticks(&self) -> u64 {
-            riscv::register::minstret::read64()
+            riscv::register::mcycle::read64()
         }
 
-        /// Runs `work` and returns its result with the instructions it took.
+        /// Runs `work` and returns its result with the cycles it took.
         pub fn measure<R>(&self, work: impl FnOnce() -> R) -> (R, u64) {
             let start = self.ticks();
             let result = work();
