@@ -47,8 +47,20 @@ impl Core {
         match self {
             Self::CortexM0Plus => "Cortex-M0+",
             Self::CortexM4 => "Cortex-M4",
-            Self::CortexM33 => "Cortex-M33 (as the Cortex-M4)",
+            Self::CortexM33 => "Cortex-M33",
             Self::Hazard3 => "Hazard3",
+        }
+    }
+
+    /// Whose documented timings price it, as the tables say.
+    pub fn timings(self) -> &'static str {
+        match self {
+            Self::CortexM0Plus => "the Cortex-M0+'s documented timings",
+            Self::CortexM4 => "the Cortex-M4's documented timings",
+            Self::CortexM33 => {
+                "the Cortex-M4's documented timings (Arm publishes none for the Cortex-M33)"
+            }
+            Self::Hazard3 => "Hazard3's documented timings",
         }
     }
 
@@ -185,6 +197,8 @@ pub struct Estimate {
     pub cycles: u64,
     /// Per class, in [`Class`]'s order: instructions and cycles (the classes that ran).
     pub by_class: Vec<(Class, u64, u64)>,
+    /// Per mnemonic, the most cycles first: instructions and cycles.
+    pub by_mnemonic: Vec<(String, u64, u64)>,
 }
 
 /// The cycles of the instructions `counted` on `core`, each address's instruction in
@@ -195,7 +209,11 @@ pub fn estimate(
     counted: &BTreeMap<u64, Count>,
 ) -> Estimate {
     let mut by_class: BTreeMap<Class, (u64, u64)> = BTreeMap::new();
+    let mut by_mnemonic: BTreeMap<&str, (u64, u64)> = BTreeMap::new();
     for (&address, &count) in counted {
+        let mnemonic = instructions
+            .get(&address)
+            .map_or("?", |i| i.mnemonic.as_str());
         let (class, cycles) = match instructions.get(&address) {
             Some(instruction) => {
                 let next = instructions.get(&(address + instruction.size));
@@ -210,10 +228,19 @@ pub fn estimate(
             }
             None => (Class::Alu, count.executed),
         };
-        let entry = by_class.entry(class).or_default();
-        entry.0 += count.executed;
-        entry.1 += cycles;
+        for entry in [
+            by_class.entry(class).or_default(),
+            by_mnemonic.entry(mnemonic).or_default(),
+        ] {
+            entry.0 += count.executed;
+            entry.1 += cycles;
+        }
     }
+    let mut by_mnemonic: Vec<(String, u64, u64)> = by_mnemonic
+        .into_iter()
+        .map(|(m, (n, cycles))| (m.to_owned(), n, cycles))
+        .collect();
+    by_mnemonic.sort_by(|a, b| b.2.cmp(&a.2).then_with(|| a.0.cmp(&b.0)));
     Estimate {
         instructions: by_class.values().map(|(n, _)| n).sum(),
         cycles: by_class.values().map(|(_, c)| c).sum(),
@@ -221,6 +248,7 @@ pub fn estimate(
             .into_iter()
             .map(|(class, (n, cycles))| (class, n, cycles))
             .collect(),
+        by_mnemonic,
     }
 }
 

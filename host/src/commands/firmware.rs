@@ -351,7 +351,7 @@ fn print_budget(
 const PROFILED_FUNCTIONS: usize = 12;
 
 /// Where the run's instructions went, per pixel drawn: by phase, then the functions that took
-/// most. Fails when the plugin counted fewer instructions than SysTick did for the frames alone.
+/// most. Fails when the plugin counted fewer instructions than the clock did for the frames alone.
 fn print_profile(target: Target, profile: &Profile, reports: &[Report], flash: u64) -> Result<()> {
     let pixels: u64 = reports
         .iter()
@@ -360,7 +360,7 @@ fn print_profile(target: Target, profile: &Profile, reports: &[Report], flash: u
     let frames: u64 = reports.iter().map(|r| r.instructions_per_frame).sum();
     if profile.total < frames {
         bail!(
-            "QEMU's plugin counted {} instructions in the whole run, fewer than SysTick's {frames} \
+            "QEMU's plugin counted {} instructions in the whole run, fewer than the clock's {frames} \
              for the frames alone: the profile is wrong",
             profile.total
         );
@@ -369,7 +369,7 @@ fn print_profile(target: Target, profile: &Profile, reports: &[Report], flash: u
     let share = |n: u64| 100.0 * n as f64 / profile.total.max(1) as f64;
     say!(
         "\nwhere the instructions go on {} (QEMU's count at each address, by function; \
-         per pixel of the {pixels} drawn; the frames alone, by SysTick: {:.0} per pixel):\n",
+         per pixel of the {pixels} drawn; the frames alone, by the clock: {:.0} per pixel):\n",
         target.name(),
         per_pixel(frames)
     )?;
@@ -435,9 +435,10 @@ fn print_cycles(target: Target, counts: &Counts, reports: &[Report]) -> Result<(
     let estimate = cycles::estimate(core, &counts.instructions, &frames);
     let per_pixel = |n: u64| n as f64 / pixels.max(1) as f64;
     say!(
-        "\nwhere the cycles go on the {} (the frames alone, each instruction by its documented \
-         timing; per pixel of the {pixels} drawn):\n",
-        core.name()
+        "\nwhere the cycles go on the {} (the frames alone, each instruction weighed by {}; per \
+         pixel of the {pixels} drawn), by class of instruction:\n",
+        core.name(),
+        core.timings()
     )?;
     say!(
         "| instructions | per pixel | cycles per pixel | cycles per instruction | share of cycles |"
@@ -456,6 +457,13 @@ fn print_cycles(target: Target, counts: &Counts, reports: &[Report]) -> Result<(
         row(class.name(), n, c)?;
     }
     row("all", estimate.instructions, estimate.cycles)?;
+    say!(
+        "\n| instruction (the most cycles first) | per pixel | cycles per pixel | cycles per instruction | share of cycles |"
+    )?;
+    say!("|---|---:|---:|---:|---:|")?;
+    for (mnemonic, n, c) in estimate.by_mnemonic.iter().take(PROFILED_FUNCTIONS) {
+        row(&format!("`{mnemonic}`"), *n, *c)?;
+    }
     Ok(())
 }
 
@@ -578,10 +586,9 @@ fn print_table(target: Target, reports: &[Report]) -> io::Result<()> {
         )?;
     }
     say!(
-        "(instructions: QEMU's exact count; cycles: each instruction weighed by the {}'s \
-         documented timings, with no wait states — an estimate; \"fixed\": the host's capacities \
-         of 64 objects, 16 lights, 16 rays)",
-        Core::of(target).name()
+        "(instructions: QEMU's exact count; cycles: an estimate, each instruction weighed by {} \
+         with no wait states; \"fixed\": the host's capacities of 64 objects, 16 lights, 16 rays)",
+        Core::of(target).timings()
     )?;
     let board = target.board();
     for r in reports {
