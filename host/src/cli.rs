@@ -36,6 +36,9 @@ pub enum Command {
     Render(RenderArgs),
     /// Render a scene in a format and in f64, and report how far apart they are.
     Compare(CompareArgs),
+    /// Render a scene's camera path (its [animation] table) to an animated GIF, every frame
+    /// built and proven for its own camera and measured against f64.
+    Animate(AnimateArgs),
     /// Time single-thread renders per format against f32, and the speed-up of more threads.
     Bench(BenchArgs),
     /// Build the firmware, run it under QEMU, and check its frames against the host's, bit for
@@ -177,6 +180,20 @@ pub struct CompareArgs {
     pub converged: Option<u16>,
 }
 
+/// `obscura animate`.
+#[derive(Debug, Args)]
+pub struct AnimateArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// The animated GIF to write, looping at the path's `fps`.
+    #[arg(short, long, default_value = "out/animation.gif")]
+    pub output: PathBuf,
+    /// Also write one row per frame (its PSNR against f64 and the other figures `compare
+    /// --json` gives of accuracy) as JSON to this file.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+}
+
 /// `obscura bench`.
 #[derive(Debug, Args)]
 pub struct BenchArgs {
@@ -206,8 +223,9 @@ pub struct BenchArgs {
 /// `obscura firmware`.
 #[derive(Debug, Args)]
 pub struct FirmwareArgs {
-    /// The microcontroller: m4f (Cortex-M4F, QEMU's netduinoplus2) or m0 (Cortex-M0, QEMU's
-    /// microbit).
+    /// The microcontroller: m4f (Cortex-M4F, QEMU's netduinoplus2), m0 (Cortex-M0, QEMU's
+    /// microbit), m33 (the Pico 2's Cortex-M33, QEMU's mps2-an505) or rv32 (the Pico 2's
+    /// Hazard3 RISC-V cores, QEMU's virt).
     #[arg(long, value_enum)]
     pub target: Target,
     /// What the firmware draws: the scenes, formats, methods, sampling and presentation (see

@@ -807,3 +807,74 @@ fn every_command_writes_into_out_unless_told_otherwise() {
         assert!(dir.join("out").join(written).is_file(), "out/{written}");
     }
 }
+
+#[test]
+fn animate_writes_a_looping_gif_and_a_row_per_frame_the_worst_last() {
+    let dir = scratch("animate");
+    let (gif, json) = (dir.join("orbit.gif"), dir.join("orbit.json"));
+    let orbit = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/orbit.toml");
+    let output = obscura(&[
+        "animate",
+        orbit,
+        "--format",
+        "i16f16",
+        "--size",
+        "48x48",
+        "-o",
+        gif.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let decoder = image::codecs::gif::GifDecoder::new(std::io::BufReader::new(
+        std::fs::File::open(&gif).unwrap(),
+    ))
+    .unwrap();
+    let frames = image::AnimationDecoder::into_frames(decoder)
+        .collect_frames()
+        .unwrap();
+    assert_eq!(frames.len(), 16);
+    assert_eq!(frames[0].buffer().dimensions(), (48, 48));
+    let rows = read_json(&json);
+    let rows = rows.as_array().unwrap();
+    assert_eq!(rows.len(), 16);
+    let worst = rows
+        .iter()
+        .min_by(|a, b| {
+            a["psnr_db"]
+                .as_f64()
+                .unwrap()
+                .total_cmp(&b["psnr_db"].as_f64().unwrap())
+        })
+        .unwrap();
+    let text = stdout(&output);
+    let last = text.lines().rfind(|l| !l.starts_with("wrote")).unwrap();
+    assert!(
+        last.starts_with(&format!("the worst frame: {} of orbit", worst["frame"])),
+        "{text}"
+    );
+    // A scene without a path says how to give it one; a frame the format cannot hold is named.
+    let still = obscura(&["animate", "whitted", "-o", gif.to_str().unwrap()]);
+    assert!(
+        stderr(&still).contains("has no camera path"),
+        "{}",
+        stderr(&still)
+    );
+    let coarse = obscura(&[
+        "animate",
+        orbit,
+        "--format",
+        "i20f12",
+        "--size",
+        "48x48",
+        "-o",
+        gif.to_str().unwrap(),
+    ]);
+    assert!(!coarse.status.success());
+    assert!(
+        stderr(&coarse)
+            .contains("frame 8 of orbit's 16 frames: the scene cannot be built in i20f12"),
+        "{}",
+        stderr(&coarse)
+    );
+}

@@ -43,6 +43,13 @@ fn the_desktop_quick_starts_run_as_written() {
         dir.join("ball.toml"),
     )
     .unwrap();
+    // The camera path's scene, where the command names it from the workspace's root.
+    std::fs::create_dir_all(dir.join("host/scenes")).unwrap();
+    std::fs::copy(
+        concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/orbit.toml"),
+        dir.join("host/scenes/orbit.toml"),
+    )
+    .unwrap();
     let sections = ["Quick start: on the desktop", "Quick start: your own scene"];
     let commands: Vec<String> = sections
         .iter()
@@ -72,7 +79,12 @@ fn the_desktop_quick_starts_run_as_written() {
             String::from_utf8_lossy(&output.stderr)
         );
     }
-    for written in ["out/whitted.png", "out/preview.png", "ball.png"] {
+    for written in [
+        "out/whitted.png",
+        "out/preview.png",
+        "ball.png",
+        "orbit.gif",
+    ] {
         assert!(dir.join(written).is_file(), "{written}");
     }
 }

@@ -3,6 +3,7 @@
 //! parsed and checked for vectors of three here; the core's scene build then checks what it
 //! says, and [`NamedScene::locate`] points its refusals at the file's line and column.
 
+use crate::animation::AnimationError;
 use crate::mesh_file;
 use crate::meshes::OwnedMeshes;
 use crate::object::{FileObject, FileShape};
@@ -181,6 +182,11 @@ pub fn parse(path: &Path, text: &str) -> Result<OwnedScene> {
     }
     let scene: OwnedScene<FileObject> =
         toml::from_str(text).map_err(|e| at(e.span(), e.message().to_owned()))?;
+    if let Some(animation) = &scene.animation {
+        animation
+            .check(&scene.camera)
+            .map_err(|e| at(animation_span(table.get_ref(), &e), e.message))?;
+    }
     read_meshes(path, scene, |i| {
         let object = element(table.get_ref(), "objects", i)?;
         let DeValue::Table(object) = object.get_ref() else {
@@ -292,6 +298,17 @@ fn wrong_in(value: &DeValue<'_>, span: Range<usize>, path: &str) -> Option<(Rang
 }
 
 impl NamedScene {
+    /// The still scene of `frame` of its camera path ([`OwnedScene::at_frame`]), named
+    /// `NAME-frame-K`, its refusals placed in the same file.
+    #[must_use]
+    pub fn at_frame(&self, frame: u16) -> Self {
+        Self {
+            name: format!("{}-frame-{frame}", self.name),
+            scene: self.scene.at_frame(frame),
+            source: self.source.clone(),
+        }
+    }
+
     /// The file the scene was read from, if it was.
     #[must_use]
     pub fn path(&self) -> Option<&Path> {
@@ -361,6 +378,26 @@ fn span_of(root: &DeTable<'_>, error: &SceneError) -> Option<Range<usize>> {
         }
     }
     span
+}
+
+/// Where an animation's fault is in the file's `root` table: the field of its key, or of the
+/// `[animation]` table itself.
+fn animation_span(root: &DeTable<'_>, error: &AnimationError) -> Option<Range<usize>> {
+    let animation = entry(root, "animation")?;
+    let DeValue::Table(table) = animation.get_ref() else {
+        return Some(animation.span());
+    };
+    let (holder, span) = match error.key {
+        Some(i) => {
+            let key = element(table, "keys", i)?;
+            match key.get_ref() {
+                DeValue::Table(key_table) => (key_table, key.span()),
+                _ => return Some(key.span()),
+            }
+        }
+        None => (table, animation.span()),
+    };
+    Some(entry(holder, error.field).map_or(span, Spanned::span))
 }
 
 /// The value of `key` in `table`.
@@ -584,6 +621,64 @@ mod tests {
         let error = obscura::Scene::<f32, 4, 4, 8>::build(&parse(&wide).unwrap().desc())
             .expect_err("beyond the world");
         assert!(matches!(error, SceneError::OutsideWorld { .. }), "{error}");
+    }
+
+    #[test]
+    fn a_camera_path_is_read_and_its_faults_placed_at_their_key() {
+        let path = |keys: &str| format!("{MINIMAL}\n[animation]\nframes = 8\nfps = 4\n{keys}");
+        let key = |frame: u16, x: f32| {
+            format!(
+                "\n[[animation.keys]]\nframe = {frame}\neye = [{x}, 1.0, -5.0]\n\
+                 look_at = [0.0, 1.0, 0.0]\n"
+            )
+        };
+        let text = path(&(key(2, 3.0) + &key(5, -3.0)));
+        let scene = parse(&text).expect("parses");
+        assert_eq!(scene.frames(), 8);
+        // Frame 0 is the [camera] table's, and a key's frame its eye.
+        assert_eq!(scene.desc().camera, scene.camera);
+        assert_eq!(scene.camera_at(2).eye, [3.0, 1.0, -5.0]);
+        assert_eq!(named(&text).at_frame(5).scene.camera.eye, [-3.0, 1.0, -5.0]);
+        assert_eq!(scene.at_frame(5).animation, None);
+        let line_of = |text: &str, error: anyhow::Error| {
+            let located = error
+                .downcast_ref::<Located>()
+                .map_or_else(String::new, ToString::to_string);
+            let line: usize = located
+                .split(':')
+                .nth(1)
+                .unwrap_or("0")
+                .parse()
+                .unwrap_or(0);
+            text.lines()
+                .nth(line.saturating_sub(1))
+                .unwrap_or("")
+                .trim()
+                .to_owned()
+        };
+        let beyond = path(&(key(2, 3.0) + &key(8, -3.0)));
+        let error = parse(&beyond).expect_err("a key beyond the loop");
+        assert!(
+            format!("{error:#}").contains("frames run from 0 to 7"),
+            "{error:#}"
+        );
+        assert_eq!(line_of(&beyond, error), "frame = 8");
+        let twice = path(&(key(2, 3.0) + &key(2, -3.0)));
+        let error = parse(&twice).expect_err("two keys on a frame");
+        assert!(
+            format!("{error:#}").contains("key 1 is there already"),
+            "{error:#}"
+        );
+        let blind = path(&key(4, 0.0).replace("eye = [0, 1.0, -5.0]", "eye = [0.0, 1.0, 0.0]"));
+        let error = parse(&blind).expect_err("an eye on its look-at point");
+        assert!(format!("{error:#}").contains("at frame 4"), "{error:#}");
+        assert_eq!(line_of(&blind, error), "eye = [0.0, 1.0, 0.0]");
+        let still = format!(
+            "{MINIMAL}\n[animation]\nframes = 0\nfps = 4\n{}",
+            key(0, 1.0)
+        );
+        let error = parse(&still).expect_err("no frames");
+        assert_eq!(line_of(&still, error), "frames = 0");
     }
 
     #[test]

@@ -21,6 +21,7 @@
 #[doc = include_str!("../../docs/scene-files.md")]
 struct SceneFilesChapter;
 
+mod animation;
 mod file;
 pub mod firmware;
 mod format;
@@ -30,6 +31,7 @@ mod object;
 mod owned;
 mod settings;
 
+pub use animation::{Animation, AnimationError, Key};
 pub use file::{Located, MAX_FILE_BYTES, NamedScene, load, parse};
 pub use format::{Format, FormatJob};
 pub use mesh_file::{CornerNormals, obj_text};

@@ -2,6 +2,7 @@
 //! can make scenes at run time (scene files, stress cases, rescaled copies) and lend them to
 //! the core.
 
+use crate::animation::Animation;
 use crate::mesh_file::MeshFile;
 use crate::meshes::OwnedMeshes;
 use crate::object::{FileObject, FileShape};
@@ -47,6 +48,9 @@ pub struct OwnedScene<O = ObjectDesc> {
     /// See [`SceneDesc::adaptive_shadows`].
     #[serde(default)]
     pub adaptive_shadows: bool,
+    /// A camera path, the `[animation]` table: without one, the scene is a still picture.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub animation: Option<Animation>,
 }
 
 // A key left out takes the core's default ([`SceneDesc::DEFAULT`]).
@@ -106,7 +110,20 @@ impl<O> OwnedScene<O> {
             adaptive_samples: self.adaptive_samples,
             shadow_samples: self.shadow_samples,
             adaptive_shadows: self.adaptive_shadows,
+            animation: self.animation,
         })
+    }
+
+    /// The frames of its camera path (1 for a still picture).
+    pub fn frames(&self) -> u16 {
+        self.animation.as_ref().map_or(1, |a| a.frames)
+    }
+
+    /// The camera of `frame` of its path (the `[camera]` table's for a still picture).
+    pub fn camera_at(&self, frame: u16) -> CameraDesc {
+        self.animation
+            .as_ref()
+            .map_or(self.camera, |a| a.camera(&self.camera, frame))
     }
 }
 
@@ -126,13 +143,24 @@ impl OwnedScene {
             adaptive_samples: desc.adaptive_samples,
             shadow_samples: desc.shadow_samples,
             adaptive_shadows: desc.adaptive_shadows,
+            animation: None,
         }
     }
 
-    /// The description, borrowing the lists.
+    /// The still scene of `frame` of its camera path: that frame's camera, no path.
+    #[must_use]
+    pub fn at_frame(&self, frame: u16) -> Self {
+        Self {
+            camera: self.camera_at(frame),
+            animation: None,
+            ..self.clone()
+        }
+    }
+
+    /// The description, borrowing the lists: frame 0's, for a scene with a camera path.
     pub fn desc(&self) -> SceneDesc<'_> {
         SceneDesc {
-            camera: self.camera,
+            camera: self.camera_at(0),
             objects: &self.objects,
             meshes: self.meshes.desc(),
             lights: &self.lights,
@@ -254,6 +282,19 @@ impl OwnedScene {
             },
             solid @ BackgroundDesc::Solid(_) => solid,
         };
+        let animation = self.animation.as_ref().map(|animation| Animation {
+            keys: animation
+                .keys
+                .iter()
+                .map(|key| crate::Key {
+                    eye: position(key.eye),
+                    look_at: position(key.look_at),
+                    up: key.up.map(&direction),
+                    ..*key
+                })
+                .collect(),
+            ..animation.clone()
+        });
         Self {
             camera: CameraDesc {
                 eye: position(self.camera.eye),
@@ -263,12 +304,13 @@ impl OwnedScene {
                 focus_distance: self.camera.focus_distance.map(&length),
                 ..self.camera
             },
+            animation,
             objects,
             meshes: self.meshes.moved(&position, &direction),
             lights,
             background,
             far: length(self.far),
-            ..*self
+            ..self.clone()
         }
     }
 }

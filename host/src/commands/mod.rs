@@ -1,6 +1,7 @@
 //! One module per subcommand; this one dispatches and holds what they share.
 
 mod analyze;
+mod animate;
 mod bench;
 mod chart;
 mod compare;
@@ -40,6 +41,7 @@ pub fn run(command: Command) -> Result<()> {
         Command::Analyze(args) => analyze::run(&args),
         Command::Render(args) => render::run(&args),
         Command::Compare(args) => compare::run(&args),
+        Command::Animate(args) => animate::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::Firmware(args) => firmware::run(&args),
         Command::Preview(args) => preview::run(&args),

@@ -168,6 +168,7 @@ impl Generator {
             adaptive_samples: false,
             shadow_samples: 1,
             adaptive_shadows: false,
+            animation: None,
         };
         let size = self.size();
         // Drawn last, so that every other draw is what it was before scenes had an up.

@@ -1,0 +1,233 @@
+//! `obscura animate`: a scene's camera path, every frame built and proven for its own camera,
+//! rendered in a format and in f64 and measured, and written as an animated GIF at the path's
+//! pace.
+
+use crate::analysis::{Analysis, Choice, Pick, pick};
+use crate::cli::AnimateArgs;
+use crate::metrics::{Accuracy, accuracy};
+use crate::output::{self, say};
+use crate::render::{Request, prepare, prepare_reference};
+use anyhow::{Context, Result, bail};
+use image::codecs::gif::{GifEncoder, Repeat};
+use image::{Delay, Frame, RgbImage};
+use indicatif::{ProgressBar, ProgressStyle};
+use obscura::Methods;
+use obscura_scene::{Format, FormatChoice, NamedScene};
+use rayon::prelude::*;
+use serde::Serialize;
+use std::io::IsTerminal;
+
+/// One frame's figures, as printed and written to JSON: `compare --json`'s accuracy columns.
+#[derive(Debug, Serialize)]
+struct FrameReport {
+    frame: u16,
+    format: &'static str,
+    reference: &'static str,
+    scene: String,
+    width: u32,
+    height: u32,
+    /// `null` in JSON when the images are identical (infinite PSNR).
+    psnr_db: f64,
+    mean_abs_error: f64,
+    max_abs_error: u8,
+    differing_pixels_pct: f64,
+    object_mismatch_pct: f64,
+}
+
+pub fn run(args: &AnimateArgs) -> Result<()> {
+    output::check_file(&args.output)?;
+    if let Some(path) = &args.json {
+        output::check_file(path)?;
+    }
+    super::on_scene(&args.scene.scene, &args.scene.sampling, |named| {
+        animate(args, named)
+    })
+}
+
+fn animate(args: &AnimateArgs, named: &NamedScene) -> Result<()> {
+    let Some(animation) = &named.scene.animation else {
+        bail!(
+            "{} has no camera path: add an [animation] table with its frames, fps and \
+             [[animation.keys]] (docs/scene-files.md)",
+            named.name
+        );
+    };
+    let frames: Vec<NamedScene> = (0..animation.frames).map(|k| named.at_frame(k)).collect();
+    let methods = args.scene.methods.methods();
+    let format = format_of_every_frame(args, &frames, methods)?;
+    let (width, height) = args.scene.size;
+    let bar = progress(&named.name, format, frames.len());
+    let rendered = (0..animation.frames)
+        .into_par_iter()
+        .zip(frames.par_iter())
+        .map(|(k, frame)| {
+            let drawn = render_frame(args, frame, k, format, methods);
+            bar.inc(1);
+            drawn.with_context(|| format!("frame {k} of {}'s {} frames", named.name, frames.len()))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    bar.finish_and_clear();
+    write_gif(args, &rendered, animation.fps)?;
+    let reports: Vec<FrameReport> = rendered
+        .into_iter()
+        .zip(0_u16..)
+        .map(|((_, accuracy), frame)| FrameReport {
+            frame,
+            format: format.name(),
+            reference: Format::F64.name(),
+            scene: named.name.clone(),
+            width,
+            height,
+            psnr_db: accuracy.psnr_db,
+            mean_abs_error: accuracy.mean_abs_error,
+            max_abs_error: accuracy.max_abs_error,
+            differing_pixels_pct: accuracy.differing_pixels_pct,
+            object_mismatch_pct: accuracy.object_mismatch_pct,
+        })
+        .collect();
+    print_reports(&reports, animation.fps, &args.output)?;
+    if let Some(path) = &args.json {
+        let text = serde_json::to_string_pretty(&reports)?;
+        std::fs::write(path, text + "\n")
+            .with_context(|| format!("cannot write {}", path.display()))?;
+        say!("wrote {}", path.display())?;
+    }
+    Ok(())
+}
+
+/// The format every frame is drawn in: the one given, or with `auto` the cheapest that holds
+/// every frame and reaches the target on the worst.
+fn format_of_every_frame(
+    args: &AnimateArgs,
+    frames: &[NamedScene],
+    methods: Methods,
+) -> Result<Format> {
+    let FormatChoice::Given(format) = args.scene.format else {
+        let size = args.scene.size;
+        let analyses = frames
+            .iter()
+            .map(|frame| Analysis::fits(&frame.scene, methods, size.0, size.1))
+            .collect::<Result<Vec<_>>>()?;
+        let pairs: Vec<_> = frames.iter().map(|f| &f.scene).zip(&analyses).collect();
+        let auto = &args.scene.auto;
+        let picked = pick(&pairs, methods, size, auto.cost_on, auto.target_psnr, false)?;
+        let Choice::Reaches(Pick {
+            format, psnr_db, ..
+        }) = &picked
+        else {
+            let why = picked.shortfall(auto.target_psnr).unwrap_or_default();
+            bail!("for every frame of the path: {why}");
+        };
+        eprintln!(
+            "--format auto: {format} is the cheapest on {} that reaches {} dB on every frame \
+             (its worst: {psnr_db:.1} dB)",
+            auto.cost_on, auto.target_psnr
+        );
+        return Ok(*format);
+    };
+    Ok(format)
+}
+
+/// Frame `k`, built and proven for its own camera, drawn in `format` and in f64, and how far
+/// apart the two are; refused where `format` strays from f64 as `compare` refuses.
+fn render_frame(
+    args: &AnimateArgs,
+    frame: &NamedScene,
+    k: u16,
+    format: Format,
+    methods: Methods,
+) -> Result<(RgbImage, Accuracy)> {
+    let (width, height) = args.scene.size;
+    let desc = frame.scene.desc();
+    let request = Request {
+        desc: &desc,
+        width,
+        height,
+        methods,
+    };
+    let contender = prepare(format, &request)?;
+    let baseline = prepare_reference(&request)?;
+    let image = contender.render(1, None)?;
+    let truth = baseline.render(1, None)?;
+    if args.scene.format == FormatChoice::Given(format) {
+        let refusal = &args.scene.refusal;
+        super::refuse_useless(refusal, format, &frame.scene, methods, &image, Some(&truth))
+            .with_context(|| format!("frame {k}"))?;
+    }
+    let measured = accuracy(
+        &image,
+        &truth,
+        &contender.object_map()?,
+        &baseline.object_map()?,
+    );
+    Ok((image, measured))
+}
+
+/// A bar of `frames` frames on standard error when it is a terminal.
+fn progress(name: &str, format: Format, frames: usize) -> ProgressBar {
+    if !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(frames as u64);
+    let style = ProgressStyle::with_template("{msg}: {bar:40} {pos}/{len} frames {eta}")
+        .unwrap_or_else(|_| ProgressStyle::default_bar());
+    bar.set_style(style);
+    bar.set_message(format!("{name} in {format}"));
+    bar
+}
+
+/// Writes the frames as a GIF that loops for ever at `fps` frames a second.
+fn write_gif(args: &AnimateArgs, frames: &[(RgbImage, Accuracy)], fps: u16) -> Result<()> {
+    let path = &args.output;
+    let file =
+        std::fs::File::create(path).with_context(|| format!("cannot write {}", path.display()))?;
+    let mut encoder = GifEncoder::new_with_speed(std::io::BufWriter::new(file), 10);
+    encoder.set_repeat(Repeat::Infinite)?;
+    let delay = Delay::from_numer_denom_ms(1000, u32::from(fps));
+    for (image, _) in frames {
+        let rgba = image::DynamicImage::ImageRgb8(image.clone()).into_rgba8();
+        encoder
+            .encode_frame(Frame::from_parts(rgba, 0, 0, delay))
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    Ok(())
+}
+
+/// One line per frame, then the worst.
+fn print_reports(reports: &[FrameReport], fps: u16, gif: &std::path::Path) -> Result<()> {
+    say!(
+        "| frame | PSNR against f64 (dB) | mean abs error | max abs error | differing pixels | object mismatch |"
+    )?;
+    say!("|---:|---:|---:|---:|---:|---:|")?;
+    for r in reports {
+        say!(
+            "| {} | {:.2} | {:.3} | {} | {:.2} % | {:.3} % |",
+            r.frame,
+            r.psnr_db,
+            r.mean_abs_error,
+            r.max_abs_error,
+            r.differing_pixels_pct,
+            r.object_mismatch_pct
+        )?;
+    }
+    say!(
+        "wrote {} ({} frames at {fps} a second)",
+        gif.display(),
+        reports.len()
+    )?;
+    if let Some(worst) = reports
+        .iter()
+        .min_by(|a, b| a.psnr_db.total_cmp(&b.psnr_db))
+    {
+        say!(
+            "the worst frame: {} of {} in {}, {:.2} dB against f64 at {}x{}",
+            worst.frame,
+            worst.scene,
+            worst.format,
+            worst.psnr_db,
+            worst.width,
+            worst.height
+        )?;
+    }
+    Ok(())
+}
