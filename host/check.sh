@@ -134,6 +134,11 @@ for scene in whitted host/scenes/marbles.toml; do
         --format f32 --max-flash 32768
 done
 
+step "a camera path's every frame under QEMU (m0 and m4f), bit for bit against the host"
+for target in m0 m4f; do
+    "${OBSCURA[@]}" firmware --target "$target" --scene host/scenes/orbit.toml --format i16f16
+done
+
 step "firmware under QEMU (m4f), the other formats, methods, row order and dither, bit for bit against the host"
 "${OBSCURA[@]}" firmware --target m4f --scene whitted,shapes \
     --format i16f16,i20f12 --sphere stable --triangle watertight --sqrt approx --rays stepped --bias exclude \

@@ -67,10 +67,12 @@ pub trait Backend {
 }
 
 /// One frame to draw.
-#[derive(Debug)]
+#[derive(Clone, Copy, Debug)]
 pub struct Job<'a> {
     /// The scene's name.
     pub scene: &'a str,
+    /// The frame of the scene's camera path, if it has one.
+    pub frame: Option<u16>,
     /// The format's name.
     pub format: &'a str,
     /// The methods, as they are spelled everywhere ([`obscura::Methods`]'s `Display`: the
@@ -78,6 +80,28 @@ pub struct Job<'a> {
     pub methods: &'a str,
     /// The order of its rows and its dither.
     pub presentation: Presentation,
+}
+
+impl Job<'_> {
+    /// What the frame is called: the scene's name, and a camera path's frame as `NAME-frame-K`
+    /// (the harness's name for it, `obscura_scene::NamedScene::at_frame`).
+    pub fn name(&self) -> JobName<'_> {
+        JobName(self)
+    }
+}
+
+/// A frame's name ([`Job::name`]).
+#[derive(Debug)]
+pub struct JobName<'a>(&'a Job<'a>);
+
+impl fmt::Display for JobName<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.0.scene)?;
+        match self.0.frame {
+            Some(frame) => write!(f, "-frame-{frame}"),
+            None => Ok(()),
+        }
+    }
 }
 
 /// The measurements of one frame.
@@ -95,12 +119,81 @@ pub struct Report<'a> {
     pub fixed_storage_bytes: usize,
 }
 
-pub use configured::{CORNER_ROWS, SIDE, render_all};
+pub use configured::{CORNER_ROWS, LOOPS, SIDE, render_all};
 use configured::{MAX_LIGHTS, MAX_OBJECTS, RAY_STACK};
+
+/// What a board shows: every configured frame, and where a scene has a camera path
+/// ([`LOOPS`]), every frame again and again, for good.
+pub fn show(backend: &mut impl Backend, clock: &Clock) {
+    loop {
+        render_all(backend, clock);
+        if !LOOPS {
+            return;
+        }
+    }
+}
 
 /// The frames the build configured, as its script wrote them.
 mod configured {
     include!(concat!(env!("OUT_DIR"), "/frames.rs"));
+}
+
+/// Words a camera path's frames share but at some places: frame 0's words, the places where
+/// any frame's differ, and each frame's words there, one frame's after the other. Positions are
+/// kept relative to the eye, so that a scene's change with it; what the camera keeps of the
+/// image's size and lens does not.
+#[derive(Debug)]
+pub struct Shared<const WORDS: usize> {
+    /// Frame 0's words.
+    pub base: [u32; WORDS],
+    /// The places where any frame's words differ from frame 0's.
+    pub changed: &'static [u16],
+    /// Each frame's words at those places, frame after frame.
+    pub values: &'static [u32],
+}
+
+impl<const WORDS: usize> Shared<WORDS> {
+    /// Frame `n`'s words.
+    fn frame(&self, n: usize) -> [u32; WORDS] {
+        let mut words = self.base;
+        let c = self.changed.len();
+        let values = self.values.get(n * c..(n + 1) * c).unwrap_or_default();
+        for (&at, &value) in self.changed.iter().zip(values) {
+            if let Some(word) = words.get_mut(usize::from(at)) {
+                *word = value;
+            }
+        }
+        words
+    }
+}
+
+/// Draws each of a camera path's `frames`, in order: `job` with the frame's number, its scene
+/// and its camera from the words the frames share ([`Shared`]).
+#[inline(never)]
+pub fn draw_path<
+    S: Bits,
+    const OBJECTS: usize,
+    const LIGHTS: usize,
+    const RAYS: usize,
+    const USES: u32,
+    const SCENE_WORDS: usize,
+    const CAMERA_WORDS: usize,
+>(
+    backend: &mut impl Backend,
+    clock: &Clock,
+    job: &Job<'_>,
+    (scene, camera): (&Shared<SCENE_WORDS>, &Shared<CAMERA_WORDS>),
+    frames: u16,
+    meshes: &'static [u32],
+) {
+    for (n, frame) in (0..usize::from(frames)).zip(0..frames) {
+        let job = Job {
+            frame: Some(frame),
+            ..*job
+        };
+        let (scene, camera) = (scene.frame(n), camera.frame(n));
+        draw::<S, OBJECTS, LIGHTS, RAYS, USES>(backend, clock, &job, &scene, meshes, &camera);
+    }
 }
 
 /// Draws the frame of `job`: the scene whose words are `scene` (written by the build from the

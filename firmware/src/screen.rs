@@ -29,7 +29,7 @@ impl<D: DrawTarget<Color = Rgb565, Error: fmt::Debug>> Backend for Screen<D> {
 
     fn report(&mut self, r: &Report<'_>) {
         let ms = r.ticks / (u64::from(self.core_mhz) * 1000);
-        let (scene, format) = (r.job.scene, r.job.format);
+        let (scene, format) = (r.job.name(), r.job.format);
         let (stack, storage, fixed) = (r.stack_bytes, r.storage_bytes, r.fixed_storage_bytes);
         let white = Rgb565::WHITE;
         self.caption(1, format_args!("{scene} {format}: {ms} ms"), white);
@@ -43,7 +43,7 @@ impl<D: DrawTarget<Color = Rgb565, Error: fmt::Debug>> Backend for Screen<D> {
     fn failed(&mut self, job: &Job<'_>, why: &dyn fmt::Display) {
         self.caption(
             1,
-            format_args!("{} {}:", job.scene, job.format),
+            format_args!("{} {}:", job.name(), job.format),
             Rgb565::RED,
         );
         self.caption(0, format_args!("{why}"), Rgb565::RED);

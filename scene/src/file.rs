@@ -23,6 +23,17 @@ use toml::de::{DeTable, DeValue};
 /// KiB), small enough that a wrong file is refused before it is parsed.
 pub const MAX_FILE_BYTES: u64 = 1 << 20;
 
+/// What joins a camera path's name and a frame's number in the frame's name.
+const FRAME: &str = "-frame-";
+
+/// Where `name` is a camera path's frame's (`NAME-frame-K`, [`NamedScene::at_frame`]): the
+/// path's name and the frame.
+#[must_use]
+pub fn path_frame(name: &str) -> Option<(&str, u16)> {
+    let (path, frame) = name.rsplit_once(FRAME)?;
+    Some((path, frame.parse().ok()?))
+}
+
 /// A scene and what to call it.
 #[derive(Clone, Debug)]
 pub struct NamedScene {
@@ -298,12 +309,19 @@ fn wrong_in(value: &DeValue<'_>, span: Range<usize>, path: &str) -> Option<(Rang
 }
 
 impl NamedScene {
+    /// Where this is a frame of a camera path ([`Self::at_frame`]): the path's name and the
+    /// frame ([`path_frame`]).
+    #[must_use]
+    pub fn path_frame(&self) -> Option<(&str, u16)> {
+        path_frame(&self.name)
+    }
+
     /// The still scene of `frame` of its camera path ([`OwnedScene::at_frame`]), named
     /// `NAME-frame-K`, its refusals placed in the same file.
     #[must_use]
     pub fn at_frame(&self, frame: u16) -> Self {
         Self {
-            name: format!("{}-frame-{frame}", self.name),
+            name: format!("{}{FRAME}{frame}", self.name),
             scene: self.scene.at_frame(frame),
             source: self.source.clone(),
         }

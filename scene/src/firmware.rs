@@ -5,7 +5,9 @@
 //! file's line and column), and writes the Rust source of what the firmware draws: each frame's
 //! proven scene and camera as constant words ([`obscura::words`]), read back on the chip in
 //! storage sized exactly to the scene, by a tracer of only the parts the scenes use
-//! ([`obscura::Uses`]); the chip runs no scene build and no range proof. The harness
+//! ([`obscura::Uses`]); the chip runs no scene build and no range proof. A scene with a camera
+//! path is drawn as its frames, each a still scene of its frame's camera proven on its own
+//! ([`with_paths_as_frames`]), and a board loops over them for good (`LOOPS`). The harness
 //! (`obscura firmware`, `obscura chart`) asks for an image through the same variables
 //! ([`FirmwareSettings::environment`]).
 
@@ -27,12 +29,32 @@ pub fn variables() -> impl Iterator<Item = &'static str> {
     FirmwareSettings::settings().map(|setting| setting.variable)
 }
 
+/// `scenes` as a firmware draws them, and whether one had a camera path: a still scene as it
+/// is, and a scene with a path as each of its frames in order, the still scene of that frame's
+/// camera ([`NamedScene::at_frame`], named `NAME-frame-K`).
+#[must_use]
+pub fn with_paths_as_frames(scenes: Vec<NamedScene>) -> (Vec<NamedScene>, bool) {
+    let loops = scenes.iter().any(|s| s.scene.animation.is_some());
+    let frames = scenes
+        .into_iter()
+        .flat_map(
+            |named| match named.scene.animation.as_ref().map(|a| a.frames) {
+                Some(frames) => (0..frames).map(|k| named.at_frame(k)).collect(),
+                None => vec![named],
+            },
+        )
+        .collect();
+    (frames, loops)
+}
+
 /// What a firmware draws: each scene in each format, by the methods (and with `variants`, by
 /// each variant that changes one of them).
 #[derive(Debug)]
 pub struct Configuration {
-    /// The scenes, in order.
+    /// The scenes, in order: a camera path's frames each a scene ([`with_paths_as_frames`]).
     pub scenes: Vec<NamedScene>,
+    /// Whether a scene had a camera path: a board then draws the frames again and again.
+    pub loops: bool,
     /// The formats, in order.
     pub formats: Vec<Format>,
     /// The methods.
@@ -84,6 +106,7 @@ impl Configuration {
         for scene in &mut scenes {
             settings.sampling.apply(&mut scene.scene);
         }
+        let (scenes, loops) = with_paths_as_frames(scenes);
         let mut formats = Vec::new();
         for &choice in &settings.frames.format {
             let format = match choice {
@@ -107,6 +130,7 @@ impl Configuration {
         }
         Ok(Self {
             scenes,
+            loops,
             formats,
             methods: settings.methods.methods(),
             variants: settings.frames.variants == Variants::Each,
@@ -192,6 +216,12 @@ impl Configuration {
              pub const MAX_LIGHTS: usize = {MAX_LIGHTS};\n/// The ray stack, as above.\n\
              pub const RAY_STACK: usize = {RAY_STACK};\n"
         );
+        let _ = writeln!(
+            out,
+            "/// Whether a scene has a camera path: a board draws the frames again and again.\n\
+             pub const LOOPS: bool = {};\n",
+            self.loops
+        );
         let adaptive = self.scenes.iter().any(|s| s.scene.adaptive_samples);
         let _ = writeln!(
             out,
@@ -232,40 +262,62 @@ impl Configuration {
             "    const PRESENTATION: obscura::Presentation = obscura::Presentation {{ order: \
              obscura::RowOrder::{order:?}, dither: obscura::Dither::{dither:?} }};"
         );
-        for frame in &frames {
-            let job = format!(
-                "&crate::frames::Job {{ scene: {:?}, format: {:?}, methods: {:?}, presentation: \
-                 PRESENTATION }}",
-                frame.scene.name,
-                frame.format.name(),
-                frame.methods.to_string()
-            );
-            match &frame.proven {
-                Ok(words) => {
-                    let desc = frame.scene.scene.desc();
-                    // One tracer per format: of the parts its frames use between them.
-                    let uses = tracer_uses(&frames, frame.format);
+        let mut drawn = vec![false; frames.len()];
+        for (i, frame) in frames.iter().enumerate() {
+            if drawn[i] {
+                continue;
+            }
+            let job = |name: &str| {
+                format!(
+                    "&crate::frames::Job {{ scene: {name:?}, frame: None, format: {:?}, methods: \
+                     {:?}, presentation: PRESENTATION }}",
+                    frame.format.name(),
+                    frame.methods.to_string()
+                )
+            };
+            let Ok(words) = &frame.proven else {
+                if let Err(refusal) = &frame.proven {
+                    let reason = refusal.to_string();
                     let _ = writeln!(
                         out,
-                        "    // The tracer's parts in {}: {uses}.\n    \
-                         crate::frames::draw::<{}, {}, {}, {}, {:#010x}>(\n        backend,\n        \
-                         clock,\n        {job},\n        {},\n        {},\n        {},\n    );",
-                        frame.format,
-                        frame.format.rust_type(),
-                        desc.objects.len(),
-                        desc.lights.len(),
-                        usize::from(desc.max_depth) + 1,
-                        uses.bits(),
-                        words_source(&words.scene),
-                        words_source(&words.meshes),
-                        words_source(&words.camera),
+                        "    backend.refused({}, &{reason:?});",
+                        job(&frame.scene.name)
                     );
                 }
-                Err(refusal) => {
-                    let reason = refusal.to_string();
-                    let _ = writeln!(out, "    backend.refused({job}, &{reason:?});");
+                continue;
+            };
+            let desc = frame.scene.scene.desc();
+            // One tracer per format: of the parts its frames use between them.
+            let uses = tracer_uses(&frames, frame.format);
+            let generics = format!(
+                "{}, {}, {}, {}, {:#010x}",
+                frame.format.rust_type(),
+                desc.objects.len(),
+                desc.lights.len(),
+                usize::from(desc.max_depth) + 1,
+                uses.bits(),
+            );
+            let _ = writeln!(
+                out,
+                "    // The tracer's parts in {}: {uses}.",
+                frame.format
+            );
+            if let Some(path) = path_of(&frames, i) {
+                for &j in &path {
+                    drawn[j] = true;
                 }
+                let _ = write!(out, "{}", path_source(&frames, &path, &generics, &job));
+                continue;
             }
+            let _ = writeln!(
+                out,
+                "    crate::frames::draw::<{generics}>(\n        backend,\n        clock,\n        \
+                 {},\n        {},\n        {},\n        {},\n    );",
+                job(&frame.scene.name),
+                words_source(&words.scene),
+                words_source(&words.meshes),
+                words_source(&words.camera),
+            );
         }
         let _ = writeln!(out, "}}");
         Ok(out)
@@ -367,8 +419,104 @@ impl FormatJob for Prove<'_> {
     }
 }
 
-/// `words` as a Rust expression of type `&[u32]`, eight to a line.
-fn words_source(words: &[u32]) -> String {
+/// The frames, `i` first, of the camera path whose frame 0 is frame `i`, in `frames`' order:
+/// a path's every frame in `i`'s format by its methods, all proven, their scenes' words of one
+/// length and their meshes' the same. `None` where frame `i` is no path's frame 0.
+fn path_of(frames: &[Frame<'_>], i: usize) -> Option<Vec<usize>> {
+    let first = frames.get(i)?;
+    let (path, 0) = first.scene.path_frame()? else {
+        return None;
+    };
+    let words = first.proven.as_ref().ok()?;
+    let members: Vec<usize> = frames
+        .iter()
+        .enumerate()
+        .filter(|(_, f)| {
+            f.format == first.format
+                && f.methods == first.methods
+                && f.scene.path_frame().is_some_and(|(p, _)| p == path)
+        })
+        .map(|(j, _)| j)
+        .collect();
+    let alike = members.iter().all(|&j| {
+        frames[j].proven.as_ref().is_ok_and(|w| {
+            w.scene.len() == words.scene.len()
+                && w.meshes == words.meshes
+                && w.camera.len() == words.camera.len()
+        })
+    });
+    alike.then_some(members)
+}
+
+/// The source that draws the camera path of `members` (frame 0 first) by
+/// `crate::frames::draw_path`: its scenes' and its cameras' words, each shared by the frames
+/// but where they differ ([`shared_source`]).
+fn path_source(
+    frames: &[Frame<'_>],
+    members: &[usize],
+    generics: &str,
+    job: &dyn Fn(&str) -> String,
+) -> String {
+    let words: Vec<&Words> = members
+        .iter()
+        .filter_map(|&j| frames[j].proven.as_ref().ok())
+        .collect();
+    let Some(first) = words.first() else {
+        return String::new();
+    };
+    let path = frames[members[0]]
+        .scene
+        .path_frame()
+        .map_or("", |(path, _)| path);
+    let scenes: Vec<&[u32]> = words.iter().map(|w| w.scene.as_slice()).collect();
+    let cameras: Vec<&[u32]> = words.iter().map(|w| w.camera.as_slice()).collect();
+    let (scene, scene_changed) = shared_source(&scenes);
+    let (camera, camera_changed) = shared_source(&cameras);
+    format!(
+        "    // {path}: {} frames, differing in {scene_changed} of their scene's {} words and \
+         {camera_changed} of their camera's {}.\n    {{\n        \
+         static SCENE: crate::frames::Shared<{}> = {scene};\n        \
+         static CAMERA: crate::frames::Shared<{}> = {camera};\n        \
+         crate::frames::draw_path::<{generics}, {}, {}>(\n            backend,\n            \
+         clock,\n            {},\n            (&SCENE, &CAMERA),\n            {},\n            \
+         {},\n        );\n    }}\n",
+        words.len(),
+        first.scene.len(),
+        first.camera.len(),
+        first.scene.len(),
+        first.camera.len(),
+        first.scene.len(),
+        first.camera.len(),
+        job(path),
+        words.len(),
+        words_source(&first.meshes),
+    )
+}
+
+/// Each frame's `words` (all of one length) as a `crate::frames::Shared` expression: frame 0's
+/// words, the places where any frame's differ, and each frame's there; and how many places.
+fn shared_source(words: &[&[u32]]) -> (String, usize) {
+    let base = words.first().copied().unwrap_or_default();
+    let changed: Vec<usize> = (0..base.len())
+        .filter(|&w| words.iter().any(|frame| frame[w] != base[w]))
+        .collect();
+    let values: Vec<u32> = words
+        .iter()
+        .flat_map(|frame| changed.iter().map(|&w| frame[w]))
+        .collect();
+    let places: Vec<String> = changed.iter().map(ToString::to_string).collect();
+    let source = format!(
+        "crate::frames::Shared {{\n            base: {},\n            changed: &[{}],\n            \
+         values: {},\n        }}",
+        array_source(base),
+        places.join(", "),
+        words_source(&values),
+    );
+    (source, changed.len())
+}
+
+/// `words` as a Rust array expression, eight to a line.
+fn array_source(words: &[u32]) -> String {
     let lines: Vec<String> = words
         .chunks(8)
         .map(|line| {
@@ -376,7 +524,12 @@ fn words_source(words: &[u32]) -> String {
             format!("            {},\n", line.join(", "))
         })
         .collect();
-    format!("&[\n{}        ]", lines.concat())
+    format!("[\n{}        ]", lines.concat())
+}
+
+/// `words` as a Rust expression of type `&[u32]`, eight to a line.
+fn words_source(words: &[u32]) -> String {
+    format!("&{}", array_source(words))
 }
 
 #[cfg(test)]
@@ -401,6 +554,54 @@ mod tests {
             .parent()
             .expect("the scene crate is in the workspace")
             .to_path_buf()
+    }
+
+    #[test]
+    fn a_camera_path_is_drawn_as_its_frames_sharing_their_words_and_looping() {
+        let configuration = configure(
+            &workspace(),
+            env(&[
+                (SCENES, "host/scenes/orbit.toml, whitted"),
+                (FORMATS, "i16f16"),
+            ]),
+        )
+        .unwrap();
+        let names: Vec<_> = configuration
+            .scenes
+            .iter()
+            .map(|s| s.name.as_str())
+            .collect();
+        assert_eq!(names.len(), 17);
+        assert_eq!(
+            (names[0], names[15], names[16]),
+            ("orbit-frame-0", "orbit-frame-15", "whitted")
+        );
+        assert!(configuration.loops);
+        let source = configuration.source().unwrap();
+        assert!(source.contains("pub const LOOPS: bool = true;"), "{source}");
+        // One path call for the 16 frames, one draw for the still scene.
+        assert_eq!(
+            source.matches("crate::frames::draw_path::<").count(),
+            1,
+            "{source}"
+        );
+        assert_eq!(
+            source.matches("crate::frames::draw::<").count(),
+            1,
+            "{source}"
+        );
+        assert!(
+            source.contains("// orbit: 16 frames, differing in "),
+            "{source}"
+        );
+        let still = configure(&workspace(), env(&[(SCENES, "whitted")])).unwrap();
+        assert!(!still.loops);
+        assert!(
+            still
+                .source()
+                .unwrap()
+                .contains("pub const LOOPS: bool = false;")
+        );
     }
 
     #[test]
@@ -429,7 +630,7 @@ mod tests {
         let source = configuration.source().unwrap();
         assert!(
             source.contains("crate::frames::draw::<obscura::formats::F32, 5, 2, 5, 0x")
-                && source.contains("scene: \"marbles\", format: \"f32\""),
+                && source.contains("scene: \"marbles\", frame: None, format: \"f32\""),
             "{source}"
         );
         // The tracer of each format has the parts its scenes use: no triangles in f32's.

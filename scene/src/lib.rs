@@ -32,7 +32,7 @@ mod owned;
 mod settings;
 
 pub use animation::{Animation, AnimationError, Key};
-pub use file::{Located, MAX_FILE_BYTES, NamedScene, load, parse};
+pub use file::{Located, MAX_FILE_BYTES, NamedScene, load, parse, path_frame};
 pub use format::{Format, FormatJob};
 pub use mesh_file::{CornerNormals, obj_text};
 pub use meshes::{Added, OwnedMeshes};

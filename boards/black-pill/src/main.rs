@@ -1,7 +1,7 @@
 //! The hardware back-end: an ST7789 240×240 SPI display (the common 1.3" IPS module) on an
 //! STM32F411 "Black Pill", driven by mipidsi. Each configured frame is drawn in turn, and its
 //! time (SysTick counts real core cycles here) is written across its bottom row; then the
-//! core sleeps.
+//! core sleeps, or with a camera path draws the frames again, for good.
 //!
 //! Wiring (3.3 V logic; see the README for the table):
 //!
@@ -78,7 +78,7 @@ fn main() -> ! {
         display: panel,
         core_mhz: SYSCLK_MHZ,
     };
-    frames::render_all(&mut screen, &clock);
+    frames::show(&mut screen, &clock);
     halt();
 }
 

@@ -11,7 +11,8 @@
 //! | BL (backlight) | GP13 |
 //!
 //! Both cores trace, sharing each frame's rows ([`obscura_firmware::two_cores`]); each
-//! configured frame is drawn in turn, its time and stack written across its bottom rows.
+//! configured frame is drawn in turn, its time and stack written across its bottom rows; a
+//! camera path's frames again and again, for good.
 #![no_std]
 #![no_main]
 #![allow(
@@ -122,7 +123,7 @@ fn main() -> ! {
         },
         mailbox: Fifo(sio.fifo),
     };
-    frames::render_all(&mut board, &clock);
+    frames::show(&mut board, &clock);
     halt();
 }
 

@@ -18,7 +18,7 @@
 //! where its multicore module does not build, [`core1`] starts it by the boot ROM's protocol
 //! (the RP2350 datasheet, section 5.3). Each configured frame is drawn in turn, its time (in
 //! core cycles: SysTick on the M33, `mcycle` on Hazard3) and stack written across its bottom
-//! rows.
+//! rows; a camera path's frames again and again, for good.
 #![no_std]
 #![no_main]
 #![allow(
@@ -130,7 +130,7 @@ fn main() -> ! {
         },
         mailbox: Fifo(sio.fifo),
     };
-    frames::render_all(&mut board, &clock);
+    frames::show(&mut board, &clock);
     halt();
 }
 

@@ -169,7 +169,7 @@ impl Backend for Host {
         let job = r.job;
         say!(
             "frame scene={} format={} methods={} dither={} order={} width={SIDE} height={SIDE} ticks={} stack_bytes={} storage_bytes={} fixed_storage_bytes={} file={}",
-            Text(job.scene),
+            job.name(),
             Text(job.format),
             Text(job.methods),
             Text(job.presentation.dither.name()),
@@ -186,7 +186,7 @@ impl Backend for Host {
         self.all_drawn = false;
         say!(
             "error scene={} format={} methods={} message={why}",
-            Text(job.scene),
+            job.name(),
             Text(job.format),
             Text(job.methods)
         );
@@ -195,7 +195,7 @@ impl Backend for Host {
     fn refused(&mut self, job: &Job<'_>, why: &dyn fmt::Display) {
         say!(
             "refused scene={} format={} methods={} message={why}",
-            Text(job.scene),
+            job.name(),
             Text(job.format),
             Text(job.methods)
         );
@@ -212,7 +212,7 @@ impl fmt::Display for FileName<'_> {
         write!(
             f,
             "{}-{}-{}.rgb565",
-            Text(job.scene),
+            job.name(),
             Text(job.format),
             Text(job.methods)
         )

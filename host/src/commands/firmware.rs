@@ -12,7 +12,7 @@ use crate::render::{Request, rgb565_image};
 use anyhow::{Context, Result, bail};
 use obscura::Methods;
 use obscura::methods::MethodName;
-use obscura_scene::firmware::{Configuration, SIDE};
+use obscura_scene::firmware::{Configuration, SIDE, with_paths_as_frames};
 use obscura_scene::{FirmwareSettings, Format, FormatChoice, Variants};
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -64,6 +64,18 @@ fn configure(args: &FirmwareArgs) -> Result<(FirmwareSettings, Configuration)> {
             Ok(named)
         })
         .collect::<Result<Vec<_>>>()?;
+    // The build is given the scenes as they are (a scene file's path, found from anywhere);
+    // the rest is about what it draws, a camera path's every frame.
+    settings.frames.scene = scenes
+        .iter()
+        .map(|named| match named.path() {
+            Some(path) => std::path::absolute(path)
+                .map(|path| path.display().to_string())
+                .with_context(|| format!("cannot find {}", path.display())),
+            None => Ok(named.name.clone()),
+        })
+        .collect::<Result<_>>()?;
+    let (scenes, loops) = with_paths_as_frames(scenes);
     let mut formats = Vec::new();
     for &choice in &settings.frames.format {
         let machine = Machine::from(args.target);
@@ -84,18 +96,10 @@ fn configure(args: &FirmwareArgs) -> Result<(FirmwareSettings, Configuration)> {
             formats.push(format);
         }
     }
-    settings.frames.scene = scenes
-        .iter()
-        .map(|named| match named.path() {
-            Some(path) => std::path::absolute(path)
-                .map(|path| path.display().to_string())
-                .with_context(|| format!("cannot find {}", path.display())),
-            None => Ok(named.name.clone()),
-        })
-        .collect::<Result<_>>()?;
     settings.frames.format = formats.iter().copied().map(FormatChoice::Given).collect();
     let configuration = Configuration {
         scenes,
+        loops,
         formats,
         methods,
         variants: settings.frames.variants == Variants::Each,
@@ -139,6 +143,10 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
                 &reports,
             )?;
         }
+    }
+    if configuration.loops {
+        print_paths(args.target, &reports)?;
+        print_path_flash(args, &settings, &dir, size.flash, &reports)?;
     }
     let over = print_budget(args.target, &reports, size)?;
     if let Some(path) = &args.json {
@@ -321,6 +329,77 @@ fn frame_cycles(
         );
     }
     Ok(estimate)
+}
+
+/// Each camera path's loop on the board: its frames' cycles added up, at the board's clock.
+fn print_paths(target: Target, reports: &[Report]) -> Result<()> {
+    let board = target.board();
+    let mut paths: Vec<(&str, &str, u64, u32)> = Vec::new();
+    for r in reports {
+        let Some((path, _)) = obscura_scene::path_frame(&r.scene) else {
+            continue;
+        };
+        match paths
+            .iter_mut()
+            .find(|(p, f, _, _)| *p == path && *f == r.format)
+        {
+            Some(entry) => {
+                entry.2 += r.cycles_per_frame;
+                entry.3 += 1;
+            }
+            None => paths.push((path, &r.format, r.cycles_per_frame, 1)),
+        }
+    }
+    for (path, format, cycles, frames) in paths {
+        let seconds = board.seconds(cycles);
+        say!(
+            "{path}'s loop of {frames} frames in {format} on a {}, estimated in cycles: {seconds:.1} s \
+             a loop, {:.2} frames a second",
+            board.name,
+            f64::from(frames) / seconds
+        )?;
+    }
+    Ok(())
+}
+
+/// What the camera paths add to the image's `flash`: the image built again with each path
+/// scene as the still picture of its frame 0 (written beside the frames in `dir`), and the
+/// difference, per frame.
+fn print_path_flash(
+    args: &FirmwareArgs,
+    settings: &FirmwareSettings,
+    dir: &Path,
+    flash: u64,
+    reports: &[Report],
+) -> Result<()> {
+    let mut still = settings.clone();
+    for name in &mut still.frames.scene {
+        let named = obscura_scene::load(name)?;
+        if named.scene.animation.is_none() {
+            continue;
+        }
+        let stem = format!("{}-still", named.name);
+        let (toml, meshes) = named.scene.at_frame(0).files(&stem)?;
+        for (file, text) in meshes {
+            std::fs::write(dir.join(&file), text)
+                .with_context(|| format!("cannot write {}", dir.join(&file).display()))?;
+        }
+        let path = std::path::absolute(dir.join(format!("{stem}.toml")))?;
+        std::fs::write(&path, toml).with_context(|| format!("cannot write {}", path.display()))?;
+        *name = path.display().to_string();
+    }
+    let still_flash = firmware::image_size(&firmware::build(args.target, &still)?)?.flash;
+    let frames = reports
+        .iter()
+        .filter(|r| obscura_scene::path_frame(&r.scene).is_some())
+        .count() as u64;
+    let added = flash.saturating_sub(still_flash);
+    say!(
+        "the camera path adds {added} bytes of flash to the still image of its frame 0 \
+         ({still_flash} bytes): {} a frame",
+        added / frames.max(1)
+    )?;
+    Ok(())
 }
 
 /// Says whether the image fits the target's budget with the most stack a frame took; what is
