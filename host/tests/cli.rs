@@ -873,8 +873,39 @@ fn animate_writes_a_looping_gif_and_a_row_per_frame_the_worst_last() {
     assert!(!coarse.status.success());
     assert!(
         stderr(&coarse)
-            .contains("frame 8 of orbit's 16 frames: the scene cannot be built in i20f12"),
+            .contains("frame 0 of orbit's 16 frames: the scene cannot be built in i20f12"),
         "{}",
         stderr(&coarse)
     );
+}
+
+#[test]
+fn preview_plays_a_camera_path_headless_into_a_gif() {
+    let dir = scratch("preview-path");
+    let png = dir.join("orbit.png");
+    let orbit = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/orbit.toml");
+    let output = obscura(&[
+        "preview",
+        orbit,
+        "--target",
+        "m0",
+        "--format",
+        "i16f16",
+        "--headless",
+        "-o",
+        png.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert!(
+        stdout(&output).contains("orbit's 16 frames in i16f16"),
+        "{}",
+        stdout(&output)
+    );
+    let gif = std::fs::File::open(dir.join("orbit.gif")).unwrap();
+    let decoder = image::codecs::gif::GifDecoder::new(std::io::BufReader::new(gif)).unwrap();
+    let frames = image::AnimationDecoder::into_frames(decoder)
+        .collect_frames()
+        .unwrap();
+    assert_eq!(frames.len(), 16);
+    assert_eq!(frames[0].buffer().dimensions(), (240, 240));
 }

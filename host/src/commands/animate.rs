@@ -8,8 +8,7 @@ use crate::metrics::{Accuracy, accuracy};
 use crate::output::{self, say};
 use crate::render::{Request, prepare, prepare_reference};
 use anyhow::{Context, Result, bail};
-use image::codecs::gif::{GifEncoder, Repeat};
-use image::{Delay, Frame, RgbImage};
+use image::RgbImage;
 use indicatif::{ProgressBar, ProgressStyle};
 use obscura::Methods;
 use obscura_scene::{Format, FormatChoice, NamedScene};
@@ -65,9 +64,13 @@ fn animate(args: &AnimateArgs, named: &NamedScene) -> Result<()> {
             bar.inc(1);
             drawn.with_context(|| format!("frame {k} of {}'s {} frames", named.name, frames.len()))
         })
+        .collect::<Vec<Result<_>>>()
+        // The first frame refused, in the path's order (the frames are drawn in any).
+        .into_iter()
         .collect::<Result<Vec<_>>>()?;
     bar.finish_and_clear();
-    write_gif(args, &rendered, animation.fps)?;
+    let images: Vec<RgbImage> = rendered.iter().map(|(image, _)| image.clone()).collect();
+    super::save_gif(&images, animation.fps, &args.output)?;
     let reports: Vec<FrameReport> = rendered
         .into_iter()
         .zip(0_u16..)
@@ -174,23 +177,6 @@ fn progress(name: &str, format: Format, frames: usize) -> ProgressBar {
     bar.set_style(style);
     bar.set_message(format!("{name} in {format}"));
     bar
-}
-
-/// Writes the frames as a GIF that loops for ever at `fps` frames a second.
-fn write_gif(args: &AnimateArgs, frames: &[(RgbImage, Accuracy)], fps: u16) -> Result<()> {
-    let path = &args.output;
-    let file =
-        std::fs::File::create(path).with_context(|| format!("cannot write {}", path.display()))?;
-    let mut encoder = GifEncoder::new_with_speed(std::io::BufWriter::new(file), 10);
-    encoder.set_repeat(Repeat::Infinite)?;
-    let delay = Delay::from_numer_denom_ms(1000, u32::from(fps));
-    for (image, _) in frames {
-        let rgba = image::DynamicImage::ImageRgb8(image.clone()).into_rgba8();
-        encoder
-            .encode_frame(Frame::from_parts(rgba, 0, 0, delay))
-            .with_context(|| format!("cannot write {}", path.display()))?;
-    }
-    Ok(())
 }
 
 /// One line per frame, then the worst.

@@ -262,3 +262,21 @@ pub fn save(image: &RgbImage, path: &std::path::Path) -> Result<()> {
         .save(path)
         .with_context(|| format!("cannot write {}", path.display()))
 }
+
+/// Writes `frames` as a GIF to `path` that loops for ever at `fps` frames a second.
+pub fn save_gif(frames: &[RgbImage], fps: u16, path: &std::path::Path) -> Result<()> {
+    use anyhow::Context;
+    use image::codecs::gif::{GifEncoder, Repeat};
+    let cannot = || format!("cannot write {}", path.display());
+    let file = std::fs::File::create(path).with_context(cannot)?;
+    let mut encoder = GifEncoder::new_with_speed(std::io::BufWriter::new(file), 10);
+    encoder.set_repeat(Repeat::Infinite).with_context(cannot)?;
+    let delay = image::Delay::from_numer_denom_ms(1000, u32::from(fps.max(1)));
+    for frame in frames {
+        let rgba = image::DynamicImage::ImageRgb8(frame.clone()).into_rgba8();
+        encoder
+            .encode_frame(image::Frame::from_parts(rgba, 0, 0, delay))
+            .with_context(cannot)?;
+    }
+    Ok(())
+}

@@ -3,17 +3,19 @@
 //! embedded-graphics-simulator window, each row appearing when it would on the target's board
 //! (paced by [`estimate::frame`]: the Black Pill for the M4F, the Pico for the M0); the final
 //! frame, the firmware's to the bit, is written as a PNG. With `--headless` there is no window
-//! and no pace.
+//! and no pace. A scene with a camera path plays its frames in a loop, each for the board's
+//! estimated frame time, and they are written as a GIF ([`preview_path`]).
 
 use crate::cli::PreviewArgs;
 use crate::cost::Machine;
 use crate::estimate;
 use crate::output::say;
 use crate::render::{Request, prepare, rgb565_image};
-use anyhow::Result;
+use anyhow::{Context, Result};
 use obscura::methods::MethodName;
 use obscura_scene::firmware::SIDE;
-use obscura_scene::{FormatChoice, NamedScene};
+use obscura_scene::{Animation, FormatChoice, NamedScene};
+use rayon::prelude::*;
 use std::time::Duration;
 
 pub fn run(args: &PreviewArgs) -> Result<()> {
@@ -22,6 +24,9 @@ pub fn run(args: &PreviewArgs) -> Result<()> {
 }
 
 fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
+    if let Some(animation) = &named.scene.animation {
+        return preview_path(args, named, animation);
+    }
     let methods = args.methods.methods();
     let machine = Machine::from(args.target);
     let format = super::firmware_format(
@@ -84,6 +89,78 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
     Ok(())
 }
 
+/// A camera path as the board shows it: every frame drawn in the format the board takes for the
+/// worst, in RGB565, its row order and dither; in the window, frame after frame at the board's
+/// estimated pace, looping until the window closes; the frames written as a GIF at the path's
+/// own pace (to `--output` with the extension `.gif`).
+fn preview_path(args: &PreviewArgs, named: &NamedScene, animation: &Animation) -> Result<()> {
+    let methods = args.methods.methods();
+    let frames: Vec<NamedScene> = (0..animation.frames).map(|k| named.at_frame(k)).collect();
+    let machine = Machine::from(args.target);
+    let format = super::firmware_format(args.format, &frames, methods, machine, args.target_psnr)?;
+    let presentation = args.presentation.presentation();
+    let draw = |frame: &NamedScene| -> Result<(Vec<u16>, Option<Duration>)> {
+        if let FormatChoice::Given(format) = args.format {
+            let size = (SIDE, SIDE);
+            super::refuse_useless_unseen(&args.refusal, format, &frame.scene, methods, size)?;
+        }
+        let desc = frame.scene.desc();
+        let request = Request {
+            desc: &desc,
+            width: SIDE,
+            height: SIDE,
+            methods,
+        };
+        let pixels = prepare(format, &request)?.rgb565_frame(presentation, &mut |_, _| {})?;
+        let paced = estimate::frame(args.target, format, &desc, methods)
+            .ok()
+            .flatten()
+            .map(|e| Duration::from_secs_f64(e.seconds));
+        Ok((pixels, paced))
+    };
+    let drawn = frames
+        .par_iter()
+        .enumerate()
+        .map(|(k, frame)| draw(frame).with_context(|| format!("frame {k} of {}", named.name)))
+        .collect::<Vec<Result<_>>>()
+        // The first frame refused, in the path's order (the frames are drawn in any).
+        .into_iter()
+        .collect::<Result<Vec<_>>>()?;
+    let loop_seconds: Option<f64> = drawn.iter().map(|(_, t)| t.map(|t| t.as_secs_f64())).sum();
+    say!(
+        "{}'s {} frames in {format} on the {}, rows {}, dither {}: {}",
+        named.name,
+        frames.len(),
+        args.target.board().name,
+        presentation.order.name(),
+        presentation.dither.name(),
+        loop_seconds.map_or_else(
+            || "no estimate to pace them by".to_owned(),
+            |s| format!(
+                "about {s:.1} s a loop ({:.2} frames a second), estimated as for a still frame",
+                frames.len() as f64 / s
+            )
+        )
+    )?;
+    if !args.headless {
+        let shown: Vec<(Vec<u16>, Option<Duration>)> = drawn.clone();
+        window::play(&named.name, &shown)?;
+    }
+    let images: Vec<_> = drawn
+        .iter()
+        .map(|(pixels, _)| rgb565_image(pixels, SIDE))
+        .collect();
+    let gif = args.output.with_extension("gif");
+    super::save_gif(&images, animation.fps, &gif)?;
+    say!(
+        "wrote {} ({} frames at {} a second)",
+        gif.display(),
+        images.len(),
+        animation.fps
+    )?;
+    Ok(())
+}
+
 /// The live window, where the simulator has SDL2 to open one.
 #[cfg(feature = "window")]
 mod window {
@@ -139,6 +216,33 @@ mod window {
         }
         Ok(pixels)
     }
+
+    /// Shows each of `frames` for its time (at once without one), over and over, until the
+    /// window is closed.
+    pub fn play(title: &str, frames: &[(Vec<u16>, Option<Duration>)]) -> Result<()> {
+        let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(SIDE, SIDE));
+        let mut window = Window::new(
+            &format!("obscura preview: {title}"),
+            &OutputSettingsBuilder::new().scale(2).build(),
+        );
+        for (pixels, time) in frames.iter().cycle() {
+            let shown_at = Instant::now();
+            for (i, &raw) in pixels.iter().enumerate() {
+                let (x, y) = (i as u32 % SIDE, i as u32 / SIDE);
+                let point = Point::new(x as i32, y as i32);
+                let _ = Pixel(point, Rgb565::from(RawU16::new(raw))).draw(&mut display);
+            }
+            let until = shown_at + time.unwrap_or(Duration::from_millis(100));
+            while Instant::now() < until {
+                window.update(&display);
+                if window.events().any(|e| e == SimulatorEvent::Quit) {
+                    return Ok(());
+                }
+                std::thread::sleep(Duration::from_millis(20));
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Built without SDL2, there is no window.
@@ -155,9 +259,14 @@ mod window {
         _: Presentation,
         _: Option<Duration>,
     ) -> Result<Vec<u16>> {
-        bail!(
-            "this obscura was built without a window: pass --headless, or build it with \
-             `--features window` (which needs SDL2: sudo apt-get install libsdl2-dev)"
-        )
+        bail!(NO_WINDOW)
     }
+
+    pub fn play(_: &str, _: &[(Vec<u16>, Option<Duration>)]) -> Result<()> {
+        bail!(NO_WINDOW)
+    }
+
+    const NO_WINDOW: &str = "this obscura was built without a window: pass --headless, or \
+                             build it with `--features window` (which needs SDL2: sudo apt-get \
+                             install libsdl2-dev)";
 }
