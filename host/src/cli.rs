@@ -36,7 +36,7 @@ pub enum Command {
     Render(RenderArgs),
     /// Render a scene in a format and in f64, and report how far apart they are.
     Compare(CompareArgs),
-    /// Render a scene's camera path (its [animation] table) to an animated GIF, every frame
+    /// Render a scene's camera path (its `[animation]` table) to an animated GIF, every frame
     /// built and proven for its own camera and measured against f64.
     Animate(AnimateArgs),
     /// Time single-thread renders per format against f32, and the speed-up of more threads.

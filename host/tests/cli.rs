@@ -909,3 +909,19 @@ fn preview_plays_a_camera_path_headless_into_a_gif() {
     assert_eq!(frames.len(), 16);
     assert_eq!(frames[0].buffer().dimensions(), (240, 240));
 }
+
+#[test]
+fn analyze_takes_every_frame_of_a_camera_path() {
+    let orbit = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/orbit.toml");
+    let output = obscura(&["analyze", orbit, "--size", "32x32"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    assert!(
+        text.contains("orbit's camera path has 16 frames, each analysed for its own camera"),
+        "{text}"
+    );
+    assert!(
+        text.contains("the cheapest on the Cortex-M4F that reaches 40 dB"),
+        "{text}"
+    );
+}

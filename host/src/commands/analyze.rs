@@ -5,7 +5,7 @@ use crate::cli::AnalyzeArgs;
 use crate::cost::Machine;
 use crate::output::say;
 use anyhow::Result;
-use obscura_scene::{Format, NamedScene};
+use obscura_scene::{Format, NamedScene, OwnedScene};
 use std::io;
 
 pub fn run(args: &AnalyzeArgs) -> Result<()> {
@@ -15,13 +15,42 @@ pub fn run(args: &AnalyzeArgs) -> Result<()> {
 fn analyze(args: &AnalyzeArgs, named: &NamedScene) -> Result<()> {
     let (width, height) = args.size;
     let methods = args.methods.methods();
-    let analysis = Analysis::of(&named.scene, methods, width, height)?;
-    say!("# {} by methods {methods}\n", named.name)?;
+    // A camera path's every frame, each a still scene of its camera; a still scene alone.
+    let frames: Vec<NamedScene> = match &named.scene.animation {
+        Some(animation) => (0..animation.frames).map(|k| named.at_frame(k)).collect(),
+        None => vec![named.clone()],
+    };
+    let analyses = frames
+        .iter()
+        .map(|frame| Analysis::of(&frame.scene, methods, width, height))
+        .collect::<Result<Vec<_>>>()?;
+    let worst = worst_frame(&analyses);
+    let (frame, analysis) = (&frames[worst], &analyses[worst]);
+    say!("# {} by methods {methods}\n", frame.name)?;
+    if frames.len() > 1 {
+        say!(
+            "{}'s camera path has {} frames, each analysed for its own camera; the tables are \
+             of the one that needs the most integer bits, frame {worst}, and the pick holds for \
+             every frame.\n",
+            named.name,
+            frames.len()
+        )?;
+    }
     print_extents(&analysis.extents)?;
     print_bits(&analysis.bits)?;
-    print_split(&analysis)?;
-    print_formats(args, named, &analysis)?;
-    print_pick(args, named, &analysis)
+    print_split(analysis)?;
+    print_formats(args, frame, analysis)?;
+    let pairs: Vec<_> = frames.iter().map(|f| &f.scene).zip(&analyses).collect();
+    print_pick(args, &pairs)
+}
+
+/// Of a camera path's frames' `analyses`, the one whose 32-bit split has the fewest fraction
+/// bits (none holding it first): the frame a format must be chosen for. The first such.
+fn worst_frame(analyses: &[Analysis]) -> usize {
+    let fraction = |a: &Analysis| a.split(false).and_then(|f| f.split()).map(|(_, f)| f);
+    (0..analyses.len())
+        .min_by_key(|&i| fraction(&analyses[i]).map_or(-1, i64::from))
+        .unwrap_or(0)
 }
 
 /// The scene's 32-bit split, as it is or rescaled.
@@ -111,18 +140,13 @@ fn print_formats(args: &AnalyzeArgs, named: &NamedScene, analysis: &Analysis) ->
     Ok(())
 }
 
-/// The cheapest format that reaches the target (what `--format auto` takes), or why none does.
-fn print_pick(args: &AnalyzeArgs, named: &NamedScene, analysis: &Analysis) -> Result<()> {
+/// The cheapest format that reaches the target on every one of `frames` (what `--format auto`
+/// takes), or why none does; a camera path's frames are not rescaled.
+fn print_pick(args: &AnalyzeArgs, frames: &[(&OwnedScene, &Analysis)]) -> Result<()> {
     let (target, machine) = (args.auto.target_psnr, args.auto.cost_on);
     let methods = args.methods.methods();
-    match pick(
-        &[(&named.scene, analysis)],
-        methods,
-        args.size,
-        machine,
-        target,
-        true,
-    )? {
+    let rescale = frames.len() == 1;
+    match pick(frames, methods, args.size, machine, target, rescale)? {
         Choice::Reaches(Pick {
             format, rescaled, ..
         }) => {
