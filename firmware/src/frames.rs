@@ -98,7 +98,8 @@ impl fmt::Display for JobName<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.0.scene)?;
         match self.0.frame {
-            Some(frame) => write!(f, "-frame-{frame}"),
+            // As a u64, whose formatting every report links already.
+            Some(frame) => write!(f, "-frame-{}", u64::from(frame)),
             None => Ok(()),
         }
     }
