@@ -309,6 +309,16 @@ fn wrong_in(value: &DeValue<'_>, span: Range<usize>, path: &str) -> Option<(Rang
 }
 
 impl NamedScene {
+    /// The still scenes it is drawn as: each frame of its camera path in order
+    /// ([`Self::at_frame`]), or itself, a still scene.
+    #[must_use]
+    pub fn frames(&self) -> Vec<Self> {
+        match &self.scene.animation {
+            Some(animation) => (0..animation.frames).map(|k| self.at_frame(k)).collect(),
+            None => vec![self.clone()],
+        }
+    }
+
     /// Where this is a frame of a camera path ([`Self::at_frame`]): the path's name and the
     /// frame ([`path_frame`]).
     #[must_use]

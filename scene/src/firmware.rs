@@ -35,15 +35,7 @@ pub fn variables() -> impl Iterator<Item = &'static str> {
 #[must_use]
 pub fn with_paths_as_frames(scenes: Vec<NamedScene>) -> (Vec<NamedScene>, bool) {
     let loops = scenes.iter().any(|s| s.scene.animation.is_some());
-    let frames = scenes
-        .into_iter()
-        .flat_map(
-            |named| match named.scene.animation.as_ref().map(|a| a.frames) {
-                Some(frames) => (0..frames).map(|k| named.at_frame(k)).collect(),
-                None => vec![named],
-            },
-        )
-        .collect();
+    let frames = scenes.iter().flat_map(NamedScene::frames).collect();
     (frames, loops)
 }
 

@@ -16,10 +16,7 @@ fn analyze(args: &AnalyzeArgs, named: &NamedScene) -> Result<()> {
     let (width, height) = args.size;
     let methods = args.methods.methods();
     // A camera path's every frame, each a still scene of its camera; a still scene alone.
-    let frames: Vec<NamedScene> = match &named.scene.animation {
-        Some(animation) => (0..animation.frames).map(|k| named.at_frame(k)).collect(),
-        None => vec![named.clone()],
-    };
+    let frames = named.frames();
     let analyses = frames
         .iter()
         .map(|frame| Analysis::of(&frame.scene, methods, width, height))

@@ -51,7 +51,7 @@ fn animate(args: &AnimateArgs, named: &NamedScene) -> Result<()> {
             named.name
         );
     };
-    let frames: Vec<NamedScene> = (0..animation.frames).map(|k| named.at_frame(k)).collect();
+    let frames = named.frames();
     let methods = args.scene.methods.methods();
     let format = format_of_every_frame(args, &frames, methods)?;
     let (width, height) = args.scene.size;
@@ -69,8 +69,8 @@ fn animate(args: &AnimateArgs, named: &NamedScene) -> Result<()> {
         .into_iter()
         .collect::<Result<Vec<_>>>()?;
     bar.finish_and_clear();
-    let images: Vec<RgbImage> = rendered.iter().map(|(image, _)| image.clone()).collect();
-    super::save_gif(&images, animation.fps, &args.output)?;
+    let images = rendered.iter().map(|(image, _)| image);
+    super::save_gif(images, animation.fps, &args.output)?;
     let reports: Vec<FrameReport> = rendered
         .into_iter()
         .zip(0_u16..)

@@ -305,6 +305,13 @@ fn compare(
     Ok((reports, mismatched))
 }
 
+/// How closely the plugin's count of a frame must agree with the clock's: to this fraction of
+/// it (the clock counts in ticks, 50 instructions each on the M33's SysTick)…
+const CLOCK_AGREEMENT: u64 = 1000;
+/// …and these instructions, which the plugin's window between the frame's marks holds and the
+/// clock's does not (its own reads, the frame file's opening and closing).
+const OUTSIDE_THE_CLOCK: u64 = 1000;
+
 /// The cycle estimate of frame `index` of the run `counts` counted, whose clock counted
 /// `instructions`: the plugin's count of the frame must agree with the clock's.
 fn frame_cycles(
@@ -318,9 +325,7 @@ fn frame_cycles(
         .get(index)
         .with_context(|| format!("QEMU's plugin counted no frame {}", index + 1))?;
     let estimate = cycles::estimate(Core::of(target), &counts.instructions, counted);
-    // The plugin's window is the clock's and the frame file's opening and closing; the clock
-    // counts by its ticks.
-    let tolerance = instructions / 1000 + 1000;
+    let tolerance = instructions / CLOCK_AGREEMENT + OUTSIDE_THE_CLOCK;
     if estimate.instructions.abs_diff(instructions) > tolerance {
         bail!(
             "QEMU's plugin counted {} instructions in the frame where its clock counted \

@@ -264,7 +264,11 @@ pub fn save(image: &RgbImage, path: &std::path::Path) -> Result<()> {
 }
 
 /// Writes `frames` as a GIF to `path` that loops for ever at `fps` frames a second.
-pub fn save_gif(frames: &[RgbImage], fps: u16, path: &std::path::Path) -> Result<()> {
+pub fn save_gif<'a>(
+    frames: impl IntoIterator<Item = &'a RgbImage>,
+    fps: u16,
+    path: &std::path::Path,
+) -> Result<()> {
     use anyhow::Context;
     use image::codecs::gif::{GifEncoder, Repeat};
     let cannot = || format!("cannot write {}", path.display());

@@ -95,7 +95,7 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
 /// own pace (to `--output` with the extension `.gif`).
 fn preview_path(args: &PreviewArgs, named: &NamedScene, animation: &Animation) -> Result<()> {
     let methods = args.methods.methods();
-    let frames: Vec<NamedScene> = (0..animation.frames).map(|k| named.at_frame(k)).collect();
+    let frames = named.frames();
     let machine = Machine::from(args.target);
     let format = super::firmware_format(args.format, &frames, methods, machine, args.target_psnr)?;
     let presentation = args.presentation.presentation();
