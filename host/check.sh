@@ -55,8 +55,9 @@ if ! dpkg -s libsdl2-dev >/dev/null 2>&1; then
     fi
 fi
 
-step "format"
+step "format (the workspace and the firmware template)"
 cargo fmt --all -- --check
+cargo fmt --manifest-path templates/pico/Cargo.toml -- --check
 
 step "clippy, host (the core and the harness, with and without the preview's window)"
 cargo clippy --all-targets --locked -- -D warnings
@@ -103,6 +104,19 @@ OBSCURA_SCENES=host/scenes/pyramid.toml OBSCURA_SAMPLES=16 OBSCURA_ADAPTIVE_SAMP
     cargo build --release -p obscura-pico --target "$M0" --locked
 OBSCURA_SCENES=host/scenes/pyramid.toml OBSCURA_FORMATS=f32 cargo build --release -p obscura-pico2 --target "$M33" --locked
 OBSCURA_SCENES=host/scenes/pyramid.toml OBSCURA_FORMATS=i16f16 cargo build --release -p obscura-pico2 --target "$RV32" --locked
+
+step "the firmware template, copied outside the workspace as a stranger would, builds within 48 KiB of flash"
+template=$(mktemp -d)/my-pico
+cp -r templates/pico "$template"
+rm -rf "$template/target"
+sed -i "s|path = \"\.\./\.\.|path = \"$PWD|" "$template/Cargo.toml"
+(cd "$template" && cargo build --release --locked --quiet)
+read -r text data _ < <(size "$template/target/$M0/release/my-obscura-pico" | tail -n 1)
+echo "templates/pico: $((text + data)) bytes of flash"
+if [ $((text + data)) -gt $((48 * 1024)) ]; then
+    echo "the template's image is over 48 KiB of flash" >&2
+    exit 1
+fi
 
 step "a scene the format cannot hold fails the firmware's build, at its line and column"
 if OBSCURA_SCENES=host/scenes/hostile/low-light.toml OBSCURA_FORMATS=i16f16 \

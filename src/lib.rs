@@ -89,4 +89,4 @@ pub use shade::Sample;
 pub use shape::mesh;
 pub use uses::Uses;
 pub use vec3::Vec3;
-pub use words::WordsError;
+pub use words::{ProvenScene, WordsError};

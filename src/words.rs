@@ -50,6 +50,21 @@ impl fmt::Display for WordsError {
     }
 }
 
+/// A scene and its camera built and proven on the host, as the words a firmware keeps in
+/// flash: what a build script's `obscura_scene::build` writes as a constant, and what the chip
+/// reads back with one call, [`Scene::from_proven`](crate::Scene::from_proven), building and
+/// proving nothing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ProvenScene<'a> {
+    /// The scene's words ([`Scene::write_words`](crate::Scene::write_words)).
+    pub scene: &'a [u32],
+    /// Its meshes' words, read in place ([`crate::mesh::MeshWords`]).
+    pub meshes: &'static [u32],
+    /// The camera's words, at the display's size
+    /// ([`Camera::write_words`](crate::Camera::write_words)).
+    pub camera: &'a [u32],
+}
+
 /// A value that goes to words and comes back the same.
 pub(crate) trait Words: Sized {
     /// Writes the value's words.
@@ -562,6 +577,52 @@ mod tests {
         let camera = scene.camera(8, 8).unwrap();
         let mut display = MockDisplay::<Rgb565>::new();
         crate::render_rows(&scene, &camera, 0..8, &mut line, &mut [], &mut display).unwrap();
+    }
+
+    #[test]
+    fn a_proven_scene_and_its_camera_read_back_in_one_call() {
+        type Read = Scene<
+            crate::I16F16,
+            8,
+            4,
+            8,
+            { Uses::EVERYTHING.bits() },
+            crate::mesh::MeshWords<crate::I16F16>,
+        >;
+        let scene = Scene::<crate::I16F16, 8, 4, 8>::build(&crate::scenes::WHITTED).unwrap();
+        let camera = scene.camera(16, 16).unwrap();
+        let leak = |words: Vec<u32>| -> &'static [u32] { words.leak() };
+        let proven = ProvenScene {
+            scene: leak(words_of(|sink| scene.write_words(sink))),
+            meshes: leak(words_of(|sink| scene.write_mesh_words(sink))),
+            camera: leak(words_of(|sink| camera.write_words(sink))),
+        };
+        let (back, back_camera) = Read::from_proven(&proven).unwrap();
+        assert_eq!(words_of(|sink| back.write_words(sink)), proven.scene);
+        assert_eq!(back_camera, camera);
+        // Each part's words in another's place are refused, naming the part.
+        let swapped = ProvenScene {
+            scene: proven.camera,
+            camera: proven.scene,
+            ..proven
+        };
+        assert_eq!(Read::from_proven(&swapped).unwrap_err().what, "scene");
+        let camera_as_meshes = ProvenScene {
+            meshes: proven.camera,
+            ..proven
+        };
+        assert_eq!(
+            Read::from_proven(&camera_as_meshes).unwrap_err().what,
+            "meshes"
+        );
+        let scene_as_camera = ProvenScene {
+            camera: proven.scene,
+            ..proven
+        };
+        assert_eq!(
+            Read::from_proven(&scene_as_camera).unwrap_err().what,
+            "camera"
+        );
     }
 
     #[test]

@@ -11,7 +11,7 @@ use core::fmt;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use obscura::mesh::MeshWords;
-use obscura::{Bits, Camera, Corner, Presentation, RenderError, Scene, Uses, render_frame};
+use obscura::{Bits, Camera, Corner, Presentation, ProvenScene, RenderError, Scene, render_frame};
 
 /// What goes wrong drawing a frame on `B`'s display.
 pub type FrameError<B> = RenderError<<<B as Backend>::Display as DrawTarget>::Error>;
@@ -219,27 +219,17 @@ pub(crate) fn draw<
 ) {
     // Hidden from the optimiser, so that no build folds a constant scene into the tracer: every
     // frame measures the same general code, whichever scenes and formats share the firmware.
-    let (scene, meshes, camera) = core::hint::black_box((scene, meshes, camera));
-    stack::paint();
-    // A tracer without meshes reads none: its scene has none to meet.
-    let meshes = if Uses::from_bits(USES).contains(Uses::MESHES) {
-        MeshWords::<S>::from_words(meshes)
-    } else {
-        Ok(MeshWords::default())
-    };
-    let (scene, camera) = match (
-        Scene::<S, OBJECTS, LIGHTS, RAYS, USES, MeshWords<S>>::from_words(scene),
+    let proven = core::hint::black_box(ProvenScene {
+        scene,
         meshes,
-        Camera::<S>::from_words(camera),
-    ) {
-        (Ok(mut scene), Ok(meshes), Ok(camera)) => {
-            scene.set_meshes(meshes);
-            (scene, camera)
-        }
-        (Err(error), _, _) | (_, Err(error), _) | (_, _, Err(error)) => {
-            return backend.failed(job, &error);
-        }
-    };
+        camera,
+    });
+    stack::paint();
+    let (scene, camera) =
+        match Scene::<S, OBJECTS, LIGHTS, RAYS, USES, MeshWords<S>>::from_proven(&proven) {
+            Ok(read) => read,
+            Err(error) => return backend.failed(job, &error),
+        };
     backend.begin(job);
     let (drawn, ticks) = clock.measure(|| backend.draw_frame(&scene, &camera, job.presentation));
     backend.end();

@@ -11,13 +11,13 @@
 //! (`obscura firmware`, `obscura chart`) asks for an image through the same variables
 //! ([`FirmwareSettings::environment`]).
 
+use crate::build::{Words, array_source, prove, refused, words_source};
 use crate::{
-    FirmwareSettings, Format, FormatChoice, FormatJob, HostScene, MAX_LIGHTS, MAX_OBJECTS,
-    NamedScene, RAY_STACK, Variants,
+    FirmwareSettings, Format, FormatChoice, MAX_LIGHTS, MAX_OBJECTS, NamedScene, RAY_STACK,
+    Variants,
 };
 use anyhow::{Context, Result, bail};
-use obscura::scalar::Proven;
-use obscura::{Bits, Methods, Presentation, SceneDesc, SceneError, Uses};
+use obscura::{Methods, Presentation, SceneError, Uses};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -144,7 +144,7 @@ impl Configuration {
             let desc = named.scene.desc();
             for &format in &self.formats {
                 for methods in self.methods_of(format, desc.has_triangles()) {
-                    let proven = match format.run::<Proven, _>(Prove(&desc, methods)) {
+                    let proven = match prove(&desc, format, methods, (SIDE, SIDE)) {
                         // The methods asked for must hold every scene; a variant need not.
                         Err(refusal) if !self.variants => {
                             return Err(refused(named, format, refusal));
@@ -337,34 +337,6 @@ pub fn generate(workspace: &Path) -> Result<Generated> {
     })
 }
 
-/// Why `named` cannot be drawn in `format`: `refusal`, placed in its scene file (at the line
-/// and column of what it is about) or naming the built-in scene.
-fn refused(named: &NamedScene, format: Format, refusal: SceneError) -> anyhow::Error {
-    let error =
-        anyhow::Error::new(refusal).context(format!("the scene cannot be built in {format}"));
-    match named.path() {
-        Some(_) => named.locate(error),
-        None => error.context(format!(
-            "the firmware cannot draw {} in {format}",
-            named.name
-        )),
-    }
-}
-
-/// A frame's scene and camera, proven on the host, as the words the firmware reads them from
-/// ([`obscura::words`]), and the tracer's parts they use.
-#[derive(Debug)]
-pub struct Words {
-    /// The scene's words.
-    pub scene: Vec<u32>,
-    /// Its meshes' words ([`obscura::mesh::MeshWords`]), which the firmware reads in place.
-    pub meshes: Vec<u32>,
-    /// The camera's words, at the display's size.
-    pub camera: Vec<u32>,
-    /// What of the tracer the scene and the camera use ([`Uses`]).
-    pub uses: Uses,
-}
-
 /// The parts of the tracer that the proven frames in `format` use between them: the tracer the
 /// firmware holds for the format.
 fn tracer_uses(frames: &[Frame<'_>], format: Format) -> Uses {
@@ -387,28 +359,6 @@ pub struct Frame<'a> {
     pub methods: Methods,
     /// The scene and its camera as words, or why the format cannot hold the scene.
     pub proven: Result<Words, SceneError>,
-}
-
-/// Builds a scene in a format, and its camera at the display's size, and writes them as words
-/// (with the capacities of a scene built at run time: a firmware's are exactly its scene's).
-struct Prove<'a>(&'a SceneDesc<'a>, Methods);
-
-impl FormatJob for Prove<'_> {
-    type Output = Result<Words, SceneError>;
-    fn run<S: Bits>(self) -> Self::Output {
-        let scene = HostScene::<S>::build_with(self.0, self.1)?;
-        let camera = scene.camera(SIDE, SIDE)?;
-        let mut words = Words {
-            scene: Vec::new(),
-            meshes: Vec::new(),
-            camera: Vec::new(),
-            uses: scene.uses().union(camera.uses()),
-        };
-        scene.write_words(&mut |word| words.scene.push(word));
-        scene.write_mesh_words(&mut |word| words.meshes.push(word));
-        camera.write_words(&mut |word| words.camera.push(word));
-        Ok(words)
-    }
 }
 
 /// The frames, `i` first, of the camera path whose frame 0 is frame `i`, in `frames`' order:
@@ -505,23 +455,6 @@ fn shared_source(words: &[&[u32]]) -> (String, usize) {
         words_source(&values),
     );
     (source, changed.len())
-}
-
-/// `words` as a Rust array expression, eight to a line.
-fn array_source(words: &[u32]) -> String {
-    let lines: Vec<String> = words
-        .chunks(8)
-        .map(|line| {
-            let line: Vec<String> = line.iter().map(|w| format!("{w:#010x}")).collect();
-            format!("            {},\n", line.join(", "))
-        })
-        .collect();
-    format!("[\n{}        ]", lines.concat())
-}
-
-/// `words` as a Rust expression of type `&[u32]`, eight to a line.
-fn words_source(words: &[u32]) -> String {
-    format!("&{}", array_source(words))
 }
 
 #[cfg(test)]

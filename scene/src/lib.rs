@@ -22,6 +22,7 @@
 struct SceneFilesChapter;
 
 mod animation;
+pub mod build;
 mod file;
 pub mod firmware;
 mod format;

@@ -24,11 +24,11 @@ use crate::methods::{Methods, RootMethod};
 use crate::occlusion::Cone;
 use crate::scalar::REACH_ERRORS;
 use crate::scalar::{Bits, FormatInfo, FormatSet, Precision, Scalar};
-use crate::shape::mesh::{MeshStorage, Meshes, NoMeshes, Node};
+use crate::shape::mesh::{MeshStorage, MeshWords, Meshes, NoMeshes, Node};
 use crate::shape::{CHECKER_PERIOD, Checker, Plane, Shape, Sphere, Triangle};
 use crate::uses::Uses;
 use crate::vec3::Vec3;
-use crate::words::{self, Reader, Words, WordsError, Writer};
+use crate::words::{self, ProvenScene, Reader, Words, WordsError, Writer};
 use core::marker::PhantomData;
 use heapless::Vec;
 
@@ -261,6 +261,30 @@ impl<
     }
 }
 
+impl<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, const USES: u32>
+    Scene<S, OBJECTS, LIGHTS, RAYS, USES, MeshWords<S>>
+{
+    /// The scene and the camera a build script proved on the host (`obscura_scene::build`),
+    /// read back from their words ([`ProvenScene`]): the scene, its meshes read in place, and
+    /// the camera. The chip builds and proves nothing.
+    ///
+    /// # Errors
+    /// As [`Self::from_words`], [`MeshWords::from_words`] and [`Camera::from_words`]: when the
+    /// words are not a scene's, meshes' and camera's of format `S` within these capacities and
+    /// parts.
+    pub fn from_proven(proven: &ProvenScene<'_>) -> Result<(Self, Camera<S>), WordsError> {
+        // A tracer without meshes reads none: its scene has none to meet.
+        let meshes = if Uses::from_bits(USES).contains(Uses::MESHES) {
+            MeshWords::from_words(proven.meshes)
+        } else {
+            Ok(MeshWords::default())
+        };
+        let mut scene = Self::from_words(proven.scene)?;
+        scene.set_meshes(meshes?);
+        Ok((scene, Camera::from_words(proven.camera)?))
+    }
+}
+
 impl<
     S: Bits,
     const OBJECTS: usize,
@@ -289,7 +313,7 @@ impl<
         words::read::<S, Self>("scene", words)
     }
 
-    /// Writes the scene's meshes as words to `sink`, as [`MeshWords`](crate::mesh::MeshWords) reads them: what a
+    /// Writes the scene's meshes as words to `sink`, as [`MeshWords`] reads them: what a
     /// firmware's build keeps in flash beside the scene's words ([`Self::write_words`]), which
     /// do not hold them.
     pub fn write_mesh_words(&self, sink: &mut dyn FnMut(u32)) {
@@ -298,7 +322,7 @@ impl<
 
     /// Gives the scene its meshes: a scene read from words ([`Self::from_words`]) with the
     /// meshes written beside it ([`Self::write_mesh_words`], read by
-    /// [`MeshWords`](crate::mesh::MeshWords)). In place: a firmware's scene is not copied.
+    /// [`MeshWords`]). In place: a firmware's scene is not copied.
     pub fn set_meshes(&mut self, meshes: M) {
         self.meshes = meshes;
     }

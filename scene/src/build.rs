@@ -1,0 +1,330 @@
+//! The cheap path for a firmware of your own: your build script proves a scene file in a format
+//! on the host, at your display's size, and writes what the chip needs as Rust source for your
+//! firmware to `include!`; the chip reads the scene and its camera back with one call,
+//! [`obscura::Scene::from_proven`], and links no scene build, no range proof and no `f64`
+//! arithmetic. A scene the format cannot hold stops the build with the refusal placed at its
+//! line and column in the scene file, as `obscura analyze` would place it.
+//!
+//! ```no_run
+//! // build.rs
+//! use obscura_scene::{Format, build::Proof};
+//!
+//! fn main() {
+//!     Proof::new("scene.toml", Format::I16f16, (240, 240)).write("scene.rs");
+//! }
+//! ```
+//!
+//! ```ignore
+//! // src/main.rs
+//! mod scene {
+//!     include!(concat!(env!("OUT_DIR"), "/scene.rs"));
+//! }
+//! let (scene, camera) = scene::Scene::from_proven(scene::PROVEN)?;
+//! let mut line = [Rgb565::BLACK; scene::WIDTH as usize];
+//! let mut corners = [obscura::Corner::ZERO; scene::CORNER_ROWS];
+//! obscura::render_frame(&scene, &camera, Presentation::default(), &mut line, &mut corners, &mut display)?;
+//! ```
+//!
+//! The source defines, for the scene as proven:
+//! - `Scene`, the core's scene in the format with storage sized to exactly its objects, lights
+//!   and ray tree and a tracer of only the parts it uses ([`obscura::Uses`]), its meshes read in
+//!   place from flash;
+//! - `WIDTH` and `HEIGHT`, the image the camera was placed for;
+//! - `CORNER_ROWS`, the corners adaptive anti-aliasing keeps (0 without it: pass `&mut []`);
+//! - `FRAMES`, the words of each frame ([`obscura::ProvenScene`]): one for a still scene, and
+//!   for a scene with a camera path (`[animation]`) each of its frames, proven for its own
+//!   camera; and `PROVEN`, the first.
+//!
+//! The scene file is watched (`cargo::rerun-if-changed`); a mesh file it names is not: after
+//! changing one, touch the scene file.
+
+use crate::{Format, FormatJob, HostScene, NamedScene};
+use anyhow::{Context, Result, bail};
+use obscura::{Bits, Methods, SceneDesc, SceneError, Uses};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// A scene file to prove in a format at a display's size, by some methods: what a build script
+/// asks for ([`Self::write`]).
+#[derive(Clone, Debug)]
+pub struct Proof {
+    scene_file: PathBuf,
+    format: Format,
+    size: (u32, u32),
+    methods: Methods,
+}
+
+impl Proof {
+    /// The scene file at `scene_file` (relative to the package, where a build script runs),
+    /// proven in `format` for an image of `(width, height)` pixels, by the lecture's methods
+    /// ([`Methods::default`]).
+    pub fn new(scene_file: impl Into<PathBuf>, format: Format, size: (u32, u32)) -> Self {
+        Self {
+            scene_file: scene_file.into(),
+            format,
+            size,
+            methods: Methods::default(),
+        }
+    }
+
+    /// The same proof by `methods` (`obscura chart` compares them).
+    #[must_use]
+    pub fn methods(self, methods: Methods) -> Self {
+        Self { methods, ..self }
+    }
+
+    /// The Rust source that holds the proven scene (see the [module](self)).
+    ///
+    /// # Errors
+    /// When the scene file cannot be read, the format is `f64` (the host's reference), or the
+    /// format cannot hold the scene or its camera at this size (placed in the scene file).
+    pub fn source(&self) -> Result<String> {
+        if self.format == Format::F64 {
+            bail!(
+                "f64 is not a firmware format: take one of {}",
+                Format::firmware_names()
+            );
+        }
+        let path = self.scene_file.to_string_lossy();
+        let named = crate::load(&path)?;
+        let frames: Vec<Words> = named
+            .frames()
+            .iter()
+            .map(|frame| {
+                prove(&frame.scene.desc(), self.format, self.methods, self.size)
+                    .map_err(|refusal| refused(frame, self.format, refusal))
+            })
+            .collect::<Result<_>>()?;
+        let uses = frames
+            .iter()
+            .fold(Uses::NOTHING, |uses, words| uses.union(words.uses));
+        let desc = named.scene.desc();
+        let (width, height) = self.size;
+        let format = self.format.rust_type();
+        let mut out = format!(
+            "// Written by obscura_scene::build::Proof from {path} in {} at {width}×{height} by \
+             {}; do not edit.\n\n",
+            self.format, self.methods
+        );
+        let _ = writeln!(
+            out,
+            "/// The scene as the chip holds it, in {}: storage for its {} objects, {} lights and \
+             ray trees {} deep, and a tracer of its parts: {uses}.\n\
+             pub type Scene = obscura::Scene<{format}, {}, {}, {}, {:#010x}, \
+             obscura::mesh::MeshWords<{format}>>;\n",
+            self.format,
+            desc.objects.len(),
+            desc.lights.len(),
+            desc.max_depth,
+            desc.objects.len(),
+            desc.lights.len(),
+            usize::from(desc.max_depth) + 1,
+            uses.bits(),
+        );
+        let _ = writeln!(
+            out,
+            "/// The width of the image the camera was placed for.\npub const WIDTH: u32 = \
+             {width};\n/// Its height.\npub const HEIGHT: u32 = {height};\n"
+        );
+        let corners = if desc.adaptive_samples {
+            obscura::corner_rows(width)
+        } else {
+            0
+        };
+        let _ = writeln!(
+            out,
+            "/// The corners adaptive anti-aliasing keeps: the corner rows `render_frame` takes \
+             (0: the scene takes no adaptive samples).\npub const CORNER_ROWS: usize = \
+             {corners};\n"
+        );
+        let _ = writeln!(
+            out,
+            "/// Each frame's scene and camera as proven words: {}.\npub static FRAMES: \
+             [obscura::ProvenScene<'static>; {}] = [",
+            if frames.len() == 1 {
+                "the still scene's"
+            } else {
+                "the camera path's frames in order"
+            },
+            frames.len()
+        );
+        for words in &frames {
+            let _ = writeln!(
+                out,
+                "    obscura::ProvenScene {{\n        scene: {},\n        meshes: {},\n        \
+                 camera: {},\n    }},",
+                words_source(&words.scene),
+                words_source(&words.meshes),
+                words_source(&words.camera),
+            );
+        }
+        let _ = writeln!(
+            out,
+            "];\n\n/// The first frame: `Scene::from_proven(PROVEN)`.\npub static PROVEN: \
+             &obscura::ProvenScene<'static> = &FRAMES[0];"
+        );
+        Ok(out)
+    }
+
+    /// In a build script: writes [`Self::source`] to `file_name` in `OUT_DIR` and has Cargo run
+    /// the script again when the scene file changes; or, where the scene cannot be proven,
+    /// fails the build with the reason (`cargo::error`), placed in the scene file.
+    pub fn write(&self, file_name: &str) {
+        println!("cargo::rerun-if-changed={}", self.scene_file.display());
+        let written = self.source().and_then(|source| {
+            let out = std::env::var_os("OUT_DIR")
+                .context("OUT_DIR is not set: Proof::write is for a build script")?;
+            let path = Path::new(&out).join(file_name);
+            std::fs::write(&path, source)
+                .with_context(|| format!("cannot write {}", path.display()))
+        });
+        if let Err(error) = written {
+            let text = crate::error_text(&error);
+            for line in text.strip_prefix("error: ").unwrap_or(&text).lines() {
+                println!("cargo::error={line}");
+            }
+        }
+    }
+}
+
+/// A frame's scene and camera, proven on the host, as the words the firmware reads them from
+/// ([`obscura::ProvenScene`]), and the tracer's parts they use.
+#[derive(Debug)]
+pub struct Words {
+    /// The scene's words.
+    pub scene: Vec<u32>,
+    /// Its meshes' words ([`obscura::mesh::MeshWords`]), which the firmware reads in place.
+    pub meshes: Vec<u32>,
+    /// The camera's words, at the display's size.
+    pub camera: Vec<u32>,
+    /// What of the tracer the scene and the camera use ([`Uses`]).
+    pub uses: Uses,
+}
+
+/// Builds `desc` in `format` by `methods` (with the capacities of a scene built at run time: a
+/// firmware's are exactly its scene's), places its camera for an image of `size`, and writes
+/// both as words.
+///
+/// # Errors
+/// The core's refusal of the scene or the camera in the format.
+pub fn prove(
+    desc: &SceneDesc<'_>,
+    format: Format,
+    methods: Methods,
+    size: (u32, u32),
+) -> Result<Words, SceneError> {
+    /// The work of [`prove`], generic over the format.
+    struct Prove<'a>(&'a SceneDesc<'a>, Methods, (u32, u32));
+
+    impl FormatJob for Prove<'_> {
+        type Output = Result<Words, SceneError>;
+        fn run<S: Bits>(self) -> Self::Output {
+            let Self(desc, methods, (width, height)) = self;
+            let scene = HostScene::<S>::build_with(desc, methods)?;
+            let camera = scene.camera(width, height)?;
+            let mut words = Words {
+                scene: Vec::new(),
+                meshes: Vec::new(),
+                camera: Vec::new(),
+                uses: scene.uses().union(camera.uses()),
+            };
+            scene.write_words(&mut |word| words.scene.push(word));
+            scene.write_mesh_words(&mut |word| words.meshes.push(word));
+            camera.write_words(&mut |word| words.camera.push(word));
+            Ok(words)
+        }
+    }
+    format.run::<obscura::scalar::Proven, _>(Prove(desc, methods, size))
+}
+
+/// Why `named` cannot be drawn in `format`: `refusal`, placed in its scene file (at the line
+/// and column of what it is about) or naming the built-in scene.
+pub(crate) fn refused(named: &NamedScene, format: Format, refusal: SceneError) -> anyhow::Error {
+    let error =
+        anyhow::Error::new(refusal).context(format!("the scene cannot be built in {format}"));
+    match named.path() {
+        Some(_) => named.locate(error),
+        None => error.context(format!(
+            "the firmware cannot draw {} in {format}",
+            named.name
+        )),
+    }
+}
+
+/// `words` as a Rust array expression, eight to a line.
+pub(crate) fn array_source(words: &[u32]) -> String {
+    let lines: Vec<String> = words
+        .chunks(8)
+        .map(|line| {
+            let line: Vec<String> = line.iter().map(|w| format!("{w:#010x}")).collect();
+            format!("            {},\n", line.join(", "))
+        })
+        .collect();
+    format!("[\n{}        ]", lines.concat())
+}
+
+/// `words` as a Rust expression of type `&[u32]`, eight to a line.
+pub(crate) fn words_source(words: &[u32]) -> String {
+    format!("&{}", array_source(words))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scene_file(name: &str) -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../host/scenes")
+            .join(name)
+    }
+
+    #[test]
+    fn a_still_scene_is_one_proven_frame_of_a_type_sized_to_it() {
+        let source = Proof::new(scene_file("pyramid.toml"), Format::I16f16, (48, 32))
+            .source()
+            .unwrap();
+        for expected in [
+            "pub type Scene = obscura::Scene<obscura::formats::I16f16, ",
+            "obscura::mesh::MeshWords<obscura::formats::I16f16>>;",
+            "pub const WIDTH: u32 = 48;",
+            "pub const HEIGHT: u32 = 32;",
+            "pub const CORNER_ROWS: usize = 0;",
+            "pub static FRAMES: [obscura::ProvenScene<'static>; 1] = [",
+            "pub static PROVEN: &obscura::ProvenScene<'static> = &FRAMES[0];",
+        ] {
+            assert!(source.contains(expected), "{expected} in {source}");
+        }
+    }
+
+    #[test]
+    fn a_camera_path_is_each_of_its_frames_proven() {
+        let source = Proof::new(scene_file("orbit.toml"), Format::I16f16, (32, 32))
+            .source()
+            .unwrap();
+        assert!(
+            source.contains("[obscura::ProvenScene<'static>; 16]"),
+            "{source}"
+        );
+        assert_eq!(source.matches("obscura::ProvenScene {").count(), 16);
+    }
+
+    #[test]
+    fn what_cannot_be_proven_is_refused_where_it_is_said() {
+        let refused = |proof: Proof| format!("{:#}", proof.source().unwrap_err());
+        let message = refused(Proof::new(
+            scene_file("hostile/low-light.toml"),
+            Format::I16f16,
+            (240, 240),
+        ));
+        assert!(message.contains("low-light.toml:14:1"), "{message}");
+        let message = refused(Proof::new(scene_file("pyramid.toml"), Format::F64, (8, 8)));
+        assert!(
+            message.contains("f64 is not a firmware format"),
+            "{message}"
+        );
+        let message = refused(Proof::new(scene_file("nowhere.toml"), Format::F32, (8, 8)));
+        assert!(message.contains("there is no scene"), "{message}");
+        let message = refused(Proof::new(scene_file("pyramid.toml"), Format::F32, (0, 8)));
+        assert!(message.contains("each side must be 1 to"), "{message}");
+    }
+}
