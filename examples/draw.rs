@@ -9,7 +9,9 @@ use core::fmt;
 use embedded_graphics::mock_display::MockDisplay;
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
-use obscura::{I16F16, RenderError, Scene, SceneDesc, SceneError, render_rows, scenes};
+use obscura::{
+    I16F16, Presentation, RenderError, Scene, SceneDesc, SceneError, render_frame, scenes,
+};
 
 /// The widest display `draw` serves: its line buffer's length.
 const MOST_WIDTH: usize = 320;
@@ -44,8 +46,15 @@ fn draw<D: DrawTarget<Color = Rgb565>>(
         .camera(size.width, size.height)
         .map_err(DrawError::Scene)?;
     let mut line = [Rgb565::BLACK; MOST_WIDTH];
-    render_rows(&scene, &camera, 0..size.height, &mut line, &mut [], display)
-        .map_err(DrawError::Render)
+    render_frame(
+        &scene,
+        &camera,
+        Presentation::default(),
+        &mut line,
+        &mut [],
+        display,
+    )
+    .map_err(DrawError::Render)
 }
 
 fn main() {

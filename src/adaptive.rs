@@ -13,7 +13,7 @@
 //! row are the top corners of the next. A corner's ray is a function of its place in the image
 //! alone, whichever row traces it first, so every way of splitting a frame into rows draws the
 //! same image; where a row does not follow the row above it in one call (a progressive frame,
-//! two cores sharing the rows, [`crate::trace_row`]) its top corners are traced again: about
+//! two cores sharing the rows, [`crate::RowTracer`]) its top corners are traced again: about
 //! two rays a flat pixel.
 //!
 //! The points are binary fractions of the pixel, exact in every format, and each traced colour

@@ -10,14 +10,16 @@
 //!
 //! ```
 //! use embedded_graphics::{mock_display::MockDisplay, pixelcolor::Rgb565};
-//! use obscura::{I16F16, Scene, render_rows, scenes};
+//! use obscura::{I16F16, Presentation, Scene, render_frame, scenes};
 //!
 //! // At most 8 objects, 4 lights, and a ray stack for a tree 5 levels deep.
 //! let scene = Scene::<I16F16, 8, 4, 6>::build(&scenes::WHITTED)?;
 //! let camera = scene.camera(32, 32)?;
 //! let mut display = MockDisplay::<Rgb565>::new();
 //! let mut line = [Rgb565::default(); 32];
-//! render_rows(&scene, &camera, 0..32, &mut line, &mut [], &mut display).unwrap();
+//! // Top to bottom, undithered: `Presentation` says otherwise.
+//! let frame = Presentation::default();
+//! render_frame(&scene, &camera, frame, &mut line, &mut [], &mut display).unwrap();
 //! # Ok::<(), obscura::SceneError>(())
 //! ```
 //!
@@ -79,9 +81,7 @@ pub use methods::{
     BiasMethod, Methods, ParseMethodsError, RayMethod, RootMethod, SphereMethod, TriangleMethod,
 };
 pub use ray::Ray;
-pub use render::{
-    Presentation, RenderError, RowOrder, render_frame, render_rows, send_row, trace_row,
-};
+pub use render::{Presentation, RenderError, RowOrder, RowTracer, render_frame, send_row};
 pub use scalar::names as formats;
 pub use scalar::{Bits, F32Approx, Fx, I16F16, I20F12, I32F32, Scalar};
 pub use scene::{Item, Remedy, Scene, SceneError};

@@ -1,7 +1,7 @@
-//! The scanline renderer: traces a range of rows into a line buffer and sends each finished row
-//! to an embedded-graphics [`DrawTarget`] as one rectangle. It needs no frame buffer. A whole
-//! frame ([`render_frame`]) can go to the display in a progressive order and dithered
-//! ([`Presentation`]).
+//! The scanline renderer: traces a frame row by row into a line buffer and sends each finished
+//! row to an embedded-graphics [`DrawTarget`] as one rectangle, needing no frame buffer. Two
+//! ways in: [`render_frame`] draws a whole frame, in the order and dither of a [`Presentation`];
+//! a [`RowTracer`] traces one row at a time for a renderer that sends the rows itself.
 
 use crate::adaptive::{self, Corner, CornerRows, Pixel};
 use crate::camera::{Camera, Row};
@@ -15,8 +15,9 @@ use crate::shade::{Task, Tracer};
 use crate::shape::mesh::Meshes;
 use crate::uses::Uses;
 use crate::vec3::Vec3;
+use core::convert::Infallible;
 use core::fmt;
-use core::ops::Range;
+use core::marker::PhantomData;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Point, Size};
 use embedded_graphics_core::primitives::Rectangle;
@@ -94,7 +95,7 @@ impl<E: fmt::Debug> fmt::Display for RenderError<E> {
 
 impl<E: fmt::Debug> core::error::Error for RenderError<E> {}
 
-impl RenderError<core::convert::Infallible> {
+impl RenderError<Infallible> {
     /// The same error, as one of a renderer whose target fails with `E` (tracing a row alone
     /// draws nothing, so it never fails for its target).
     #[must_use]
@@ -111,65 +112,6 @@ impl RenderError<core::convert::Infallible> {
             Self::Target(never) => match never {},
         }
     }
-}
-
-/// Renders `rows` of the image that `camera` sees of `scene`, top to bottom. Row y of the image
-/// goes to row y of `target` (pixels (0, y) to (width − 1, y)), through `line`, which must hold
-/// a row, and for a scene with adaptive samples through `corners`, which must hold
-/// [`corner_rows`](crate::adaptive::corner_rows)`(width)` (else it may be empty).
-///
-/// # Errors
-/// [`RenderError`] for a short line buffer or corner rows, rows beyond the image, or a failing
-/// target.
-pub fn render_rows<
-    S,
-    C,
-    D,
-    K,
-    const OBJECTS: usize,
-    const LIGHTS: usize,
-    const RAYS: usize,
-    const USES: u32,
-    M: Meshes<S>,
->(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>,
-    camera: &Camera<S>,
-    rows: Range<u32>,
-    line: &mut [C],
-    corners: &mut K,
-    target: &mut D,
-) -> Result<(), RenderError<D::Error>>
-where
-    S: Scalar,
-    C: DisplayColor,
-    D: DrawTarget<Color = C>,
-    K: CornerRows + ?Sized,
-{
-    let (line, mut window) =
-        buffers(scene, camera, line, corners.rows()).map_err(RenderError::for_target)?;
-    let camera = camera.narrowed(Uses::from_bits(USES));
-    if rows.end > camera.height() {
-        return Err(RenderError::RowsOutOfRange {
-            end: rows.end,
-            height: camera.height(),
-        });
-    }
-    let (end, height) = (rows.end, camera.height());
-    for y in rows {
-        let row = camera
-            .row(y)
-            .ok_or(RenderError::RowsOutOfRange { end, height })?;
-        trace_pixels::<K, _, _, OBJECTS, LIGHTS, RAYS, USES, M>(
-            scene,
-            &row,
-            y,
-            Dither::None,
-            line,
-            &mut window,
-        );
-        send_row(target, line, y, 1)?;
-    }
-    Ok(())
 }
 
 /// A pixel's samples, each at most 2¹⁶ per channel in [`Rgb::to_q16`], sum within a `u32`; so
@@ -288,7 +230,7 @@ fn buffers<
     camera: &'a Camera<S>,
     line: &'a mut [C],
     corners: &'a mut [Corner],
-) -> Result<Buffers<'a, C, S>, RenderError<core::convert::Infallible>>
+) -> Result<Buffers<'a, C, S>, RenderError<Infallible>>
 where
     S: Scalar,
 {
@@ -450,50 +392,109 @@ pub fn send_row<C: DisplayColor, D: DrawTarget<Color = C>>(
         .map_err(RenderError::Target)
 }
 
-/// Traces row `y` of the image that `camera` sees of `scene` into `line` (its first `width`
-/// pixels), each pixel rounded by `dither`, without drawing it: for a renderer that shares a
-/// frame's rows among cores and sends them itself ([`send_row`]). With adaptive samples it
-/// traces the corners above and below the row into `corners` (see [`render_rows`]).
-///
-/// # Errors
-/// [`RenderError`] for a short line buffer or corner rows, or a row beyond the image.
-pub fn trace_row<
-    S,
+/// Traces the rows of the image that `camera` sees of `scene` one at a time into `line` (its
+/// first `width` pixels), each pixel rounded by `dither`, for a renderer that sends each row
+/// itself ([`send_row`]): to a display that takes a row at a time, or with a frame's rows
+/// shared among cores, as the Pico's firmware shares them. [`render_frame`] draws a whole frame
+/// through one. A scene with adaptive samples keeps its corner rows in `corners`
+/// ([`corner_rows`](crate::adaptive::corner_rows)`(width)` of them; else `&mut []`), and rows
+/// traced top to bottom share them.
+pub struct RowTracer<
+    'a,
+    S: Scalar,
     C,
-    K,
+    K: ?Sized,
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,
     const USES: u32,
     M: Meshes<S>,
->(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>,
-    camera: &Camera<S>,
-    y: u32,
+> {
+    scene: &'a Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>,
+    camera: Camera<S>,
     dither: Dither,
-    line: &mut [C],
-    corners: &mut K,
-) -> Result<(), RenderError<core::convert::Infallible>>
-where
+    line: &'a mut [C],
+    window: Option<Window<'a, S>>,
+    corners: PhantomData<fn(&K)>,
+}
+
+impl<
+    'a,
     S: Scalar,
     C: DisplayColor,
     K: CornerRows + ?Sized,
+    const OBJECTS: usize,
+    const LIGHTS: usize,
+    const RAYS: usize,
+    const USES: u32,
+    M: Meshes<S>,
+> RowTracer<'a, S, C, K, OBJECTS, LIGHTS, RAYS, USES, M>
 {
-    let (line, mut window) = buffers(scene, camera, line, corners.rows())?;
-    let camera = camera.narrowed(Uses::from_bits(USES));
-    let row = camera.row(y).ok_or(RenderError::RowsOutOfRange {
-        end: y.saturating_add(1),
-        height: camera.height(),
-    })?;
-    trace_pixels::<K, _, _, OBJECTS, LIGHTS, RAYS, USES, M>(
-        scene,
-        &row,
-        y,
-        dither,
-        line,
-        &mut window,
-    );
-    Ok(())
+    /// A tracer of the rows of the image `camera` sees of `scene`, through `line` and
+    /// `corners`, rounding by `dither`.
+    ///
+    /// # Errors
+    /// [`RenderError`] for a short line buffer or corner rows, or a camera that uses a part the
+    /// scene's tracer leaves out.
+    #[inline(always)]
+    pub fn new(
+        scene: &'a Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>,
+        camera: &'a Camera<S>,
+        dither: Dither,
+        line: &'a mut [C],
+        corners: &'a mut K,
+    ) -> Result<Self, RenderError<Infallible>> {
+        let (line, window) = buffers(scene, camera, line, corners.rows())?;
+        Ok(Self {
+            scene,
+            camera: camera.narrowed(Uses::from_bits(USES)),
+            dither,
+            line,
+            window,
+            corners: PhantomData,
+        })
+    }
+
+    /// Traces row `y` and gives its pixels.
+    ///
+    /// # Errors
+    /// [`RenderError::RowsOutOfRange`] for a row beyond the image.
+    #[inline(always)]
+    pub fn trace(&mut self, y: u32) -> Result<&[C], RenderError<Infallible>> {
+        let row = self.camera.row(y).ok_or(RenderError::RowsOutOfRange {
+            end: y.saturating_add(1),
+            height: self.camera.height(),
+        })?;
+        trace_pixels::<K, _, _, OBJECTS, LIGHTS, RAYS, USES, M>(
+            self.scene,
+            &row,
+            y,
+            self.dither,
+            self.line,
+            &mut self.window,
+        );
+        Ok(self.line)
+    }
+}
+
+impl<
+    S: Scalar,
+    C,
+    K: ?Sized,
+    const OBJECTS: usize,
+    const LIGHTS: usize,
+    const RAYS: usize,
+    const USES: u32,
+    M: Meshes<S>,
+> fmt::Debug for RowTracer<'_, S, C, K, OBJECTS, LIGHTS, RAYS, USES, M>
+{
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("RowTracer")
+            .field("width", &self.line.len())
+            .field("height", &self.camera.height())
+            .field("dither", &self.dither)
+            .finish_non_exhaustive()
+    }
 }
 
 /// How a frame goes to the display: in which order its rows are traced, and how its colours
@@ -546,7 +547,7 @@ impl RowOrder {
 
 /// Renders the whole image that `camera` sees of `scene` onto `target`, its rows in
 /// `presentation`'s order and its colours rounded by its dither, through `line`, which must
-/// hold a row, and `corners` (see [`render_rows`]).
+/// hold a row, and `corners` (see [`RowTracer`]).
 ///
 /// # Errors
 /// [`RenderError`] for a short line buffer or corner rows, or a failing target.
@@ -574,23 +575,11 @@ where
     D: DrawTarget<Color = C>,
     K: CornerRows + ?Sized,
 {
-    let height = camera.height();
-    let (line, mut window) =
-        buffers(scene, camera, line, corners.rows()).map_err(RenderError::for_target)?;
-    let camera = camera.narrowed(Uses::from_bits(USES));
-    for (y, rows) in presentation.order.rows(height) {
-        let row = camera
-            .row(y)
-            .ok_or(RenderError::RowsOutOfRange { end: y + 1, height })?;
-        trace_pixels::<K, _, _, OBJECTS, LIGHTS, RAYS, USES, M>(
-            scene,
-            &row,
-            y,
-            presentation.dither,
-            line,
-            &mut window,
-        );
-        send_row(target, line, y, rows)?;
+    let mut rows = RowTracer::new(scene, camera, presentation.dither, line, corners)
+        .map_err(RenderError::for_target)?;
+    for (y, block) in presentation.order.rows(camera.height()) {
+        let line = rows.trace(y).map_err(RenderError::for_target)?;
+        send_row(target, line, y, block)?;
     }
     Ok(())
 }

@@ -566,7 +566,8 @@ mod tests {
         let camera = focus.camera(8, 8).unwrap();
         let mut line = [Rgb565::default(); 8];
         let mut display = MockDisplay::<Rgb565>::new();
-        let refused = crate::render_rows(&scene, &camera, 0..8, &mut line, &mut [], &mut display);
+        let frame = crate::Presentation::default();
+        let refused = crate::render_frame(&scene, &camera, frame, &mut line, &mut [], &mut display);
         assert_eq!(
             refused,
             Err(crate::RenderError::TracerLacks {
@@ -576,7 +577,7 @@ mod tests {
         // Its own camera draws.
         let camera = scene.camera(8, 8).unwrap();
         let mut display = MockDisplay::<Rgb565>::new();
-        crate::render_rows(&scene, &camera, 0..8, &mut line, &mut [], &mut display).unwrap();
+        crate::render_frame(&scene, &camera, frame, &mut line, &mut [], &mut display).unwrap();
     }
 
     #[test]

@@ -2,13 +2,16 @@
 //! each row as one rectangle; a progressive frame and a dithered one; and its errors.
 
 use core::convert::Infallible;
+use core::fmt::Debug;
+use core::ops::Range;
 use embedded_graphics::mock_display::MockDisplay;
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
+use obscura::adaptive::CornerRows;
 use obscura::{
-    Corner, Dither, I16F16, Presentation, RenderError, RowOrder, Scene, SceneDesc, corner_rows,
-    render_frame, render_rows, scenes, send_row, trace_row,
+    Corner, Dither, I16F16, Presentation, RenderError, RowOrder, RowTracer, Scene, SceneDesc,
+    corner_rows, render_frame, scenes, send_row,
 };
 
 /// A display that records what it is sent.
@@ -68,6 +71,25 @@ impl DrawTarget for Recorder {
 
 type SmallScene = Scene<I16F16, 8, 4, 6>;
 
+/// Draws `rows` of the frame top to bottom through one [`RowTracer`], as a renderer of bands
+/// of rows does.
+fn draw_band<D, K>(
+    scene: &SmallScene,
+    camera: &obscura::Camera<I16F16>,
+    rows: Range<u32>,
+    line: &mut [Rgb565],
+    corners: &mut K,
+    display: &mut D,
+) where
+    D: DrawTarget<Color = Rgb565, Error: Debug>,
+    K: CornerRows + ?Sized,
+{
+    let mut tracer = RowTracer::new(scene, camera, Dither::None, line, corners).unwrap();
+    for y in rows {
+        send_row(display, tracer.trace(y).unwrap(), y, 1).unwrap();
+    }
+}
+
 #[test]
 fn every_pixel_exactly_once_row_by_row() {
     let (width, height) = (40, 24);
@@ -75,7 +97,15 @@ fn every_pixel_exactly_once_row_by_row() {
     let camera = scene.camera(width, height).unwrap();
     let mut display = Recorder::new(width, height);
     let mut line = [Rgb565::BLACK; 40];
-    render_rows(&scene, &camera, 0..height, &mut line, &mut [], &mut display).unwrap();
+    render_frame(
+        &scene,
+        &camera,
+        Presentation::default(),
+        &mut line,
+        &mut [],
+        &mut display,
+    )
+    .unwrap();
     assert!(
         display.writes.iter().all(|&n| n == 1),
         "a pixel written other than once"
@@ -92,7 +122,7 @@ fn a_band_of_rows_and_a_longer_line_buffer() {
     let camera = scene.camera(16, 16).unwrap();
     let mut display = Recorder::new(16, 16);
     let mut line = [Rgb565::BLACK; 64];
-    render_rows(&scene, &camera, 5..9, &mut line, &mut [], &mut display).unwrap();
+    draw_band(&scene, &camera, 5..9, &mut line, &mut [], &mut display);
     let written: Vec<_> = display.rectangles.iter().map(|r| r.top_left.y).collect();
     assert_eq!(written, [5, 6, 7, 8]);
     for (i, &n) in display.writes.iter().enumerate() {
@@ -107,10 +137,10 @@ fn the_same_rows_in_two_bands_equal_one_pass() {
     let camera = scene.camera(32, 32).unwrap();
     let mut line = [Rgb565::BLACK; 32];
     let mut whole = MockDisplay::new();
-    render_rows(&scene, &camera, 0..32, &mut line, &mut [], &mut whole).unwrap();
+    draw_band(&scene, &camera, 0..32, &mut line, &mut [], &mut whole);
     let mut banded = MockDisplay::new();
-    render_rows(&scene, &camera, 0..13, &mut line, &mut [], &mut banded).unwrap();
-    render_rows(&scene, &camera, 13..32, &mut line, &mut [], &mut banded).unwrap();
+    draw_band(&scene, &camera, 0..13, &mut line, &mut [], &mut banded);
+    draw_band(&scene, &camera, 13..32, &mut line, &mut [], &mut banded);
     whole.assert_eq(&banded);
 }
 
@@ -125,8 +155,9 @@ fn adaptive_whitted() -> SmallScene {
 }
 
 /// A corner's ray depends on its place in the image alone: a frame with adaptive samples is the
-/// same in one pass, in two bands, row by row ([`trace_row`], as two cores trace it) and in the
-/// progressive order, each tracing corner rows anew where it does not go down row by row.
+/// same in one pass, in two bands, row by row from the bottom up (as two cores share the rows)
+/// and in the progressive order, each tracing corner rows anew where it does not go down row
+/// by row.
 #[test]
 fn adaptive_samples_draw_the_same_frame_however_the_rows_are_split() {
     let scene = adaptive_whitted();
@@ -135,23 +166,23 @@ fn adaptive_samples_draw_the_same_frame_however_the_rows_are_split() {
     let mut corners = [Corner::ZERO; 66];
     assert_eq!(corner_rows(32), corners.len());
     let mut whole = MockDisplay::new();
-    render_rows(&scene, &camera, 0..32, &mut line, &mut corners, &mut whole).unwrap();
+    draw_band(&scene, &camera, 0..32, &mut line, &mut corners, &mut whole);
     let mut banded = MockDisplay::new();
-    render_rows(&scene, &camera, 0..13, &mut line, &mut corners, &mut banded).unwrap();
-    render_rows(
+    draw_band(&scene, &camera, 0..13, &mut line, &mut corners, &mut banded);
+    draw_band(
         &scene,
         &camera,
         13..32,
         &mut line,
         &mut corners,
         &mut banded,
-    )
-    .unwrap();
+    );
     whole.assert_eq(&banded);
     let mut rows = MockDisplay::new();
+    let mut tracer =
+        RowTracer::new(&scene, &camera, Dither::None, &mut line, &mut corners).unwrap();
     for y in (0..32).rev() {
-        trace_row(&scene, &camera, y, Dither::None, &mut line, &mut corners).unwrap();
-        send_row(&mut rows, &line, y, 1).unwrap();
+        send_row(&mut rows, tracer.trace(y).unwrap(), y, 1).unwrap();
     }
     whole.assert_eq(&rows);
     let progressive = Presentation {
@@ -169,20 +200,19 @@ fn adaptive_samples_draw_the_same_frame_however_the_rows_are_split() {
     )
     .unwrap();
     let mut top_down = Recorder::new(32, 32);
-    render_rows(
+    draw_band(
         &scene,
         &camera,
         0..32,
         &mut line,
         &mut corners,
         &mut top_down,
-    )
-    .unwrap();
+    );
     assert_eq!(frame.pixels, top_down.pixels);
     // Not the one-sample frame: the edges are smoothed.
     let plain = SmallScene::build(&scenes::WHITTED).unwrap();
     let mut one = MockDisplay::new();
-    render_rows(&plain, &camera, 0..32, &mut line, &mut [], &mut one).unwrap();
+    draw_band(&plain, &camera, 0..32, &mut line, &mut [], &mut one);
     assert_ne!(one, whole);
 }
 
@@ -194,7 +224,14 @@ fn corner_rows_too_short_for_adaptive_samples_are_refused() {
     let mut line = [Rgb565::BLACK; 16];
     let mut corners = [Corner::ZERO; 33];
     assert_eq!(
-        render_rows(&scene, &camera, 0..8, &mut line, &mut corners, &mut display),
+        render_frame(
+            &scene,
+            &camera,
+            Presentation::default(),
+            &mut line,
+            &mut corners,
+            &mut display
+        ),
         Err(RenderError::CornerRowsTooSmall {
             needed: 34,
             got: 33
@@ -210,21 +247,30 @@ fn short_line_buffer_and_rows_beyond_the_image_are_refused() {
     let mut display = Recorder::new(16, 8);
     let mut short = [Rgb565::BLACK; 15];
     assert_eq!(
-        render_rows(&scene, &camera, 0..8, &mut short, &mut [], &mut display),
+        render_frame(
+            &scene,
+            &camera,
+            Presentation::default(),
+            &mut short,
+            &mut [],
+            &mut display
+        ),
         Err(RenderError::LineBufferTooSmall {
             needed: 16,
             got: 15
         })
     );
-    let mut line = [Rgb565::BLACK; 16];
-    assert_eq!(
-        render_rows(&scene, &camera, 4..9, &mut line, &mut [], &mut display),
-        Err(RenderError::RowsOutOfRange { end: 9, height: 8 })
-    );
     assert!(
         display.rectangles.is_empty(),
         "nothing drawn before the error"
     );
+    let mut line = [Rgb565::BLACK; 16];
+    let mut tracer = RowTracer::new(&scene, &camera, Dither::None, &mut line, &mut []).unwrap();
+    assert_eq!(
+        tracer.trace(8),
+        Err(RenderError::RowsOutOfRange { end: 9, height: 8 })
+    );
+    assert_eq!(tracer.trace(7).map(<[Rgb565]>::len), Ok(16));
 }
 
 /// `whitted` rendered whole at `width × height` by `presentation` into a recorder.

@@ -8,8 +8,8 @@ mod common;
 use obscura::methods::MethodName;
 use obscura::{
     BackgroundDesc, BiasMethod, CameraDesc, CheckerDesc, F32Approx, I16F16, I20F12, I32F32,
-    LightDesc, MaterialDesc, Methods, ObjectDesc, RayMethod, RootMethod, Scalar, Scene, SceneDesc,
-    ShapeDesc, SphereMethod, TriangleMethod, render_rows,
+    LightDesc, MaterialDesc, Methods, ObjectDesc, Presentation, RayMethod, RootMethod, Scalar,
+    Scene, SceneDesc, ShapeDesc, SphereMethod, TriangleMethod, render_frame,
 };
 
 /// A small deterministic generator (64-bit LCG), so a failure can be replayed by its seed.
@@ -113,7 +113,15 @@ fn render_if_it_builds<S: Scalar>(desc: &SceneDesc<'_>, methods: Methods) -> boo
         pixels: vec![Default::default(); 24 * 16],
     };
     let mut line = [Default::default(); 24];
-    render_rows(&scene, &camera, 0..16, &mut line, &mut [], &mut frame).is_ok()
+    render_frame(
+        &scene,
+        &camera,
+        Presentation::default(),
+        &mut line,
+        &mut [],
+        &mut frame,
+    )
+    .is_ok()
 }
 
 const SCENES: u64 = 2000;

@@ -22,7 +22,7 @@ use core::sync::atomic::{Ordering, fence};
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use obscura::mesh::MeshWords;
-use obscura::{Bits, Camera, Corner, Presentation, RenderError, Scene, send_row, trace_row};
+use obscura::{Bits, Camera, Corner, Presentation, RenderError, RowTracer, Scene, send_row};
 
 /// One core's side of the pair of mailboxes between the cores: words to the other core, and
 /// words from it, each call waiting until it can.
@@ -124,7 +124,10 @@ impl<D: DrawTarget<Color = Rgb565, Error: fmt::Debug>, M: Mailbox> Backend for T
     ) -> Result<(), FrameError<Self>> {
         let dither = presentation.dither;
         let trace = |y: u32, line: &mut [Rgb565], corners: &mut CornerRows| {
-            trace_row(scene, camera, y, dither, line, corners)
+            // Each row on its own: the cores' rows do not follow one another.
+            RowTracer::new(scene, camera, dither, line, corners)?
+                .trace(y)
+                .map(drop)
         };
         let shared: &Trace<'_> = &trace;
         // Core 1 holds this address until it answers the end of the frame, below.

@@ -8,7 +8,7 @@ use anyhow::{Context, Result};
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
 use image::RgbImage;
-use obscura::render_rows;
+use obscura::{Presentation, render_frame};
 use obscura_scene::{HostScene, error_text};
 use std::convert::Infallible;
 
@@ -52,10 +52,10 @@ fn render(name: &str, output: &str) -> Result<()> {
     let mut canvas = Canvas(RgbImage::new(SIDE, SIDE));
     let mut line = vec![Rgb888::BLACK; SIDE as usize];
     let mut corners = vec![obscura::Corner::ZERO; obscura::corner_rows(SIDE)];
-    render_rows(
+    render_frame(
         &scene,
         &camera,
-        0..SIDE,
+        Presentation::default(),
         &mut line,
         &mut corners[..],
         &mut canvas,

@@ -12,8 +12,8 @@ use indicatif::{ProgressBar, ProgressStyle};
 use obscura::pattern::{Pattern, SampleId};
 use obscura::skips::{first_skipped_hit, first_skipped_shadow};
 use obscura::{
-    Camera, Corner, Methods, Presentation, Ray, Rgb, RootMethod, Scalar, SceneDesc, SceneError,
-    corner_rows, render_frame, render_rows,
+    Camera, Corner, Dither, Methods, Presentation, Ray, RenderError, Rgb, RootMethod, RowTracer,
+    Scalar, SceneDesc, SceneError, corner_rows, render_frame, send_row,
 };
 pub use obscura_scene::HostScene;
 use obscura_scene::{Format, FormatJob};
@@ -158,14 +158,13 @@ impl<S: Scalar> Prepared<S> {
     {
         let Buffers { line, corners } = buffers;
         let rendered = checked::catch(|| {
-            render_rows(
-                &self.scene,
-                &self.camera,
-                rows.clone(),
-                line,
-                corners.as_mut_slice(),
-                target,
-            )
+            let corners = corners.as_mut_slice();
+            let mut tracer = RowTracer::new(&self.scene, &self.camera, Dither::None, line, corners)
+                .map_err(RenderError::for_target)?;
+            rows.clone().try_for_each(|y| {
+                let line = tracer.trace(y).map_err(RenderError::for_target)?;
+                send_row(target, line, y, 1)
+            })
         });
         match rendered {
             Ok(drawn) => drawn.map_err(|error| anyhow!("rows {rows:?}: {error}")),

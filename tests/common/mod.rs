@@ -5,7 +5,7 @@
 use core::convert::Infallible;
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
-use obscura::{Corner, Methods, Scalar, Scene, SceneDesc, corner_rows, render_rows};
+use obscura::{Corner, Methods, Presentation, Scalar, Scene, SceneDesc, corner_rows, render_frame};
 
 /// A frame in memory: what a display would show.
 pub struct Frame {
@@ -50,10 +50,10 @@ pub fn render<S: Scalar>(
     };
     let mut line = vec![Rgb888::BLACK; width as usize];
     let mut corners = vec![Corner::ZERO; corner_rows(width)];
-    render_rows(
+    render_frame(
         &scene,
         &camera,
-        0..height,
+        Presentation::default(),
         &mut line,
         corners.as_mut_slice(),
         &mut frame,
