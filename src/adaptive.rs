@@ -29,6 +29,7 @@ use crate::pattern::SampleId;
 use crate::scalar::Scalar;
 use crate::scene::Scene;
 use crate::shape::mesh::Meshes;
+use crate::uses::Parts;
 use crate::vec3::Vec3;
 
 /// The colour a ray traced at a corner of a cell brings back, clamped to what a display shows,
@@ -102,10 +103,10 @@ pub(crate) fn trace_corner_row<
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,
-    const USES: u32,
+    P: Parts,
     M: Meshes<S>,
 >(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>,
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, P, M>,
     camera: &Camera<S>,
     cy: u32,
     corners: &mut [Corner],
@@ -149,10 +150,10 @@ pub(crate) struct Pixel<
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,
-    const USES: u32,
+    P: Parts,
     M: Meshes<S>,
 > {
-    pub(crate) scene: &'a Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>,
+    pub(crate) scene: &'a Scene<S, OBJECTS, LIGHTS, RAYS, P, M>,
     pub(crate) row: &'a Row<S>,
     pub(crate) centre: Vec3<S>,
     pub(crate) x: u32,
@@ -165,9 +166,9 @@ impl<
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,
-    const USES: u32,
+    P: Parts,
     M: Meshes<S>,
-> Pixel<'_, S, OBJECTS, LIGHTS, RAYS, USES, M>
+> Pixel<'_, S, OBJECTS, LIGHTS, RAYS, P, M>
 {
     /// The pixel's colour from its four corners (top left, top right, bottom left, bottom
     /// right): the mean of its cells weighted by area, in 16-bit fractions.

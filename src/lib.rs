@@ -87,6 +87,6 @@ pub use scalar::{Bits, F32Approx, Fx, I16F16, I20F12, I32F32, Scalar};
 pub use scene::{Item, Remedy, Scene, SceneError};
 pub use shade::Sample;
 pub use shape::mesh;
-pub use uses::Uses;
+pub use uses::{Everything, Parts, Uses};
 pub use vec3::Vec3;
 pub use words::{ProvenScene, WordsError};

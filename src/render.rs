@@ -13,7 +13,7 @@ use crate::scalar::Scalar;
 use crate::scene::Scene;
 use crate::shade::{Task, Tracer};
 use crate::shape::mesh::Meshes;
-use crate::uses::Uses;
+use crate::uses::{Parts, Uses};
 use crate::vec3::Vec3;
 use core::convert::Infallible;
 use core::fmt;
@@ -129,8 +129,8 @@ const _SAMPLE_SUMS_FIT: () = assert!(
 /// Over the tracer's slices and a ray stack rather than a scene of given capacities, and out of
 /// line: a firmware holds one copy per format however many scenes it draws.
 #[inline(never)]
-fn trace_into<S, C, M, const USES: u32>(
-    tracer: &Tracer<'_, S, M, USES>,
+fn trace_into<S, C, M, P: Parts>(
+    tracer: &Tracer<'_, S, M, P>,
     stack: &mut VecView<Task<S>>,
     row: &Row<S>,
     y: u32,
@@ -141,7 +141,7 @@ fn trace_into<S, C, M, const USES: u32>(
     C: DisplayColor,
     M: Meshes<S>,
 {
-    let row = &row.narrowed(Tracer::<S, M, USES>::USES);
+    let row = &row.narrowed(Tracer::<S, M, P>::USES);
     let samples = tracer.samples();
     let n = u32::from(samples);
     let sampled = samples > 1 || row.has_lens();
@@ -188,10 +188,10 @@ fn trace_pixels<
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,
-    const USES: u32,
+    P: Parts,
     M: Meshes<S>,
 >(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>,
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, P, M>,
     row: &Row<S>,
     y: u32,
     dither: Dither,
@@ -223,10 +223,10 @@ fn buffers<
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,
-    const USES: u32,
+    P: Parts,
     M: Meshes<S>,
 >(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>,
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, P, M>,
     camera: &'a Camera<S>,
     line: &'a mut [C],
     corners: &'a mut [Corner],
@@ -234,7 +234,7 @@ fn buffers<
 where
     S: Scalar,
 {
-    let missing = Uses::from_bits(USES).missing(camera.uses());
+    let missing = P::USES.missing(camera.uses());
     if missing != Uses::NOTHING {
         return Err(RenderError::TracerLacks { missing });
     }
@@ -290,10 +290,10 @@ fn adaptive_row<
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,
-    const USES: u32,
+    P: Parts,
     M: Meshes<S>,
 >(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>,
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, P, M>,
     row: &Row<S>,
     y: u32,
     dither: Dither,
@@ -407,10 +407,10 @@ pub struct RowTracer<
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,
-    const USES: u32,
+    P: Parts,
     M: Meshes<S>,
 > {
-    scene: &'a Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>,
+    scene: &'a Scene<S, OBJECTS, LIGHTS, RAYS, P, M>,
     camera: Camera<S>,
     dither: Dither,
     line: &'a mut [C],
@@ -426,9 +426,9 @@ impl<
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,
-    const USES: u32,
+    P: Parts,
     M: Meshes<S>,
-> RowTracer<'a, S, C, K, OBJECTS, LIGHTS, RAYS, USES, M>
+> RowTracer<'a, S, C, K, OBJECTS, LIGHTS, RAYS, P, M>
 {
     /// A tracer of the rows of the image `camera` sees of `scene`, through `line` and
     /// `corners`, rounding by `dither`.
@@ -438,7 +438,7 @@ impl<
     /// scene's tracer leaves out.
     #[inline(always)]
     pub fn new(
-        scene: &'a Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>,
+        scene: &'a Scene<S, OBJECTS, LIGHTS, RAYS, P, M>,
         camera: &'a Camera<S>,
         dither: Dither,
         line: &'a mut [C],
@@ -447,7 +447,7 @@ impl<
         let (line, window) = buffers(scene, camera, line, corners.rows())?;
         Ok(Self {
             scene,
-            camera: camera.narrowed(Uses::from_bits(USES)),
+            camera: camera.narrowed(P::USES),
             dither,
             line,
             window,
@@ -465,7 +465,7 @@ impl<
             end: y.saturating_add(1),
             height: self.camera.height(),
         })?;
-        trace_pixels::<K, _, _, OBJECTS, LIGHTS, RAYS, USES, M>(
+        trace_pixels::<K, _, _, OBJECTS, LIGHTS, RAYS, P, M>(
             self.scene,
             &row,
             y,
@@ -484,9 +484,9 @@ impl<
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,
-    const USES: u32,
+    P: Parts,
     M: Meshes<S>,
-> fmt::Debug for RowTracer<'_, S, C, K, OBJECTS, LIGHTS, RAYS, USES, M>
+> fmt::Debug for RowTracer<'_, S, C, K, OBJECTS, LIGHTS, RAYS, P, M>
 {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("RowTracer")
@@ -559,10 +559,10 @@ pub fn render_frame<
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,
-    const USES: u32,
+    P: Parts,
     M: Meshes<S>,
 >(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>,
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, P, M>,
     camera: &Camera<S>,
     presentation: Presentation,
     line: &mut [C],

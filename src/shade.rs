@@ -14,8 +14,9 @@ use crate::scalar::{RayKind, Scalar, Work, shl_u64};
 use crate::scene::{Object, Scene, Settings};
 use crate::shape::mesh::{Meshes, Search};
 use crate::shape::{Intersection, PerRay, Shape};
-use crate::uses::Uses;
+use crate::uses::{Parts, Uses};
 use crate::vec3::Vec3;
+use core::marker::PhantomData;
 use heapless::{Vec, VecView};
 
 /// What a primary ray brings back.
@@ -67,9 +68,9 @@ impl<
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,
-    const USES: u32,
+    P: Parts,
     M: Meshes<S>,
-> Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>
+> Scene<S, OBJECTS, LIGHTS, RAYS, P, M>
 {
     /// Bytes of RAM the scene and the ray stack of one trace take: what the capacities cost.
     #[must_use]
@@ -122,7 +123,7 @@ impl<
 
     /// The scene as the tracer sees it, over slices: what the renderer's pixel loop takes, so
     /// that a firmware holds one copy of it per format however many scenes it draws.
-    pub(crate) fn tracer(&self, id: SampleId) -> Tracer<'_, S, M, USES> {
+    pub(crate) fn tracer(&self, id: SampleId) -> Tracer<'_, S, M, P> {
         Tracer {
             objects: &self.objects,
             meshes: &self.meshes,
@@ -131,6 +132,7 @@ impl<
             objects_capacity: OBJECTS,
             settings: &self.settings,
             id,
+            parts: PhantomData,
         }
     }
 }
@@ -138,7 +140,7 @@ impl<
 /// The tracer proper, over slices: one copy per number format and set of parts ([`Uses`]),
 /// whatever the capacities.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Tracer<'a, S: Scalar, M, const USES: u32> {
+pub(crate) struct Tracer<'a, S: Scalar, M, P: Parts> {
     objects: &'a [Object<S>],
     /// The meshes' nodes and triangles.
     meshes: &'a M,
@@ -150,11 +152,12 @@ pub(crate) struct Tracer<'a, S: Scalar, M, const USES: u32> {
     settings: &'a Settings<S>,
     /// Which ray of the image is traced.
     id: SampleId,
+    parts: PhantomData<fn() -> P>,
 }
 
-impl<S: Scalar, M: Meshes<S>, const USES: u32> Tracer<'_, S, M, USES> {
+impl<S: Scalar, M: Meshes<S>, P: Parts> Tracer<'_, S, M, P> {
     /// The parts the tracer has.
-    pub(crate) const USES: Uses = Uses::from_bits(USES);
+    pub(crate) const USES: Uses = P::USES;
 
     /// Whether the tracer has `part`: a constant, which leaves what it guards out of a build
     /// whose scenes do not use it.

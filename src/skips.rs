@@ -11,7 +11,7 @@ use crate::scene::{Object, Scene};
 use crate::shade::Task;
 use crate::shape::PerRay;
 use crate::shape::mesh::{Meshes, Search};
-use crate::uses::Uses;
+use crate::uses::{Everything, Uses};
 use heapless::Vec;
 
 /// The first pixel of row `y` one of whose rays meets an object its row's ranges leave out,
@@ -26,7 +26,7 @@ pub fn first_skipped_hit<
     const RAYS: usize,
     M: Meshes<S>,
 >(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, { Uses::EVERYTHING.bits() }, M>,
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, Everything, M>,
     camera: &Camera<S>,
     y: u32,
 ) -> Option<(u32, usize)> {
@@ -91,7 +91,7 @@ pub fn first_skipped_shadow<
     const RAYS: usize,
     M: Meshes<S>,
 >(
-    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, { Uses::EVERYTHING.bits() }, M>,
+    scene: &Scene<S, OBJECTS, LIGHTS, RAYS, Everything, M>,
     camera: &Camera<S>,
 ) -> Option<(u32, u32, usize)> {
     let mut stack: Vec<Task<S>, RAYS> = Vec::new();

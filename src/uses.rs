@@ -1,9 +1,9 @@
 //! [`Uses`]: what of the tracer a scene uses — its kinds of shape, its methods, and the
 //! features beyond a pinhole's one ray per pixel and point lights — as a set of bits.
 //!
-//! A scene's type carries the set its tracer may use ([`crate::Scene`]'s `USES`, every part
-//! unless said), and the tracer tests it before each part: a build whose scenes use less (a
-//! firmware, from [`crate::Scene::from_words`]) leaves the rest out of its image. A scene of a
+//! A scene's type carries the set its tracer may use ([`crate::Scene`]'s [`Parts`],
+//! [`Everything`] unless said), and the tracer tests it before each part: a build whose scenes
+//! use less (a firmware, from [`crate::Scene::from_words`]) leaves the rest out of its image. A scene of a
 //! type comes only from a build (which may use everything) or from words whose scene uses no
 //! more than the type's set, so nothing the scene needs is ever left out.
 
@@ -11,6 +11,23 @@ use crate::methods::{
     BiasMethod, MethodName, Methods, RayMethod, RootMethod, SphereMethod, TriangleMethod,
 };
 use core::fmt;
+
+/// The parts of the tracer a scene's type carries: a type whose constant [`Self::USES`] is the
+/// set, so that a tracer of fewer parts is a type of its own and its build leaves the rest out.
+/// A build script's proven scene (`obscura_scene::build`) defines one of exactly its scene's
+/// parts; a scene built at run time takes [`Everything`].
+pub trait Parts: Copy + fmt::Debug + PartialEq + Eq + 'static {
+    /// The parts.
+    const USES: Uses;
+}
+
+/// Every part of the tracer: what a scene built at run time may use.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Everything;
+
+impl Parts for Everything {
+    const USES: Uses = Uses::EVERYTHING;
+}
 
 /// A set of the tracer's parts (see the [module documentation](self)).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -472,6 +472,7 @@ mod tests {
     use crate::scalar::Precision;
     use crate::scene::Scene;
     use crate::test_util::each_built_in_scene;
+    use crate::uses::Parts;
     use crate::{Camera, scalar};
 
     fn words_of(write: impl FnOnce(&mut dyn FnMut(u32))) -> Vec<u32> {
@@ -503,16 +504,30 @@ mod tests {
         crate::for_each_format!(each);
     }
 
-    /// What a tracer of spheres and planes by the lecture's methods has (the methods' bits, which
-    /// the test below checks, written out: a const argument cannot call `Uses::methods`).
-    const SPHERES_AND_PLANES: u32 = Uses::SPHERES
-        .union(Uses::PLANES)
-        .union(Uses::from_bits(0x2_a500))
-        .bits();
+    /// A tracer of spheres and planes by the lecture's methods (the methods' bits, which the
+    /// test below checks, written out: a constant cannot call `Uses::methods`).
+    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+    struct SpheresAndPlanes;
+
+    impl Parts for SpheresAndPlanes {
+        const USES: Uses = Uses::SPHERES
+            .union(Uses::PLANES)
+            .union(Uses::from_bits(0x2_a500));
+    }
+
+    /// The same with triangles in place of spheres.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+    struct PlanesAndTriangles;
+
+    impl Parts for PlanesAndTriangles {
+        const USES: Uses = Uses::from_bits(
+            SpheresAndPlanes::USES.bits() & !Uses::SPHERES.bits() | Uses::TRIANGLES.bits(),
+        );
+    }
 
     #[test]
     fn a_scene_reads_back_only_into_a_tracer_with_every_part_it_uses() {
-        let parts = Uses::from_bits(SPHERES_AND_PLANES);
+        let parts = SpheresAndPlanes::USES;
         assert_eq!(
             parts,
             Uses::SPHERES
@@ -524,13 +539,12 @@ mod tests {
         assert!(parts.contains(whitted.uses()) && !parts.contains(shapes.uses()));
         let whitted_words = words_of(|sink| whitted.write_words(sink));
         let shapes_words = words_of(|sink| shapes.write_words(sink));
-        let read = Scene::<f32, 8, 4, 8, SPHERES_AND_PLANES>::from_words(&whitted_words);
+        let read = Scene::<f32, 8, 4, 8, SpheresAndPlanes>::from_words(&whitted_words);
         assert_eq!(read.map(|scene| scene.uses()), Ok(whitted.uses()));
         // Triangles, which the tracer leaves out; spheres, which a tracer of planes and
         // triangles does; stable spheres, the lecture's quadratic.
-        assert!(Scene::<f32, 8, 4, 8, SPHERES_AND_PLANES>::from_words(&shapes_words).is_err());
-        const NO_SPHERES: u32 = SPHERES_AND_PLANES & !Uses::SPHERES.bits() | Uses::TRIANGLES.bits();
-        assert!(Scene::<f32, 8, 4, 8, NO_SPHERES>::from_words(&shapes_words).is_err());
+        assert!(Scene::<f32, 8, 4, 8, SpheresAndPlanes>::from_words(&shapes_words).is_err());
+        assert!(Scene::<f32, 8, 4, 8, PlanesAndTriangles>::from_words(&shapes_words).is_err());
         let stable = Methods {
             sphere: SphereMethod::Stable,
             ..Methods::LECTURE
@@ -538,7 +552,7 @@ mod tests {
         let whitted_stable =
             Scene::<f32, 8, 4, 8>::build_with(&crate::scenes::WHITTED, stable).unwrap();
         let words = words_of(|sink| whitted_stable.write_words(sink));
-        assert!(Scene::<f32, 8, 4, 8, SPHERES_AND_PLANES>::from_words(&words).is_err());
+        assert!(Scene::<f32, 8, 4, 8, SpheresAndPlanes>::from_words(&words).is_err());
         // Several rays per pixel, and an area light.
         for desc in [
             crate::SceneDesc {
@@ -550,7 +564,7 @@ mod tests {
             let scene = Scene::<f32, 8, 4, 8>::build(&desc).unwrap();
             let words = words_of(|sink| scene.write_words(sink));
             assert!(!parts.contains(scene.uses()));
-            assert!(Scene::<f32, 8, 4, 8, SPHERES_AND_PLANES>::from_words(&words).is_err());
+            assert!(Scene::<f32, 8, 4, 8, SpheresAndPlanes>::from_words(&words).is_err());
         }
     }
 
@@ -560,7 +574,7 @@ mod tests {
         use embedded_graphics::pixelcolor::Rgb565;
         let whitted = Scene::<f32, 8, 4, 8>::build(&crate::scenes::WHITTED).unwrap();
         let words = words_of(|sink| whitted.write_words(sink));
-        let scene = Scene::<f32, 8, 4, 8, SPHERES_AND_PLANES>::from_words(&words).unwrap();
+        let scene = Scene::<f32, 8, 4, 8, SpheresAndPlanes>::from_words(&words).unwrap();
         // A lens, from another scene.
         let focus = Scene::<f32, 8, 4, 8>::build(&crate::scenes::FOCUS).unwrap();
         let camera = focus.camera(8, 8).unwrap();
@@ -582,14 +596,8 @@ mod tests {
 
     #[test]
     fn a_proven_scene_and_its_camera_read_back_in_one_call() {
-        type Read = Scene<
-            crate::I16F16,
-            8,
-            4,
-            8,
-            { Uses::EVERYTHING.bits() },
-            crate::mesh::MeshWords<crate::I16F16>,
-        >;
+        type Read =
+            Scene<crate::I16F16, 8, 4, 8, crate::Everything, crate::mesh::MeshWords<crate::I16F16>>;
         let scene = Scene::<crate::I16F16, 8, 4, 8>::build(&crate::scenes::WHITTED).unwrap();
         let camera = scene.camera(16, 16).unwrap();
         let leak = |words: Vec<u32>| -> &'static [u32] { words.leak() };

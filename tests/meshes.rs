@@ -6,11 +6,11 @@
 use obscura::mesh::{MeshVecs, build_hierarchy};
 use obscura::pattern::SampleId;
 use obscura::{
-    BackgroundDesc, CameraDesc, I16F16, LightDesc, MaterialDesc, MeshesDesc, NodeDesc, ObjectDesc,
-    Scalar, Scene, SceneDesc, SceneError, ShapeDesc, Uses,
+    BackgroundDesc, CameraDesc, Everything, I16F16, LightDesc, MaterialDesc, MeshesDesc, NodeDesc,
+    ObjectDesc, Scalar, Scene, SceneDesc, SceneError, ShapeDesc,
 };
 
-type MeshScene<S> = Scene<S, 48, 2, 4, { Uses::EVERYTHING.bits() }, MeshVecs<S>>;
+type MeshScene<S> = Scene<S, 48, 2, 4, Everything, MeshVecs<S>>;
 
 /// A ball of radius 1 about (0, 1, 4) by latitude and longitude: 4 bands of 6 quads, the
 /// poles' bands fans of 6, 36 triangles sharing their edges.

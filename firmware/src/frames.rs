@@ -11,7 +11,9 @@ use core::fmt;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use obscura::mesh::MeshWords;
-use obscura::{Bits, Camera, Corner, Presentation, ProvenScene, RenderError, Scene, render_frame};
+use obscura::{
+    Bits, Camera, Corner, Parts, Presentation, ProvenScene, RenderError, Scene, render_frame,
+};
 
 /// What goes wrong drawing a frame on `B`'s display.
 pub type FrameError<B> = RenderError<<<B as Backend>::Display as DrawTarget>::Error>;
@@ -39,10 +41,10 @@ pub trait Backend {
         const OBJECTS: usize,
         const LIGHTS: usize,
         const RAYS: usize,
-        const USES: u32,
+        P: Parts,
     >(
         &mut self,
-        scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES, MeshWords<S>>,
+        scene: &Scene<S, OBJECTS, LIGHTS, RAYS, P, MeshWords<S>>,
         camera: &Camera<S>,
         presentation: Presentation,
     ) -> Result<(), FrameError<Self>> {
@@ -176,7 +178,7 @@ pub fn draw_path<
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,
-    const USES: u32,
+    P: Parts,
     const SCENE_WORDS: usize,
     const CAMERA_WORDS: usize,
 >(
@@ -193,7 +195,7 @@ pub fn draw_path<
             ..*job
         };
         let (scene, camera) = (scene.frame(n), camera.frame(n));
-        draw::<S, OBJECTS, LIGHTS, RAYS, USES>(backend, clock, &job, &scene, meshes, &camera);
+        draw::<S, OBJECTS, LIGHTS, RAYS, P>(backend, clock, &job, &scene, meshes, &camera);
     }
 }
 
@@ -208,7 +210,7 @@ pub(crate) fn draw<
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,
-    const USES: u32,
+    P: Parts,
 >(
     backend: &mut impl Backend,
     clock: &Clock,
@@ -226,7 +228,7 @@ pub(crate) fn draw<
     });
     stack::paint();
     let (scene, camera) =
-        match Scene::<S, OBJECTS, LIGHTS, RAYS, USES, MeshWords<S>>::from_proven(&proven) {
+        match Scene::<S, OBJECTS, LIGHTS, RAYS, P, MeshWords<S>>::from_proven(&proven) {
             Ok(read) => read,
             Err(error) => return backend.failed(job, &error),
         };
@@ -239,7 +241,7 @@ pub(crate) fn draw<
             job,
             ticks,
             stack_bytes,
-            storage_bytes: Scene::<S, OBJECTS, LIGHTS, RAYS, USES, MeshWords<S>>::storage_bytes(),
+            storage_bytes: Scene::<S, OBJECTS, LIGHTS, RAYS, P, MeshWords<S>>::storage_bytes(),
             fixed_storage_bytes: Scene::<S, MAX_OBJECTS, MAX_LIGHTS, RAY_STACK>::storage_bytes(),
         }),
         Err(error) => backend.failed(job, &error),

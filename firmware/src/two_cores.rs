@@ -22,7 +22,7 @@ use core::sync::atomic::{Ordering, fence};
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use obscura::mesh::MeshWords;
-use obscura::{Bits, Camera, Corner, Presentation, RenderError, RowTracer, Scene, send_row};
+use obscura::{Bits, Camera, Corner, Parts, Presentation, RenderError, RowTracer, Scene, send_row};
 
 /// One core's side of the pair of mailboxes between the cores: words to the other core, and
 /// words from it, each call waiting until it can.
@@ -115,10 +115,10 @@ impl<D: DrawTarget<Color = Rgb565, Error: fmt::Debug>, M: Mailbox> Backend for T
         const OBJECTS: usize,
         const LIGHTS: usize,
         const RAYS: usize,
-        const USES: u32,
+        P: Parts,
     >(
         &mut self,
-        scene: &Scene<S, OBJECTS, LIGHTS, RAYS, USES, MeshWords<S>>,
+        scene: &Scene<S, OBJECTS, LIGHTS, RAYS, P, MeshWords<S>>,
         camera: &Camera<S>,
         presentation: Presentation,
     ) -> Result<(), FrameError<Self>> {

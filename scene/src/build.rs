@@ -27,8 +27,8 @@
 //!
 //! The source defines, for the scene as proven:
 //! - `Scene`, the core's scene in the format with storage sized to exactly its objects, lights
-//!   and ray tree and a tracer of only the parts it uses ([`obscura::Uses`]), its meshes read in
-//!   place from flash;
+//!   and ray tree and a tracer of only the parts it uses (`Parts`, an [`obscura::Parts`]), its
+//!   meshes read in place from flash;
 //! - `WIDTH` and `HEIGHT`, the image the camera was placed for;
 //! - `CORNER_ROWS`, the corners adaptive anti-aliasing keeps (0 without it: pass `&mut []`);
 //! - `FRAMES`, the words of each frame ([`obscura::ProvenScene`]): one for a still scene, and
@@ -108,10 +108,11 @@ impl Proof {
         );
         let _ = writeln!(
             out,
-            "/// The scene as the chip holds it, in {}: storage for its {} objects, {} lights and \
-             ray trees {} deep, and a tracer of its parts: {uses}.\n\
-             pub type Scene = obscura::Scene<{format}, {}, {}, {}, {:#010x}, \
+            "{}\n/// The scene as the chip holds it, in {}: storage for its {} objects, {} lights \
+             and ray trees {} deep, and a tracer of its parts ([`Parts`]).\n\
+             pub type Scene = obscura::Scene<{format}, {}, {}, {}, Parts, \
              obscura::mesh::MeshWords<{format}>>;\n",
+            parts_source("Parts", uses),
             self.format,
             desc.objects.len(),
             desc.lights.len(),
@@ -119,7 +120,6 @@ impl Proof {
             desc.objects.len(),
             desc.lights.len(),
             usize::from(desc.max_depth) + 1,
-            uses.bits(),
         );
         let _ = writeln!(
             out,
@@ -249,6 +249,16 @@ pub(crate) fn refused(named: &NamedScene, format: Format, refusal: SceneError) -
             named.name
         )),
     }
+}
+
+/// The Rust source of a type `name` of the tracer's parts `uses` ([`obscura::Parts`]).
+pub(crate) fn parts_source(name: &str, uses: Uses) -> String {
+    format!(
+        "/// The tracer's parts: {uses}.\n#[derive(Clone, Copy, Debug, PartialEq, Eq)]\npub struct \
+         {name};\n\nimpl obscura::Parts for {name} {{\n    const USES: obscura::Uses = \
+         obscura::Uses::from_bits({:#010x});\n}}\n",
+        uses.bits()
+    )
 }
 
 /// `words` as a Rust array expression, eight to a line.

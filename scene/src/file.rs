@@ -830,7 +830,7 @@ mod tests {
                 4,
                 4,
                 8,
-                { obscura::Uses::EVERYTHING.bits() },
+                obscura::Everything,
                 obscura::mesh::MeshVecs<f32>,
             >::build(&scene.desc())
             .is_ok()

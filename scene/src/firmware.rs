@@ -11,7 +11,7 @@
 //! (`obscura firmware`, `obscura chart`) asks for an image through the same variables
 //! ([`FirmwareSettings::environment`]).
 
-use crate::build::{Words, array_source, prove, refused, words_source};
+use crate::build::{Words, array_source, parts_source, prove, refused, words_source};
 use crate::{
     FirmwareSettings, Format, FormatChoice, MAX_LIGHTS, MAX_OBJECTS, NamedScene, RAY_STACK,
     Variants,
@@ -225,6 +225,14 @@ impl Configuration {
                 0
             }
         );
+        // One tracer per format: of the parts its frames use between them.
+        for &format in &self.formats {
+            let _ = writeln!(
+                out,
+                "{}",
+                parts_source(&parts_name(format), tracer_uses(&frames, format))
+            );
+        }
         let _ = writeln!(
             out,
             "/// Draws {} in {}, by {}.",
@@ -279,20 +287,13 @@ impl Configuration {
                 continue;
             };
             let desc = frame.scene.scene.desc();
-            // One tracer per format: of the parts its frames use between them.
-            let uses = tracer_uses(&frames, frame.format);
             let generics = format!(
-                "{}, {}, {}, {}, {:#010x}",
+                "{}, {}, {}, {}, {}",
                 frame.format.rust_type(),
                 desc.objects.len(),
                 desc.lights.len(),
                 usize::from(desc.max_depth) + 1,
-                uses.bits(),
-            );
-            let _ = writeln!(
-                out,
-                "    // The tracer's parts in {}: {uses}.",
-                frame.format
+                parts_name(frame.format),
             );
             if let Some(path) = path_of(&frames, i) {
                 for &j in &path {
@@ -335,6 +336,12 @@ pub fn generate(workspace: &Path) -> Result<Generated> {
         source: configuration.source()?,
         inputs: configuration.inputs(),
     })
+}
+
+/// The name of the type of the tracer's parts in `format` ([`obscura::Parts`]).
+fn parts_name(format: Format) -> String {
+    let name = format.name().replace('-', "_");
+    format!("Parts{}{}", name[..1].to_uppercase(), &name[1..])
 }
 
 /// The parts of the tracer that the proven frames in `format` use between them: the tracer the
@@ -554,14 +561,15 @@ mod tests {
         assert_eq!(configuration.inputs().len(), 1);
         let source = configuration.source().unwrap();
         assert!(
-            source.contains("crate::frames::draw::<obscura::formats::F32, 5, 2, 5, 0x")
+            source.contains("crate::frames::draw::<obscura::formats::F32, 5, 2, 5, PartsF32>")
                 && source.contains("scene: \"marbles\", frame: None, format: \"f32\""),
             "{source}"
         );
         // The tracer of each format has the parts its scenes use: no triangles in f32's.
         assert!(
             source.contains(
-                "// The tracer's parts in f32: spheres, planes; stable, cramer, exact, per-pixel, epsilon."
+                "/// The tracer's parts: spheres, planes; stable, cramer, exact, per-pixel, epsilon.\n\
+                 #[derive(Clone, Copy, Debug, PartialEq, Eq)]\npub struct PartsF32;"
             ),
             "{source}"
         );

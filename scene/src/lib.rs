@@ -58,7 +58,7 @@ pub type HostScene<S> = obscura::Scene<
     MAX_OBJECTS,
     MAX_LIGHTS,
     RAY_STACK,
-    { obscura::Uses::EVERYTHING.bits() },
+    obscura::Everything,
     obscura::mesh::MeshVecs<S>,
 >;
 

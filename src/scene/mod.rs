@@ -26,7 +26,7 @@ use crate::scalar::REACH_ERRORS;
 use crate::scalar::{Bits, FormatInfo, FormatSet, Precision, Scalar};
 use crate::shape::mesh::{MeshStorage, MeshWords, Meshes, NoMeshes, Node};
 use crate::shape::{CHECKER_PERIOD, Checker, Plane, Shape, Sphere, Triangle};
-use crate::uses::Uses;
+use crate::uses::{Everything, Parts, Uses};
 use crate::vec3::Vec3;
 use crate::words::{self, ProvenScene, Reader, Words, WordsError, Writer};
 use core::marker::PhantomData;
@@ -70,12 +70,12 @@ crate::words::words_of_struct!(Object<S> {
 
 /// A scene ready to trace in format `S`, holding up to `OBJECTS` objects and `LIGHTS` lights
 /// and tracing ray trees with a stack of `RAYS` rays (at least `max_depth + 1`), by a tracer
-/// of the parts `USES` ([`Uses::bits`]; every part unless given).
+/// of the parts `P` ([`Parts`]; [`Everything`] unless given).
 ///
 /// Positions are stored relative to the eye, which keeps the numbers small. Only the storage
 /// depends on the capacities: the tracer itself ([`crate::shade`]) sees slices, so a firmware
 /// with several scenes carries one copy of it per number format (and set of parts). A scene
-/// whose `USES` leaves parts out comes only from words ([`Self::from_words`]) whose scene needs
+/// whose `P` leaves parts out comes only from words ([`Self::from_words`]) whose scene needs
 /// none of them: its tracer, built without them, lacks nothing the scene needs.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene<
@@ -83,7 +83,7 @@ pub struct Scene<
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,
-    const USES: u32 = { Uses::EVERYTHING.bits() },
+    P: Parts = Everything,
     M = NoMeshes,
 > {
     pub(crate) objects: Vec<Object<S>, OBJECTS>,
@@ -94,6 +94,7 @@ pub struct Scene<
     pub(crate) cones: Vec<[Cone<S>; OBJECTS], LIGHTS>,
     pub(crate) settings: Settings<S>,
     frame: Frame,
+    parts: PhantomData<fn() -> P>,
 }
 
 /// What the tracer needs of a scene besides its objects and lights.
@@ -139,7 +140,7 @@ crate::words::words_of_struct!(Settings<S> {
 });
 
 impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, M: MeshStorage<S>>
-    Scene<S, OBJECTS, LIGHTS, RAYS, { Uses::EVERYTHING.bits() }, M>
+    Scene<S, OBJECTS, LIGHTS, RAYS, Everything, M>
 {
     /// Validates `desc`, proves that format `S` holds it (see [`range`]) and converts it, to be
     /// traced by the lecture's methods ([`Methods::LECTURE`]).
@@ -204,9 +205,9 @@ impl<
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,
-    const USES: u32,
+    P: Parts,
     M: Meshes<S>,
-> Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>
+> Scene<S, OBJECTS, LIGHTS, RAYS, P, M>
 {
     /// The camera for an image of `width × height` pixels.
     ///
@@ -261,8 +262,8 @@ impl<
     }
 }
 
-impl<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, const USES: u32>
-    Scene<S, OBJECTS, LIGHTS, RAYS, USES, MeshWords<S>>
+impl<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, P: Parts>
+    Scene<S, OBJECTS, LIGHTS, RAYS, P, MeshWords<S>>
 {
     /// The scene and the camera a build script proved on the host (`obscura_scene::build`),
     /// read back from their words ([`ProvenScene`]): the scene, its meshes read in place, and
@@ -274,7 +275,7 @@ impl<S: Bits, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, cons
     /// parts.
     pub fn from_proven(proven: &ProvenScene<'_>) -> Result<(Self, Camera<S>), WordsError> {
         // A tracer without meshes reads none: its scene has none to meet.
-        let meshes = if Uses::from_bits(USES).contains(Uses::MESHES) {
+        let meshes = if P::USES.contains(Uses::MESHES) {
             MeshWords::from_words(proven.meshes)
         } else {
             Ok(MeshWords::default())
@@ -290,9 +291,9 @@ impl<
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,
-    const USES: u32,
+    P: Parts,
     M: Meshes<S> + Default,
-> Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>
+> Scene<S, OBJECTS, LIGHTS, RAYS, P, M>
 {
     /// Writes the scene as words ([`crate::words`]) to `sink`: what a firmware's build keeps as
     /// constants of a scene it has built, and so proven, on the host. Only the objects and
@@ -302,12 +303,12 @@ impl<
     }
 
     /// The scene [`Self::write_words`] wrote in format `S`, in storage of these capacities and
-    /// for a tracer of the parts `USES`: what a firmware traces without building the scene or
+    /// for a tracer of the parts `P`: what a firmware traces without building the scene or
     /// proving its range again.
     ///
     /// # Errors
     /// When `words` are not such a scene's, or it has more objects or lights than the
-    /// capacities, a deeper ray tree than the ray stack holds, or uses a part `USES` leaves
+    /// capacities, a deeper ray tree than the ray stack holds, or uses a part `P` leaves
     /// out ([`Self::uses`]).
     pub fn from_words(words: &[u32]) -> Result<Self, WordsError> {
         words::read::<S, Self>("scene", words)
@@ -333,9 +334,9 @@ impl<
     const OBJECTS: usize,
     const LIGHTS: usize,
     const RAYS: usize,
-    const USES: u32,
+    P: Parts,
     M: Meshes<S> + Default,
-> Words for Scene<S, OBJECTS, LIGHTS, RAYS, USES, M>
+> Words for Scene<S, OBJECTS, LIGHTS, RAYS, P, M>
 {
     fn put(&self, out: &mut Writer<'_>) {
         let count = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
@@ -356,10 +357,10 @@ impl<
         self.frame.put(out);
     }
 
-    /// Refuses the parts `USES` leaves out where they are read: a kind of shape at its tag
+    /// Refuses the parts `P` leaves out where they are read: a kind of shape at its tag
     /// ([`Reader::allow_only`]), a method, an area light or several rays per pixel once read.
     fn take<const IN_PLACE: bool>(input: &mut Reader<'_, IN_PLACE>) -> Self {
-        let parts = Uses::from_bits(USES);
+        let parts = P::USES;
         input.allow_only(parts);
         let mut objects = Vec::new();
         for _ in 0..input.count(OBJECTS) {
@@ -400,6 +401,7 @@ impl<
             cones,
             settings,
             frame: Frame::take(input),
+            parts: PhantomData,
         }
     }
 }
@@ -496,7 +498,7 @@ impl<S: Scalar> Converter<S> {
     fn scene<const O: usize, const L: usize, const R: usize, M: MeshStorage<S>>(
         &self,
         desc: &SceneDesc<'_>,
-    ) -> Result<Scene<S, O, L, R, { Uses::EVERYTHING.bits() }, M>, SceneError> {
+    ) -> Result<Scene<S, O, L, R, Everything, M>, SceneError> {
         // `build` checked both lengths against the capacities.
         let too_many = |what, count, capacity| SceneError::TooMany {
             what,
@@ -532,6 +534,7 @@ impl<S: Scalar> Converter<S> {
             cones,
             settings: self.settings(desc)?,
             frame: self.frame,
+            parts: PhantomData,
         })
     }
 
