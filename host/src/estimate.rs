@@ -220,12 +220,7 @@ pub fn frame(
 
 /// The textbook operations a pixel of a `SIDE`×`SIDE` frame of `desc` takes, counted.
 fn operations_per_pixel(format: Format, desc: &SceneDesc<'_>, methods: Methods) -> Result<f64> {
-    let request = Request {
-        desc,
-        width: SIDE,
-        height: SIDE,
-        methods,
-    };
+    let request = Request::new(*desc, (SIDE, SIDE), methods);
     let (count, _) = operations::count(format, &request)?;
     Ok(count.operations_per_pixel())
 }

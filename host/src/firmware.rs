@@ -442,12 +442,7 @@ pub fn compare_frame(
     frame: &Frame,
     dir: &Path,
 ) -> Result<(Vec<u16>, Vec<u16>, Vec<usize>)> {
-    let request = crate::render::Request {
-        desc,
-        width: frame.width,
-        height: frame.height,
-        methods: frame.methods,
-    };
+    let request = crate::render::Request::new(*desc, (frame.width, frame.height), frame.methods);
     let host = crate::render::prepare(format, &request)?
         .rgb565_frame(frame.presentation, &mut |_, _| {})?;
     let device = read_frame(&dir.join(&frame.file), host.len())?;

@@ -207,15 +207,6 @@ mod tests {
     use crate::render::prepare;
     use obscura::{Methods, scenes};
 
-    fn request<'a>(desc: &'a obscura::SceneDesc<'static>) -> Request<'a> {
-        Request {
-            desc,
-            width: 40,
-            height: 30,
-            methods: Methods::LECTURE,
-        }
-    }
-
     /// Counting changes no bit of any built-in scene's picture; a primary ray meets what the
     /// object map says it meets (the floor's primary tests are the pixels that show an object);
     /// and the floor is below what is measured in every phase.
@@ -223,7 +214,7 @@ mod tests {
     fn counting_changes_nothing_and_the_floor_is_below_the_count() {
         for built_in in &scenes::BUILT_IN {
             for format in [Format::I16f16, Format::F32] {
-                let request = request(&built_in.desc);
+                let request = Request::new(built_in.desc, (40, 30), Methods::LECTURE);
                 let plain = prepare(format, &request).expect("builds");
                 let (count, image) = count(format, &request).expect("counts");
                 let context = format!("{} in {format}", built_in.name);

@@ -8,7 +8,7 @@ use crate::analysis::{Analysis, Choice, Fit, TARGET_PSNR, measure, pick};
 use crate::cost::Machine;
 use crate::fuzz::false_accept;
 use crate::metrics::accuracy;
-use crate::render::{Request, exact_roots, prepare, prepare_reference};
+use crate::render::{Request, prepare, prepare_reference};
 use obscura::{BiasMethod, Methods, RayMethod, RootMethod, SphereMethod, TriangleMethod};
 use obscura_scene::{Format, OwnedScene};
 
@@ -34,21 +34,11 @@ fn refused_or_held(
         .iter()
         .find(|v| v.format == format)
         .expect("a verdict per format");
-    let desc = scene.desc();
-    let request = Request {
-        desc: &desc,
-        width,
-        height,
-        methods,
-    };
+    let request = Request::new(scene.desc(), (width, height), methods);
     let built = prepare(format, &request);
     match (&verdict.fit, built) {
         (Fit::Holds, Ok(prepared)) => {
-            let reference = prepare_reference(&Request {
-                methods: exact_roots(methods),
-                ..request
-            })
-            .expect("f64 holds the scene");
+            let reference = prepare_reference(&request).expect("f64 holds the scene");
             let measured = accuracy(
                 &prepared.render(1, None).expect("no number wraps"),
                 &reference.render(1, None).expect("renders"),
@@ -311,13 +301,7 @@ fn extreme_glass_is_refused_or_predicted_so() {
 fn the_eye_on_a_triangles_edge_is_refused_in_every_format() {
     let edge = hostile("eye-on-edge");
     for &format in Format::FIRMWARE {
-        let desc = edge.desc();
-        let request = Request {
-            desc: &desc,
-            width: 64,
-            height: 64,
-            methods: Methods::LECTURE,
-        };
+        let request = Request::new(edge.desc(), (64, 64), Methods::LECTURE);
         let Err(error) = prepare(format, &request) else {
             panic!("{format} holds a scene whose eye is on a triangle's edge");
         };
@@ -402,13 +386,7 @@ fn analyze_and_the_build_agree_on_a_field_of_view_of_almost_180_degrees() {
     for size in [64, 512] {
         let analysis = Analysis::of(&wide, Methods::LECTURE, size, size).expect("f64 holds it");
         for verdict in &analysis.verdicts {
-            let desc = wide.desc();
-            let request = Request {
-                desc: &desc,
-                width: size,
-                height: size,
-                methods: Methods::LECTURE,
-            };
+            let request = Request::new(wide.desc(), (size, size), Methods::LECTURE);
             let builds = prepare(verdict.format, &request).is_ok();
             assert_eq!(
                 builds,

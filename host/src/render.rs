@@ -54,10 +54,7 @@ pub fn exact_roots(methods: Methods) -> Methods {
 pub fn prepare_reference(request: &Request<'_>) -> Result<Box<dyn AnyFormat>> {
     prepare(
         Format::F64,
-        &Request {
-            methods: exact_roots(request.methods),
-            ..*request
-        },
+        &request.with_methods(exact_roots(request.methods)),
     )
 }
 
@@ -69,13 +66,35 @@ const BAND: usize = 8;
 #[derive(Clone, Copy, Debug)]
 pub struct Request<'a> {
     /// The scene.
-    pub desc: &'a SceneDesc<'a>,
+    pub desc: SceneDesc<'a>,
     /// Image width in pixels.
     pub width: u32,
     /// Image height in pixels.
     pub height: u32,
     /// The numerical methods.
     pub methods: Methods,
+}
+
+impl<'a> Request<'a> {
+    /// A request for `desc` at `width`×`height` pixels by `methods`.
+    pub fn new(desc: SceneDesc<'a>, (width, height): (u32, u32), methods: Methods) -> Self {
+        Self {
+            desc,
+            width,
+            height,
+            methods,
+        }
+    }
+
+    /// The same request for another scene (a moved, doubled or pared copy of this one).
+    pub fn with_desc(self, desc: SceneDesc<'a>) -> Self {
+        Self { desc, ..self }
+    }
+
+    /// The same request by other methods.
+    pub fn with_methods(self, methods: Methods) -> Self {
+        Self { methods, ..self }
+    }
 }
 
 /// A scene built and a camera placed for one request.
@@ -89,7 +108,7 @@ impl<S: Scalar> Prepared<S> {
     /// Builds the scene in format `S` and its camera.
     pub fn new(request: &Request<'_>) -> Result<Self> {
         let built = checked::catch(|| {
-            let scene = HostScene::<S>::build_with(request.desc, request.methods)?;
+            let scene = HostScene::<S>::build_with(&request.desc, request.methods)?;
             let camera = scene.camera(request.width, request.height)?;
             Ok((scene, camera))
         })

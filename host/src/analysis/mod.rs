@@ -498,15 +498,9 @@ pub fn measure(
     format: Format,
     scene: &OwnedScene,
     methods: Methods,
-    (width, height): (u32, u32),
+    size: (u32, u32),
 ) -> Result<f64> {
-    let desc = scene.desc();
-    let request = Request {
-        desc: &desc,
-        width,
-        height,
-        methods,
-    };
+    let request = Request::new(scene.desc(), size, methods);
     let threads = all_cores();
     let contender = prepare(format, &request)?;
     let reference = prepare_reference(&request)?;
@@ -520,17 +514,8 @@ pub fn measure(
 ///
 /// # Errors
 /// When f64 cannot build the scene, or the render fails.
-pub fn reference(
-    desc: &SceneDesc<'_>,
-    methods: Methods,
-    (width, height): (u32, u32),
-) -> Result<Reference> {
-    Reference::render(&Request {
-        desc,
-        width,
-        height,
-        methods: exact_roots(methods),
-    })
+pub fn reference(desc: &SceneDesc<'_>, methods: Methods, size: (u32, u32)) -> Result<Reference> {
+    Reference::render(&Request::new(*desc, size, exact_roots(methods)))
 }
 
 /// Whether `format` holds `scene` for `methods` at `size`: as it is, or rescaled about the eye
@@ -817,13 +802,7 @@ mod tests {
 
     /// `format` against f64 (exact roots, same methods) on `scene`, measured.
     fn measured(format: Format, scene: &OwnedScene, methods: Methods, size: u32) -> Accuracy {
-        let desc = scene.desc();
-        let request = Request {
-            desc: &desc,
-            width: size,
-            height: size,
-            methods,
-        };
+        let request = Request::new(scene.desc(), (size, size), methods);
         let (contender, reference) = (
             prepare(format, &request).expect("builds"),
             prepare_reference(&request).expect("builds"),
@@ -913,13 +892,7 @@ mod tests {
         for (name, scene) in scenes() {
             for power in 0..8 {
                 let scaled = scene.scaled(2.0_f32.powi(power));
-                let desc = scaled.desc();
-                let request = Request {
-                    desc: &desc,
-                    width: 96,
-                    height: 96,
-                    methods: Methods::LECTURE,
-                };
+                let request = Request::new(scaled.desc(), (96, 96), Methods::LECTURE);
                 peak::reset();
                 drop(
                     Prepared::<Peak>::new(&request)
@@ -930,7 +903,7 @@ mod tests {
                 let reached = peak::largest();
                 for format in [Format::I16f16, Format::I20f12, Format::I32f32] {
                     let range = format.run::<Checked, _>(Range);
-                    match builds(format, &desc, Methods::LECTURE, (96, 96)) {
+                    match builds(format, &request.desc, Methods::LECTURE, (96, 96)) {
                         Err(SceneError::OutOfRange { .. }) => {
                             refused += 1;
                             assert!(
@@ -966,13 +939,7 @@ mod tests {
         );
         // Rescaling about the eye leaves the image as it was.
         let image = |scene: &OwnedScene| {
-            let desc = scene.desc();
-            let request = Request {
-                desc: &desc,
-                width: 64,
-                height: 64,
-                methods: Methods::LECTURE,
-            };
+            let request = Request::new(scene.desc(), (64, 64), Methods::LECTURE);
             prepare(Format::F64, &request)
                 .expect("builds")
                 .render(1, None)

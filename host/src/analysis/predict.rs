@@ -119,7 +119,7 @@ impl Reference {
             .map(|hit| hit.map_or(0, |(_, part)| part))
             .collect();
         let met = prepared.met_map()?;
-        let desc = request.desc;
+        let desc = &request.desc;
         let mesh = |object: &ObjectDesc| matches!(object.shape, ShapeDesc::Mesh { .. });
         let crackable = if request.methods.triangle == TriangleMethod::Watertight {
             0
@@ -135,12 +135,7 @@ impl Reference {
             ..*desc
         };
         let behind = (crackable != 0)
-            .then(|| {
-                Prepared::<f64>::new(&Request {
-                    desc: &without,
-                    ..*request
-                })
-            })
+            .then(|| Prepared::<f64>::new(&request.with_desc(without)))
             .and_then(Result::ok);
         let samples = desc.samples;
         Ok(Self {
@@ -371,12 +366,8 @@ fn predict_in<S: Scalar>(
     let (width, height) = reference.image.dimensions();
     // The format's constants and tolerances alone: f64 arithmetic on its stored values, by the
     // methods' exact roots (their error is the rounding's, below).
-    let constants = Prepared::<Quantized<S>>::new(&Request {
-        desc,
-        width,
-        height,
-        methods: exact_roots(methods),
-    })?;
+    let constants =
+        Prepared::<Quantized<S>>::new(&Request::new(*desc, (width, height), exact_roots(methods)))?;
     let measured = accuracy(
         &constants.render(threads_here(), None)?,
         &reference.image,
@@ -685,13 +676,7 @@ mod tests {
             max_depth: 0,
             ..SceneDesc::DEFAULT
         };
-        Reference::render(&Request {
-            desc: &desc,
-            width: 32,
-            height: 32,
-            methods: Methods::LECTURE,
-        })
-        .expect("renders")
+        Reference::render(&Request::new(desc, (32, 32), Methods::LECTURE)).expect("renders")
     }
 
     #[test]
@@ -740,12 +725,7 @@ mod tests {
     #[test]
     fn the_prediction_for_f64_itself_is_of_no_error() {
         let whitted = scenes::WHITTED;
-        let request = Request {
-            desc: &whitted,
-            width: 48,
-            height: 48,
-            methods: Methods::LECTURE,
-        };
+        let request = Request::new(whitted, (48, 48), Methods::LECTURE);
         let reference = Reference::render(&request).expect("renders");
         let f64s = predict(Format::F64, &whitted, Methods::LECTURE, &reference).expect("holds");
         assert!(f64s.psnr_db > 100.0, "{f64s:?}");

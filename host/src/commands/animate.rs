@@ -140,14 +140,7 @@ fn render_frame(
     format: Format,
     methods: Methods,
 ) -> Result<(RgbImage, Accuracy)> {
-    let (width, height) = args.scene.size;
-    let desc = frame.scene.desc();
-    let request = Request {
-        desc: &desc,
-        width,
-        height,
-        methods,
-    };
+    let request = Request::new(frame.scene.desc(), args.scene.size, methods);
     let contender = prepare(format, &request)?;
     let baseline = prepare_reference(&request)?;
     let image = contender.render(1, None)?;

@@ -65,18 +65,12 @@ fn bench(args: &BenchArgs, named: &NamedScene) -> Result<()> {
 /// Times every job on one thread and the first on each thread count asked for, all
 /// interleaved; each against f32 and against one thread.
 fn time(args: &BenchArgs, named: &NamedScene, jobs: &[(Format, Methods)]) -> Result<Bench> {
-    let desc = named.scene.desc();
     let (width, height) = args.size;
     let first = *args.formats.first().context("give at least one format")?;
     let renderers = jobs
         .iter()
         .map(|&(format, methods)| {
-            let request = Request {
-                desc: &desc,
-                width,
-                height,
-                methods,
-            };
+            let request = Request::new(named.scene.desc(), args.size, methods);
             prepare(format, &request)
         })
         .collect::<Result<Vec<_>>>()?;

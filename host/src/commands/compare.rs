@@ -75,13 +75,7 @@ fn compare(args: &CompareArgs, named: &NamedScene) -> Result<()> {
         methods,
     } = super::resolve(named, &args.scene)?;
     let (width, height) = args.scene.size;
-    let desc = scene.desc();
-    let request = Request {
-        desc: &desc,
-        width,
-        height,
-        methods,
-    };
+    let request = Request::new(scene.desc(), (width, height), methods);
     let contender = prepare(format, &request)?;
     let baseline = prepare_reference(&request)?;
     let rendering = |format: Format| format!("rendering {name} in {format}");
@@ -208,13 +202,9 @@ fn converged(
     many.adaptive_samples = false;
     many.shadow_samples = samples;
     many.adaptive_shadows = false;
-    let desc = many.desc();
-    let converged = prepare_reference(&Request {
-        desc: &desc,
-        ..*request
-    })?
-    .render(all_cores(), Some("converged f64"))
-    .context("rendering the converged f64 image")?;
+    let converged = prepare_reference(&request.with_desc(many.desc()))?
+        .render(all_cores(), Some("converged f64"))
+        .context("rendering the converged f64 image")?;
     let psnr = |image| accuracy(image, &converged, objects, objects).psnr_db;
     Ok(Converged {
         samples,

@@ -566,12 +566,7 @@ fn print_operations(
     else {
         return Ok(());
     };
-    let request = Request {
-        desc,
-        width: report.width,
-        height: report.height,
-        methods,
-    };
+    let request = Request::new(*desc, (report.width, report.height), methods);
     let (count, _) = operations::count(format, &request)
         .with_context(|| format!("counting the operations of {name} in {format}"))?;
     let Some(whole) = count.lines().pop() else {

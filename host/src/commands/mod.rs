@@ -146,14 +146,7 @@ pub fn refuse_useless(
     if refusal.force || format == Format::F64 {
         return Ok(());
     }
-    let (width, height) = drawn.dimensions();
-    let desc = scene.desc();
-    let request = Request {
-        desc: &desc,
-        width,
-        height,
-        methods,
-    };
+    let request = Request::new(scene.desc(), drawn.dimensions(), methods);
     let rendered;
     let truth = match truth {
         Some(truth) => truth,
@@ -181,18 +174,12 @@ pub fn refuse_useless_unseen(
     format: Format,
     scene: &OwnedScene,
     methods: Methods,
-    (width, height): (u32, u32),
+    size: (u32, u32),
 ) -> Result<()> {
     if refusal.force || format == Format::F64 {
         return Ok(());
     }
-    let desc = scene.desc();
-    let request = Request {
-        desc: &desc,
-        width,
-        height,
-        methods,
-    };
+    let request = Request::new(scene.desc(), size, methods);
     // A format that cannot build the scene passes: the command's own build says why.
     let Ok(prepared) = prepare(format, &request) else {
         return Ok(());

@@ -39,18 +39,12 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
     if let FormatChoice::Given(format) = args.format {
         super::refuse_useless_unseen(&args.refusal, format, &named.scene, methods, (SIDE, SIDE))?;
     }
-    let desc = named.scene.desc();
-    let request = Request {
-        desc: &desc,
-        width: SIDE,
-        height: SIDE,
-        methods,
-    };
+    let request = Request::new(named.scene.desc(), (SIDE, SIDE), methods);
     let prepared = prepare(format, &request)?;
     let presentation = args.presentation.presentation();
     // An estimate that cannot be made (its pricing scene's files gone from an installed
     // harness's workspace) leaves the frame unpaced, not undrawn.
-    let estimate = estimate::frame(args.target, format, &desc, methods);
+    let estimate = estimate::frame(args.target, format, &request.desc, methods);
     say!(
         "{} in {format} on the {}, rows {}, dither {}: {}",
         named.name,
@@ -104,15 +98,9 @@ fn preview_path(args: &PreviewArgs, named: &NamedScene, animation: &Animation) -
             let size = (SIDE, SIDE);
             super::refuse_useless_unseen(&args.refusal, format, &frame.scene, methods, size)?;
         }
-        let desc = frame.scene.desc();
-        let request = Request {
-            desc: &desc,
-            width: SIDE,
-            height: SIDE,
-            methods,
-        };
+        let request = Request::new(frame.scene.desc(), (SIDE, SIDE), methods);
         let pixels = prepare(format, &request)?.rgb565_frame(presentation, &mut |_, _| {})?;
-        let paced = estimate::frame(args.target, format, &desc, methods)
+        let paced = estimate::frame(args.target, format, &request.desc, methods)
             .ok()
             .flatten()
             .map(|e| Duration::from_secs_f64(e.seconds));

@@ -23,13 +23,7 @@ fn render(args: &RenderArgs, named: &NamedScene) -> Result<()> {
         methods,
     } = super::resolve(named, &args.scene)?;
     let (width, height) = args.scene.size;
-    let desc = scene.desc();
-    let request = Request {
-        desc: &desc,
-        width,
-        height,
-        methods,
-    };
+    let request = Request::new(scene.desc(), (width, height), methods);
     let prepared = prepare(format, &request)?;
     let label = format!("rendering {} in {format}", name);
     let start = Instant::now();

@@ -66,13 +66,7 @@ fn auto_picks_a_format_the_build_accepts() {
                 Some(factor) => generated.scene.scaled(factor as f32),
                 None => generated.scene.clone(),
             };
-            let desc = scene.desc();
-            let request = Request {
-                desc: &desc,
-                width,
-                height,
-                methods,
-            };
+            let request = Request::new(scene.desc(), generated.size, methods);
             assert!(
                 prepare(choice.format, &request).is_ok(),
                 "scene {index}: auto picked {} on {machine}, which refuses it",

@@ -365,13 +365,7 @@ fn try_methods(
     (width, height): (u32, u32),
     tally: &mut Tally,
 ) {
-    let desc = scene.desc();
-    let request = Request {
-        desc: &desc,
-        width,
-        height,
-        methods,
-    };
+    let request = Request::new(scene.desc(), (width, height), methods);
     let finding = |format: Format, failure| Finding {
         seed: 0,
         format: format.name(),
@@ -382,10 +376,7 @@ fn try_methods(
         file: None,
     };
     // A scene f64 refuses, every format refuses: validation is the same code for all.
-    let Ok(reference) = Reference::render(&Request {
-        methods: exact_roots(methods),
-        ..request
-    }) else {
+    let Ok(reference) = Reference::render(&request.with_methods(exact_roots(methods))) else {
         for &format in FORMATS {
             tally.builds += 1;
             if prepare(format, &request).is_ok() {
@@ -521,11 +512,7 @@ pub fn false_accept(prediction: &Prediction, measured: &Accuracy, pixels: u32) -
 
 /// `scene`, a moved copy of the request's, built in f64 at the request's size and methods.
 fn reference_of(scene: &OwnedScene, request: &Request<'_>) -> Result<Box<dyn AnyFormat>> {
-    let desc = scene.desc();
-    prepare_reference(&Request {
-        desc: &desc,
-        ..*request
-    })
+    prepare_reference(&request.with_desc(scene.desc()))
 }
 
 /// The f64 image and object map with the eye nudged by one ulp of f32 (`None` where that
@@ -560,11 +547,7 @@ fn try_translation(
         return;
     };
     let moved = metamorphic::translated(scene, t);
-    let moved_desc = moved.desc();
-    let moved_request = Request {
-        desc: &moved_desc,
-        ..*request
-    };
+    let moved_request = request.with_desc(moved.desc());
     let draw = |request: &Request<'_>, format| {
         prepare(format, request).and_then(|prepared| prepared.render(1, None))
     };
@@ -683,12 +666,9 @@ fn scaled_prediction(
         .find(|v| v.format == Format::F32 && v.fit == Fit::Holds)?
         .prediction?;
     let doubled = metamorphic::doubled(scene)?;
-    let desc = doubled.desc();
-    let request = Request {
-        desc: &desc,
-        methods: exact_roots(request.methods),
-        ..*request
-    };
+    let request = request
+        .with_desc(doubled.desc())
+        .with_methods(exact_roots(request.methods));
     let reference = Reference::render(&request).ok()?;
     let verdict = Verdict::of(Format::F32, &doubled, request.methods, &reference);
     let predicted = match (verdict.fit, verdict.prediction) {

@@ -174,12 +174,7 @@ fn measure_on_host<'a>(args: &ChartArgs, variants: &'a [Variant]) -> Result<Host
         refused: Vec::new(),
     };
     for variant in variants {
-        let request = Request {
-            desc: &variant.scene.desc,
-            width,
-            height,
-            methods: variant.methods,
-        };
+        let request = Request::new(variant.scene.desc, args.size, variant.methods);
         // The scene build refuses what the format cannot hold by these methods (the firmware
         // refuses the same, by the same code): an outcome to show, not a point to plot.
         let contender = match prepare(variant.format, &request) {

@@ -87,14 +87,9 @@ pub fn run(args: &ChartArgs) -> Result<()> {
     );
     let threads = all_cores();
     let converged_scene = scene((CONVERGED, false))?;
-    let converged_desc = converged_scene.desc();
-    let converged = prepare_reference(&Request {
-        desc: &converged_desc,
-        width,
-        height,
-        methods: Methods::LECTURE,
-    })?
-    .render(threads, Some("converged f64"))?;
+    let converged_request = Request::new(converged_scene.desc(), args.size, Methods::LECTURE);
+    let converged =
+        prepare_reference(&converged_request)?.render(threads, Some("converged f64"))?;
     let no_objects = vec![None; (width * height) as usize];
     let mut prepared: Vec<Box<dyn AnyFormat>> = Vec::new();
     let mut points = Vec::new();
@@ -102,12 +97,7 @@ pub fn run(args: &ChartArgs) -> Result<()> {
         let owned = scene(sampling)?;
         let desc = owned.desc();
         for format in HOST_FORMATS {
-            let request = Request {
-                desc: &desc,
-                width,
-                height,
-                methods: Methods::LECTURE,
-            };
+            let request = Request::new(desc, args.size, Methods::LECTURE);
             let contender = prepare(format, &request)?;
             let image = contender.render(threads, None)?;
             let cost = |target| {
