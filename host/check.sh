@@ -79,8 +79,8 @@ done
 step "documentation, private items too (their links are checked as the public ones)"
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --locked --quiet --document-private-items
 
-step "the core as crates.io would take it: cargo package"
-cargo package -p obscura --locked --quiet
+step "the core and the scene crate as crates.io would take them: cargo package"
+cargo package -p obscura -p obscura-scene --locked --quiet
 
 step "the library's dependencies: none of the firmware's"
 if cargo tree -p obscura -e normal --locked --prefix none | grep -E "cortex-m|stm32|mipidsi|obscura-"; then
