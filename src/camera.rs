@@ -15,7 +15,7 @@ use crate::words::{self, WordsError};
 /// The largest image side: it keeps every pixel coordinate exact in every format.
 pub const MAX_IMAGE_SIDE: u32 = 8192;
 
-/// A camera, pinhole or through a [`Lens`], for one image size. Coordinates are relative to the
+/// A camera, pinhole or through a lens, for one image size. Coordinates are relative to the
 /// eye, which is at the origin.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera<S> {
@@ -241,7 +241,7 @@ impl Frame {
 }
 
 impl<S: Bits> Camera<S> {
-    /// Writes the camera as words ([`crate::words`]) to `sink`: what a firmware's build keeps
+    /// Writes the camera as words to `sink` (as [`ProvenScene`](crate::ProvenScene) holds them): what a firmware's build keeps
     /// as constants of a camera it has made from a proven scene ([`crate::Scene::camera`]).
     pub fn write_words(&self, sink: &mut dyn FnMut(u32)) {
         words::write::<S>("camera", self, sink);
@@ -388,7 +388,7 @@ impl<S: Scalar> Camera<S> {
         self.row(y)?.ray_offset(x, offset)
     }
 
-    /// The ray from the lens point `lens` (a point of the unit disc, see [`Lens`]) through
+    /// The ray from the lens point `lens` (a point of the unit disc) through
     /// the focal plane where the pinhole's ray through `offset` from pixel (x, y)'s centre
     /// meets it: [`Self::ray_offset`] for a pinhole, or `None` outside the image.
     #[must_use]

@@ -27,9 +27,9 @@ pub struct SceneDesc<'a> {
     pub max_depth: u8,
     /// Rays per pixel, 1 to [`MAX_SAMPLES`](crate::pattern::MAX_SAMPLES): 1 traces the
     /// pixel's centre (the lecture's camera; through a lens, from one point of it); more spread
-    /// over the pixel (and the lens) by [`crate::pattern`] and average (anti-aliasing).
+    /// over the pixel (and the lens) in a fixed pattern and average (anti-aliasing).
     pub samples: u16,
-    /// Adaptive anti-aliasing after Whitted (1980, [`crate::adaptive`]): rays at the pixels'
+    /// Adaptive anti-aliasing after Whitted (1980): rays at the pixels'
     /// corners, shared with their neighbours, and cells split into quarters where their
     /// corners differ, down to 1/`samples` of the pixel (`samples` then 4, 16, 64 or 256).
     /// Flat regions cost about a ray a pixel, a pixel split all through more than `samples`.
@@ -37,7 +37,7 @@ pub struct SceneDesc<'a> {
     pub adaptive_samples: bool,
     /// Shadow rays from a point to each light with a [`LightDesc::radius`], 1 to
     /// [`MAX_SAMPLES`](crate::pattern::MAX_SAMPLES): 1 aims at the light's centre (a hard
-    /// shadow); more spread over the light by [`crate::pattern`], and the share that gets
+    /// shadow); more spread over the light in a fixed pattern, and the share that gets
     /// through is the light that arrives (soft shadows).
     pub shadow_samples: u16,
     /// Adaptive shadow rays: a point takes an area light's first

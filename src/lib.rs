@@ -41,29 +41,51 @@ extern crate alloc;
 #[doc = include_str!("../README.md")]
 struct FrontPage;
 
-pub mod adaptive;
-pub mod camera;
-pub mod color;
-pub mod cull;
-pub mod desc;
-pub mod light;
-pub mod material;
-pub mod methods;
-pub mod occlusion;
-pub mod pattern;
-pub mod ray;
-pub mod render;
-pub mod scalar;
-pub mod scene;
+/// Declares modules that are the core's own: private, or with the feature `instrument` (which
+/// only the workspace's tools enable: the harness and the scene crate, for their counting and
+/// checked number formats, their analyses and their fuzzer) public and hidden from the
+/// documentation. A user's API is the crate root's re-exports and the public modules below.
+macro_rules! internal_modules {
+    ($($(#[$attribute:meta])* $name:ident;)*) => {$(
+        $(#[$attribute])*
+        #[cfg(feature = "instrument")]
+        #[doc(hidden)]
+        pub mod $name;
+        $(#[$attribute])*
+        #[cfg(not(feature = "instrument"))]
+        // What only the workspace's tools call is unused without them.
+        #[allow(dead_code, unused_imports)]
+        mod $name;
+    )*};
+}
+
+mod format_list;
+
+internal_modules! {
+    adaptive;
+    camera;
+    color;
+    cull;
+    desc;
+    light;
+    material;
+    methods;
+    occlusion;
+    pattern;
+    ray;
+    render;
+    scalar;
+    scene;
+    shade;
+    shape;
+    /// The checks the tests and the fuzzer hold culling and the shadow cones to.
+    skips;
+    uses;
+    vec3;
+    words;
+}
+
 pub mod scenes;
-pub mod shade;
-pub mod shape;
-// The checks the tests and the fuzzer hold culling and the shadow cones to.
-#[doc(hidden)]
-pub mod skips;
-pub mod uses;
-pub mod vec3;
-pub mod words;
 
 #[cfg(test)]
 mod test_util;
@@ -78,8 +100,10 @@ pub use desc::{
 /// The `fixed` crate, whose types give [`Fx`] its binary point: `Fx<fixed::types::I12F20>`.
 pub use fixed;
 pub use methods::{
-    BiasMethod, Methods, ParseMethodsError, RayMethod, RootMethod, SphereMethod, TriangleMethod,
+    BiasMethod, MethodName, Methods, ParseMethodsError, RayMethod, RootMethod, SphereMethod,
+    TriangleMethod,
 };
+pub use pattern::{MAX_SAMPLES, SHADOW_PROBES, SampleId};
 pub use ray::Ray;
 pub use render::{Presentation, RenderError, RowOrder, RowTracer, render_frame, send_row};
 pub use scalar::names as formats;

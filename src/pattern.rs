@@ -37,7 +37,7 @@ pub const MAX_SAMPLES: u16 = 256;
 pub const SHADOW_PROBES: u16 = 4;
 
 /// Which ray of the image a trace follows: sample `sample` of pixel (`x`, `y`). Its shadow
-/// rays take their pattern from it ([`Pattern::light`]).
+/// rays take their pattern from it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct SampleId {
     /// The pixel's column.

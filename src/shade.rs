@@ -79,7 +79,7 @@ impl<
     }
 
     /// Traces a primary ray through the whole ray tree; `id` says which ray of the image it
-    /// is, which chooses where its shadow rays meet area lights ([`Pattern::light`]).
+    /// is, which chooses where its shadow rays meet area lights.
     ///
     /// ```
     /// use obscura::pattern::SampleId;

@@ -29,7 +29,8 @@ impl Parts for Everything {
     const USES: Uses = Uses::EVERYTHING;
 }
 
-/// A set of the tracer's parts (see the [module documentation](self)).
+/// A set of the tracer's parts: its kinds of shape, its methods, and the features beyond a
+/// pinhole's one ray per pixel and point lights. A scene's type carries one ([`Parts`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Uses(u32);
 

@@ -139,7 +139,7 @@ impl Vec3<f64> {
         Self::new(f64::from(x), f64::from(y), f64::from(z))
     }
 
-    /// The unit vector, or `None` for a vector no longer than [`SHORTEST_DIRECTION`].
+    /// The unit vector, or `None` for a vector too short to have a direction in the format.
     #[must_use]
     pub fn direction(self) -> Option<Self> {
         let length = self.length();

@@ -18,7 +18,7 @@ use crate::scalar::{Bits, NumberBits};
 use crate::uses::Uses;
 use core::fmt;
 
-/// Words that are not a scene's or a camera's as [`crate::words`] writes them, in the format and
+/// Words that are not a scene's or a camera's as [`Scene::write_words`](crate::Scene::write_words) and [`Camera::write_words`](crate::Camera::write_words) write them, in the format and
 /// within the capacities and parts ([`crate::Uses`]) asked for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct WordsError {

@@ -469,6 +469,8 @@ impl<S: Scalar> Scalar for Counted<S> {
     }
 }
 
+impl<S: Scalar> obscura::scalar::Sealed for Counted<S> {}
+
 impl<S: Scalar> Precision for Counted<S> {
     const NAME: &'static str = S::NAME;
 
@@ -532,6 +534,7 @@ mod tests {
             [
                 "src/cull.rs",
                 "src/desc.rs",
+                "src/format_list.rs",
                 "src/lib.rs",
                 "src/scene/error.rs",
                 "src/scene/mod.rs",

@@ -117,6 +117,8 @@ impl Scalar for Peak {
     }
 }
 
+impl obscura::scalar::Sealed for Peak {}
+
 impl Precision for Peak {
     const NAME: &'static str = "peak";
 

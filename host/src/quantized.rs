@@ -174,6 +174,8 @@ impl<S: Scalar, G: Scalar> Scalar for Quantized<S, G> {
     }
 }
 
+impl<S: Scalar, G: Scalar> obscura::scalar::Sealed for Quantized<S, G> {}
+
 impl<S: Scalar, G: Scalar> Precision for Quantized<S, G> {
     const NAME: &'static str = G::NAME;
 

@@ -6,7 +6,7 @@ use super::fixed_point::{Fx, Narrowed, Overflow, WideBits};
 use super::{F32Approx, Scalar};
 
 /// A format of the core's own, with its narrow format ([`Scalar::Narrow`]), whose numbers are
-/// their bits ([`NumberBits`]). Sealed: the harness's instrumented formats wrap these and have
+/// their bits. Sealed: the harness's instrumented formats wrap these and have
 /// no bits of their own.
 pub trait Bits: NumberBits<Narrow: NumberBits> {}
 
@@ -26,6 +26,11 @@ pub trait NumberBits: Scalar + sealed::Sealed {
 mod sealed {
     pub trait Sealed {}
 }
+
+impl<F, O> super::Sealed for Fx<F, O> {}
+impl super::Sealed for f32 {}
+impl super::Sealed for f64 {}
+impl super::Sealed for F32Approx {}
 
 impl<F, O> sealed::Sealed for Fx<F, O> {}
 impl sealed::Sealed for f32 {}

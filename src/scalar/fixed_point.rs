@@ -632,7 +632,7 @@ where
         Fx::new(narrow)
     }
 
-    /// The exact product, rounded once ([`Narrowed::wide_mul_narrow`]).
+    /// The exact product, rounded once.
     #[inline]
     #[track_caller]
     fn mul_narrow(self, k: Self::Narrow) -> Self {
@@ -661,7 +661,7 @@ where
         self.0.floor().saturating_to_num::<i32>()
     }
 
-    /// Exact, in the wide integer ([`WideBits::quantize_raw`]).
+    /// Exact, in the wide integer.
     #[inline]
     fn quantize(self, levels: u8, threshold: Self) -> u8 {
         let unit = Scalar::clamp(self, Self::ZERO, Self::ONE).raw();
@@ -707,7 +707,7 @@ where
     }
 
     /// a/b = a·(1/√|b|)²·sign(b), the reciprocal square root a fast mantissa and exponent
-    /// ([`WideBits::div_raw_fast`]): no division, and as many correct bits for a large b as
+    /// (a reciprocal's table and a Newton step): no division, and as many correct bits for a large b as
     /// for a small one. The formats without fast roots divide.
     #[inline]
     fn div_approx(self, rhs: Self) -> Self {

@@ -10,8 +10,10 @@
 //! - [`Bits`], sealed: the core's own formats, whose numbers are exactly their bits, as a
 //!   proven scene travels from a firmware's build to the chip.
 //!
-//! `Scalar` and `Precision` stay open: the harness's instrumented formats (an operation
-//! counter, a peak recorder, a format's constants in `f64`) implement them over the core's.
+//! `Scalar` and `Precision` are sealed ([`Sealed`]): a user computes in the core's formats. The
+//! workspace's tools, through the feature `instrument`, implement them for their instrumented
+//! formats over the core's (an operation counter, a peak recorder, a format's constants in
+//! `f64`).
 //!
 //! This module owns how numbers behave at the edges of their range. Every other module calls
 //! only the trait, so swapping the format changes nothing but the numbers. The rules:
@@ -30,7 +32,6 @@ mod approx;
 mod bits;
 mod fixed_point;
 mod float;
-mod formats;
 mod isqrt;
 mod kernels;
 
@@ -55,11 +56,15 @@ use core::cmp::Ordering;
 use core::fmt::Debug;
 use core::ops::{Add, Div, Mul, Neg, Sub};
 
+/// What makes a type a number format of the tracer, and so seals [`Precision`] and [`Scalar`]:
+/// the core's formats, and, through the feature `instrument`, the workspace's tools'.
+pub trait Sealed {}
+
 /// What the error model knows of a format ([`crate::scene::range`], the surface tolerances,
 /// the camera's aim, the harness's analysis): its name, range, split, resolution and the error
 /// of its unit vectors, and its exact conversions from and to `f64`. Arithmetic callers need
 /// none of it; [`Scalar`], which the tracer is written against, has it.
-pub trait Precision: Sized {
+pub trait Precision: Sized + Sealed {
     /// The format's name as the command line spells it, e.g. `"i16f16"`.
     const NAME: &'static str;
     /// The largest finite value ([`Scalar::MAX`]) as an `f64`, for range analysis.
@@ -91,7 +96,7 @@ pub trait Precision: Sized {
 /// reaches infinity). While the result fits the format, `+` and `−` are exact in fixed point
 /// and `×` is the exact product rounded to nearest (half up), `/` the exact quotient truncated
 /// towards zero; a float's are correctly rounded. Beyond the range, a float's sum or product
-/// reaches infinity and a fixed format's wraps (two's complement), telling its [`Overflow`]
+/// reaches infinity and a fixed format's wraps (two's complement), telling its overflow policy
 /// policy first: the firmware's panics in a debug build, the desktop harness's stops the render
 /// with the operation. The scene build proves that no sum or product the tracer forms for a
 /// built scene leaves the format (see the module documentation); `tests/scalar_operators.rs`
@@ -126,11 +131,11 @@ pub trait Scalar:
     /// multiplied in the width it needs. A 32-bit fixed format of at most 16 fraction bits
     /// has signed 2.14 (a product of two is one 16×16→32 multiply, a product with one of the
     /// format's is 32×16); the finer 32-bit formats and the 64-bit one signed 2.30, which keeps
-    /// their accuracy ([`Narrowed`]); a float the float itself.
+    /// their accuracy; a float the float itself.
     type Narrow: Scalar;
 
     /// `self` rounded to the narrow format (to nearest, ties up); exact while it fits, which
-    /// the scene build proves, and like a product beyond that ([`Overflow`]).
+    /// the scene build proves, and like a product beyond that.
     #[must_use]
     #[track_caller]
     fn narrow(self) -> Self::Narrow;
@@ -142,7 +147,7 @@ pub trait Scalar:
 
     /// `bits`·2⁻¹⁶, the number whose Q16.16 representation is `bits`, rounded down to the
     /// format's resolution (saturating when it does not fit): how a position that integers
-    /// computed, such as a sample's within its pixel ([`crate::pattern`]), enters the format.
+    /// computed, such as a sample's within its pixel, enters the format.
     fn from_q16(bits: i32) -> Self;
 
     /// The Q16.16 representation of `self`: `self`·2¹⁶ rounded down (saturating), the inverse
@@ -265,7 +270,7 @@ pub trait Scalar:
         Self::from_int(num) / Self::from_int(den)
     }
 
-    /// Hears of a step of the tracer's work that no arithmetic operation shows ([`Work`]). The
+    /// Hears of a step of the tracer's work that no arithmetic operation shows. The
     /// formats here ignore it (it costs nothing); the desktop harness's operation counter
     /// tallies it.
     #[inline(always)]

@@ -73,7 +73,7 @@ crate::words::words_of_struct!(Object<S> {
 /// of the parts `P` ([`Parts`]; [`Everything`] unless given).
 ///
 /// Positions are stored relative to the eye, which keeps the numbers small. Only the storage
-/// depends on the capacities: the tracer itself ([`crate::shade`]) sees slices, so a firmware
+/// depends on the capacities: the tracer itself sees slices, so a firmware
 /// with several scenes carries one copy of it per number format (and set of parts). A scene
 /// whose `P` leaves parts out comes only from words ([`Self::from_words`]) whose scene needs
 /// none of them: its tracer, built without them, lacks nothing the scene needs.
@@ -142,7 +142,7 @@ crate::words::words_of_struct!(Settings<S> {
 impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, M: MeshStorage<S>>
     Scene<S, OBJECTS, LIGHTS, RAYS, Everything, M>
 {
-    /// Validates `desc`, proves that format `S` holds it (see [`range`]) and converts it, to be
+    /// Validates `desc`, proves that format `S` holds it (the range proof) and converts it, to be
     /// traced by the lecture's methods ([`Methods::LECTURE`]).
     ///
     /// # Errors
@@ -170,7 +170,7 @@ impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, M:
         Self::build_with_tolerances_of(desc, methods, &FormatInfo::of::<S>())
     }
 
-    /// [`Self::build_with`], with the surface tolerances ([`SURFACE_TOLERANCE_STEPS`]) that
+    /// [`Self::build_with`], with the surface tolerances that
     /// format `tolerances` computes rather than `S`'s: the scene a finer format traces to tell
     /// the offsets of the epsilon method in `tolerances` from its rounding.
     ///
@@ -214,7 +214,7 @@ impl<
     /// # Errors
     /// [`SceneError::ImageSize`] when a side is 0 or larger than [`MAX_IMAGE_SIDE`]; when the
     /// image plane leaves the format, its pixels are closer than the format can aim rays, or
-    /// its lens tilts rays too little to focus in the format ([`range::camera`]), why.
+    /// its lens tilts rays too little to focus in the format, why.
     ///
     /// ```
     /// use obscura::{Scene, SceneError, scenes};
@@ -295,7 +295,7 @@ impl<
     M: Meshes<S> + Default,
 > Scene<S, OBJECTS, LIGHTS, RAYS, P, M>
 {
-    /// Writes the scene as words ([`crate::words`]) to `sink`: what a firmware's build keeps as
+    /// Writes the scene as words to `sink` (as [`ProvenScene`] holds them): what a firmware's build keeps as
     /// constants of a scene it has built, and so proven, on the host. Only the objects and
     /// lights the scene has are written, not its capacities.
     pub fn write_words(&self, sink: &mut dyn FnMut(u32)) {

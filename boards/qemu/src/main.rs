@@ -32,7 +32,7 @@ use cortex_m_semihosting::{hio, nr, syscall};
 use embedded_graphics_core::pixelcolor::{IntoStorage, Rgb565};
 use embedded_graphics_core::prelude::*;
 use embedded_graphics_core::primitives::Rectangle;
-use obscura::methods::MethodName;
+use obscura::MethodName;
 use obscura_firmware::SIDE;
 use obscura_firmware::clock::Clock;
 use obscura_firmware::frames::{self, Backend, Job, Report};

@@ -1,5 +1,5 @@
 //! The formats the tracer is built for, listed once: [`for_each_format!`](crate::for_each_format)
-//! hands the list to a macro, from which the core builds [`FORMATS`](super::FORMATS) and the
+//! hands the list to a macro, from which the core builds [`FORMATS`](crate::scalar::FORMATS) and the
 //! [`formats`](crate::formats) type names, and the desktop harness its command-line formats.
 
 /// Calls `$then!` with every format the tracer is built for, from the smallest range to the
@@ -16,6 +16,7 @@
 /// assert_eq!(obscura::for_each_format!(count), obscura::scalar::FORMATS.len());
 /// ```
 #[macro_export]
+#[doc(hidden)]
 macro_rules! for_each_format {
     ($then:ident) => {
         $then! {
