@@ -9,6 +9,26 @@ use crate::object::{FileObject, FileShape};
 use obscura::{BackgroundDesc, CameraDesc, LightDesc, ObjectDesc, SceneDesc, ShapeDesc};
 use serde::{Deserialize, Serialize};
 
+/// `$To { .. }` from `$from`: the settings an [`OwnedScene`] shares with the core's
+/// [`SceneDesc`] (all but the camera and the lists) copied, and `$field: $value` for the rest.
+/// The one list of the shared fields: every conversion between the two is built here, and a
+/// field either adds, the other lacking it, fails to compile.
+macro_rules! with_shared_settings {
+    ($from:ident => $To:ident { $($field:ident: $value:expr),* $(,)? }) => {
+        $To {
+            ambient: $from.ambient,
+            background: $from.background,
+            far: $from.far,
+            max_depth: $from.max_depth,
+            samples: $from.samples,
+            adaptive_samples: $from.adaptive_samples,
+            shadow_samples: $from.shadow_samples,
+            adaptive_shadows: $from.adaptive_shadows,
+            $($field: $value),*
+        }
+    };
+}
+
 /// A scene description with owned lists; what a scene file holds (lights, ambient light,
 /// background and depth may be left out), its objects `O` as the core's, or as a file gives
 /// them (naming mesh files, which [`crate::load`] reads into [`OwnedScene::meshes`]).
@@ -93,25 +113,18 @@ impl<O> OwnedScene<O> {
         self,
         object: impl FnMut(O) -> Result<T, E>,
     ) -> Result<OwnedScene<T>, E> {
-        Ok(OwnedScene {
+        let mapped = self
+            .objects
+            .into_iter()
+            .map(object)
+            .collect::<Result<_, _>>()?;
+        Ok(with_shared_settings!(self => OwnedScene {
             camera: self.camera,
-            objects: self
-                .objects
-                .into_iter()
-                .map(object)
-                .collect::<Result<_, _>>()?,
+            objects: mapped,
             meshes: self.meshes,
             lights: self.lights,
-            ambient: self.ambient,
-            background: self.background,
-            far: self.far,
-            max_depth: self.max_depth,
-            samples: self.samples,
-            adaptive_samples: self.adaptive_samples,
-            shadow_samples: self.shadow_samples,
-            adaptive_shadows: self.adaptive_shadows,
             animation: self.animation,
-        })
+        }))
     }
 
     /// The frames of its camera path (1 for a still picture).
@@ -130,21 +143,13 @@ impl<O> OwnedScene<O> {
 impl OwnedScene {
     /// A copy of `desc`.
     pub fn from_desc(desc: &SceneDesc<'_>) -> Self {
-        Self {
+        with_shared_settings!(desc => Self {
             camera: desc.camera,
             objects: desc.objects.to_vec(),
             meshes: OwnedMeshes::from_desc(&desc.meshes),
             lights: desc.lights.to_vec(),
-            ambient: desc.ambient,
-            background: desc.background,
-            far: desc.far,
-            max_depth: desc.max_depth,
-            samples: desc.samples,
-            adaptive_samples: desc.adaptive_samples,
-            shadow_samples: desc.shadow_samples,
-            adaptive_shadows: desc.adaptive_shadows,
             animation: None,
-        }
+        })
     }
 
     /// The still scene of `frame` of its camera path: that frame's camera, no path.
@@ -159,20 +164,12 @@ impl OwnedScene {
 
     /// The description, borrowing the lists: frame 0's, for a scene with a camera path.
     pub fn desc(&self) -> SceneDesc<'_> {
-        SceneDesc {
+        with_shared_settings!(self => SceneDesc {
             camera: self.camera_at(0),
             objects: &self.objects,
             meshes: self.meshes.desc(),
             lights: &self.lights,
-            ambient: self.ambient,
-            background: self.background,
-            far: self.far,
-            max_depth: self.max_depth,
-            samples: self.samples,
-            adaptive_samples: self.adaptive_samples,
-            shadow_samples: self.shadow_samples,
-            adaptive_shadows: self.adaptive_shadows,
-        }
+        })
     }
 
     /// The scene as the files that say it: the scene file's TOML, whose mesh objects name
