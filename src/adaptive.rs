@@ -23,6 +23,8 @@
 //!
 //! [`SceneDesc::samples`]: crate::SceneDesc::samples
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Output));
+
 use crate::camera::{Camera, Row};
 use crate::color::Rgb;
 use crate::pattern::SampleId;

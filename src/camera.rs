@@ -3,6 +3,8 @@
 //! thin lens about the eye that starts each of a pixel's rays from another point of it, aimed
 //! at the point the pinhole's ray meets on the focal plane (depth of field).
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Camera));
+
 use crate::desc::CameraDesc;
 use crate::methods::{Methods, RayMethod, RootMethod};
 use crate::ray::Ray;

@@ -2,6 +2,8 @@
 //! colour. Light is in the format; what filters it — a surface's colour, a weight along the
 //! ray tree — is at most 1, and is in the format's narrow numbers ([`Scalar::Narrow`]).
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Output));
+
 use crate::scalar::Scalar;
 use core::ops::Add;
 use embedded_graphics_core::pixelcolor::{Bgr565, Bgr888, Rgb555, Rgb565, Rgb888, RgbColor};

@@ -17,6 +17,8 @@
 //! arithmetic alone, exact and the same on every machine, so that the host and a firmware skip
 //! the same tests and a firmware needs no floating point for them.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Culling));
+
 use crate::camera::{
     COORDINATE_LIMIT, Coordinate, Frame, ImagePlane, MAX_IMAGE_SIDE, coordinate, outwards,
 };

@@ -2,6 +2,8 @@
 //! keeps its scene in flash. [`crate::Scene::build`] validates one and converts it into a
 //! number format.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Build));
+
 /// A scene as its author writes it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SceneDesc<'a> {

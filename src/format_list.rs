@@ -2,6 +2,8 @@
 //! hands the list to a macro, from which the core builds [`FORMATS`](crate::scalar::FORMATS) and the
 //! [`formats`](crate::formats) type names, and the desktop harness its command-line formats.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Build));
+
 /// Calls `$then!` with every format the tracer is built for, from the smallest range to the
 /// largest: the 32-bit fixed formats as `Variant => RawType` (a type of `fixed::types`), then
 /// the 64-bit one, then the floats as `Variant => Type`. The 32-bit formats are the even

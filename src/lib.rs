@@ -33,6 +33,8 @@
 )]
 #![cfg_attr(not(test), deny(clippy::indexing_slicing, clippy::unreachable))]
 
+phase::declare_phase!(Some(phase::Phase::Build));
+
 #[cfg(feature = "alloc")]
 extern crate alloc;
 
@@ -72,6 +74,7 @@ internal_modules! {
     methods;
     occlusion;
     pattern;
+    phase;
     ray;
     render;
     scalar;
@@ -86,6 +89,52 @@ internal_modules! {
 }
 
 pub mod scenes;
+
+/// Every module with the phase of its work it declares ([`phase::MODULES`]), but the tests'
+/// helpers.
+const MODULE_PHASES: &[phase::Module] = &[
+    PHASE,
+    adaptive::PHASE,
+    camera::PHASE,
+    color::PHASE,
+    cull::PHASE,
+    desc::PHASE,
+    format_list::PHASE,
+    light::PHASE,
+    material::PHASE,
+    methods::PHASE,
+    occlusion::PHASE,
+    pattern::PHASE,
+    phase::PHASE,
+    ray::PHASE,
+    render::PHASE,
+    scalar::PHASE,
+    scalar::approx::PHASE,
+    scalar::bits::PHASE,
+    scalar::fixed_point::PHASE,
+    scalar::float::PHASE,
+    scalar::isqrt::PHASE,
+    scalar::kernels::PHASE,
+    scene::PHASE,
+    scene::error::PHASE,
+    scene::range::PHASE,
+    scene::validate::PHASE,
+    scenes::PHASE,
+    shade::PHASE,
+    shape::PHASE,
+    mesh::PHASE,
+    mesh::flash::PHASE,
+    mesh::hierarchy::PHASE,
+    #[cfg(feature = "alloc")]
+    mesh::vecs::PHASE,
+    shape::plane::PHASE,
+    shape::sphere::PHASE,
+    shape::triangle::PHASE,
+    skips::PHASE,
+    uses::PHASE,
+    vec3::PHASE,
+    words::PHASE,
+];
 
 #[cfg(test)]
 mod test_util;

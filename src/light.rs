@@ -1,5 +1,7 @@
 //! What lights a scene ([`Light`]) and what a ray sees when it escapes ([`Background`]).
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Shading));
+
 use crate::color::Rgb;
 use crate::scalar::Scalar;
 use crate::vec3::Vec3;

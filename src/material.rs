@@ -1,5 +1,7 @@
 //! [`Material`]: how a surface answers light, in the tracer's number format.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Shading));
+
 use crate::color::Rgb;
 use crate::scalar::Scalar;
 

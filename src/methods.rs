@@ -1,6 +1,8 @@
 //! The numerical methods the tracer can use where the literature says precision breaks, each
 //! chosen per render: [`Methods`] holds one choice per question.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Arithmetic));
+
 use crate::scalar::Scalar;
 use core::fmt;
 

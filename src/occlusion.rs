@@ -16,6 +16,8 @@
 //! be from the light (its direction's error over the longest shadow ray); its angle by
 //! [`REACH_ERRORS`] times that direction's error; its cosine by the dot product's rounding.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Cones));
+
 use crate::scalar::REACH_ERRORS;
 use crate::scalar::Scalar;
 use crate::vec3::Vec3;

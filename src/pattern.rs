@@ -24,6 +24,8 @@
 //! [`SceneDesc::shadow_samples`]: crate::SceneDesc::shadow_samples
 //! [`CameraDesc::aperture`]: crate::CameraDesc::aperture
 
+crate::phase::declare_phase!(None);
+
 use crate::scalar::Scalar;
 
 /// The most rays a pixel, or a point lit by an area light, may take.

@@ -1,5 +1,7 @@
 //! [`Ray`]: a half-line r(t) = origin + t·dir with a unit direction, so that t is a distance.
 
+crate::phase::declare_phase!(None);
+
 use crate::scalar::Scalar;
 use crate::vec3::Vec3;
 

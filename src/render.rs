@@ -3,6 +3,8 @@
 //! ways in: [`render_frame`] draws a whole frame, in the order and dither of a [`Presentation`];
 //! a [`RowTracer`] traces one row at a time for a renderer that sends the rows itself.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Output));
+
 use crate::adaptive::{self, Corner, CornerRows, Pixel};
 use crate::camera::{Camera, Row};
 use crate::color::{DisplayColor, Dither, Rgb};

@@ -1,5 +1,7 @@
 //! The built-in scenes, as const data that a firmware keeps in flash.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Build));
+
 use crate::desc::{
     BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc,
     ShapeDesc,

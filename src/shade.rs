@@ -4,6 +4,8 @@
 //! (1984): an area light tested by several shadow rays spread over it. The ray tree is walked
 //! with an explicit stack of fixed capacity, never by recursion.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Shading));
+
 use crate::color::Rgb;
 use crate::light::Light;
 use crate::methods::{BiasMethod, Methods, RootMethod};

@@ -2,6 +2,8 @@
 //! test that would meet its object: each traced against the tracer with every object tested.
 //! What the tests and the fuzzer hold both to; the tracer itself never calls them.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Build));
+
 use crate::camera::Camera;
 use crate::cull::RowRanges;
 use crate::pattern::SampleId;

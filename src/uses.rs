@@ -7,6 +7,8 @@
 //! type comes only from a build (which may use everything) or from words whose scene uses no
 //! more than the type's set, so nothing the scene needs is ever left out.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Build));
+
 use crate::methods::{
     BiasMethod, MethodName, Methods, RayMethod, RootMethod, SphereMethod, TriangleMethod,
 };

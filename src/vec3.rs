@@ -1,5 +1,7 @@
 //! [`Vec3`]: a point or direction in three dimensions, generic over the number format.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Arithmetic));
+
 use crate::methods::RootMethod;
 use crate::scalar::Scalar;
 use core::ops::{Add, Mul, Neg, Sub};

@@ -11,6 +11,8 @@
 //! too only a scene the range proof holds reaches the tracer: a [`crate::Scene`] comes only from
 //! a description the build has proven.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Words));
+
 use crate::methods::{
     BiasMethod, MethodName, Methods, RayMethod, RootMethod, SphereMethod, TriangleMethod,
 };

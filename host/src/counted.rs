@@ -13,13 +13,13 @@
 //! product and a sum; a product of a narrow number ([`Scalar::Narrow`]) a product. Comparisons,
 //! negations and conversions (to and from the narrow format too) count nothing.
 //!
-//! A phase is read from the source file of the core that forms the operation (the core's
-//! vector and colour operations pass their caller's place on, `#[track_caller]`): the camera's,
-//! the shapes', the shadow cones' (`occlusion`), the shading's (`shade`, `light`, `material`,
-//! and a shape's surface point, normal and pattern once its test is over), the pixel loop's and the colours'. The helpers every
-//! phase calls (vectors, rays, roots, sample patterns, the number formats) count for the phase
-//! that called them; everything from a [`Work::Test`] on is the test's until a phase's own
-//! source forms an operation.
+//! An operation's phase is the one the core's module that forms it declares
+//! ([`obscura::phase`]; the core's vector and colour operations pass their caller's place on,
+//! `#[track_caller]`): the camera's, the shapes', the shadow cones', the shading's (and a
+//! shape's surface point, normal and pattern once its test is over), the pixel loop's and the
+//! colours'. The helpers every phase calls (vectors, rays, roots, sample patterns, the number
+//! formats) count for the phase that called them; everything from a [`Work::Test`] on is the
+//! test's until another phase's module forms an operation.
 
 use obscura::Scalar;
 use obscura::scalar::Precision;
@@ -120,28 +120,19 @@ pub enum Phase {
 }
 
 impl Phase {
-    /// The phase of an operation formed at `file` of the core, or `None` for a helper, whose
-    /// operations are its caller's.
+    /// The phase of an operation formed in the source file `file`, as the core's module there
+    /// declares it ([`obscura::phase`]): `None` for a helper's (numbers, vectors, rays, sample
+    /// patterns), whose operations are its caller's.
     fn of(file: &str) -> Option<Self> {
-        // Called for every operation counted: a path with no backslash is taken as it is.
-        let slashed;
-        let file = if file.contains('\\') {
-            slashed = file.replace('\\', "/");
-            slashed.as_str()
-        } else {
-            file
-        };
-        let file = file.strip_prefix("src/")?;
-        Some(match file {
-            "camera.rs" => Self::Camera,
-            "shape/sphere.rs" | "shape/plane.rs" | "shape/triangle.rs" | "shape/mod.rs"
-            | "shape/mesh/mod.rs" => Self::Tests,
-            "shade.rs" | "light.rs" | "material.rs" => Self::Shading,
-            "occlusion.rs" => Self::Cones,
-            "render.rs" | "color.rs" | "adaptive.rs" => Self::Output,
-            "vec3.rs" | "ray.rs" | "methods.rs" | "pattern.rs" => return None,
-            file if file.starts_with("scalar/") => return None,
-            _ => Self::Setup,
+        use obscura::phase::Phase as Declared;
+        Some(match obscura::phase::module_of_file(file)?.phase? {
+            Declared::Camera => Self::Camera,
+            Declared::Tests => Self::Tests,
+            Declared::Cones => Self::Cones,
+            Declared::Shading | Declared::ShadowRays | Declared::SecondaryRays => Self::Shading,
+            Declared::Output => Self::Output,
+            Declared::Culling | Declared::Words | Declared::Build => Self::Setup,
+            Declared::Arithmetic => return None,
         })
     }
 }
@@ -490,65 +481,5 @@ impl<S: Scalar> Precision for Counted<S> {
 
     fn resolution(magnitude: f64) -> f64 {
         S::resolution(magnitude)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::Phase;
-    use std::path::Path;
-
-    /// The core's source files, as `src/…` paths.
-    fn core_files(dir: &Path, into: &mut Vec<String>) {
-        for entry in std::fs::read_dir(dir).expect("the core's sources") {
-            let path = entry.expect("a directory entry").path();
-            if path.is_dir() {
-                core_files(&path, into);
-            } else if path.extension().is_some_and(|e| e == "rs") {
-                let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-                let relative = path.strip_prefix(&root).expect("under the workspace");
-                into.push(relative.to_string_lossy().replace('\\', "/"));
-            }
-        }
-    }
-
-    #[test]
-    fn every_file_of_the_core_a_pixel_runs_is_given_its_phase() {
-        let mut files = Vec::new();
-        core_files(
-            &Path::new(env!("CARGO_MANIFEST_DIR")).join("../src"),
-            &mut files,
-        );
-        files.sort();
-        let set_up: Vec<&str> = files
-            .iter()
-            .map(String::as_str)
-            .filter(|file| Phase::of(file) == Some(Phase::Setup))
-            .collect();
-        // The scene's build, each row's culling ranges (a few operations a row, not a pixel's),
-        // a mesh's storage read (no operations) and what never runs in a frame: a file moved or
-        // added to a pixel's work must be named in `Phase::of`, or its operations would count as
-        // set-up.
-        assert_eq!(
-            set_up,
-            [
-                "src/cull.rs",
-                "src/desc.rs",
-                "src/format_list.rs",
-                "src/lib.rs",
-                "src/scene/error.rs",
-                "src/scene/mod.rs",
-                "src/scene/range.rs",
-                "src/scene/validate.rs",
-                "src/scenes.rs",
-                "src/shape/mesh/flash.rs",
-                "src/shape/mesh/hierarchy.rs",
-                "src/shape/mesh/vecs.rs",
-                "src/skips.rs",
-                "src/test_util.rs",
-                "src/uses.rs",
-                "src/words.rs",
-            ]
-        );
     }
 }

@@ -15,11 +15,12 @@ use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// A phase of a frame and the functions that mark it: an address belongs to the phase of the
-/// innermost function inlined there that marks one (a function marks a phase when its
-/// demangled name contains one of `marks`; the first phase listed wins). Arithmetic marks
-/// [`ARITHMETIC`] only where nothing encloses it that marks another phase: inlined, it is the
-/// work of its caller's phase.
+/// A phase of a frame's profile, and the functions outside the core that mark it (the
+/// compiler's library, the firmware's own): a function of the core marks the phase its module
+/// declares ([`obscura::phase`]; [`core_phase`]). An address belongs to the phase of the
+/// innermost function inlined there that marks one (the first phase listed wins). Arithmetic
+/// marks [`ARITHMETIC`] only where nothing encloses it that marks another phase: inlined, it is
+/// the work of its caller's phase.
 struct Phase {
     name: &'static str,
     marks: &'static [&'static str],
@@ -28,32 +29,28 @@ struct Phase {
 /// The phases, in the order the table lists them.
 const PHASES: [Phase; 10] = [
     Phase {
-        name: "primary rays (camera)",
-        marks: &["obscura::camera::"],
+        name: CAMERA,
+        marks: &[],
     },
     Phase {
-        name: "intersection tests",
-        marks: &["obscura::shape::"],
+        name: TESTS,
+        marks: &[],
     },
     Phase {
-        name: "shadow rays (but their intersection tests)",
-        marks: &["::transmittance"],
+        name: SHADOW_RAYS,
+        marks: &[],
     },
     Phase {
-        name: "secondary rays: reflection and refraction",
-        marks: &["::spawn", "::refract"],
+        name: SECONDARY_RAYS,
+        marks: &[],
     },
     Phase {
-        name: "shading",
-        marks: &[
-            "obscura::shade::",
-            "obscura::light::",
-            "obscura::material::",
-        ],
+        name: SHADING,
+        marks: &[],
     },
     Phase {
         name: ARITHMETIC,
-        marks: &["obscura::scalar::", "obscura::vec3::", "obscura::methods::"],
+        marks: &[],
     },
     Phase {
         name: "compiler library (soft float, 64-bit division, copies)",
@@ -66,10 +63,8 @@ const PHASES: [Phase; 10] = [
         ],
     },
     Phase {
-        name: "colour, quantisation and output",
+        name: OUTPUT,
         marks: &[
-            "obscura::color::",
-            "obscura::render::",
             "obscura_firmware::",
             "obscura_qemu::",
             "embedded_graphics",
@@ -77,14 +72,23 @@ const PHASES: [Phase; 10] = [
         ],
     },
     Phase {
-        name: "scene and camera read from their words",
-        marks: &["obscura::words::", "::from_words"],
+        name: WORDS,
+        marks: &[],
     },
     Phase {
-        name: "scene build and range proof",
-        marks: &["obscura::scene::", "obscura::scenes::", "obscura::desc::"],
+        name: BUILD,
+        marks: &[],
     },
 ];
+
+const CAMERA: &str = "primary rays (camera)";
+const TESTS: &str = "intersection tests";
+const SHADOW_RAYS: &str = "shadow rays (but their intersection tests)";
+const SECONDARY_RAYS: &str = "secondary rays: reflection and refraction";
+const SHADING: &str = "shading";
+const OUTPUT: &str = "colour, quantisation and output";
+const WORDS: &str = "scene and camera read from their words";
+const BUILD: &str = "scene build and range proof";
 
 /// Roots, quotients and unit vectors out of line: called, not inlined into a phase.
 const ARITHMETIC: &str = "roots, quotients and unit vectors (out of line)";
@@ -94,10 +98,119 @@ const OTHER: &str = "other (start-up, core library)";
 
 /// The phase a function called `name` (demangled, without its hash) marks, if any.
 fn marked(name: &str) -> Option<&'static str> {
-    PHASES
+    core_phase(name).or_else(|| {
+        PHASES
+            .iter()
+            .find(|phase| phase.marks.iter().any(|mark| name.contains(mark)))
+            .map(|phase| phase.name)
+    })
+}
+
+/// The phase of a function of the core called `name`: a function's own ([`FUNCTIONS`]), or
+/// the one the module of the trait it implements declares, or its type's or its own module's;
+/// `None` for a function outside the core, or of a helper's module.
+///
+/// [`FUNCTIONS`]: obscura::phase::FUNCTIONS
+fn core_phase(name: &str) -> Option<&'static str> {
+    use obscura::phase::{self, Phase as Declared};
+    let symbol = Symbol::parse(name);
+    let own = phase::module_of_path(&symbol.path);
+    let of_trait = symbol.trait_path.as_deref().and_then(phase::module_of_path);
+    if own.is_none() && of_trait.is_none() {
+        return None;
+    }
+    let declared = phase::FUNCTIONS
         .iter()
-        .find(|phase| phase.marks.iter().any(|mark| name.contains(mark)))
-        .map(|phase| phase.name)
+        .find(|(function, _)| *function == symbol.function)
+        .map(|&(_, phase)| phase)
+        .or_else(|| of_trait.and_then(|module| module.phase))
+        .or_else(|| own.and_then(|module| module.phase))?;
+    match declared {
+        Declared::Camera => Some(CAMERA),
+        Declared::Tests => Some(TESTS),
+        Declared::ShadowRays => Some(SHADOW_RAYS),
+        Declared::SecondaryRays => Some(SECONDARY_RAYS),
+        Declared::Shading | Declared::Cones => Some(SHADING),
+        Declared::Arithmetic => Some(ARITHMETIC),
+        Declared::Output => Some(OUTPUT),
+        Declared::Words => Some(WORDS),
+        Declared::Build => Some(BUILD),
+        // A few operations a row: the work of the pixel loop around it.
+        Declared::Culling => None,
+    }
+}
+
+/// A function's demangled name as [`core_phase`] reads it, generic arguments left out: the
+/// path of its module or type (for `<T as Trait>::f`, T's, then `::f`), the trait it
+/// implements, and its own name.
+#[derive(Debug, PartialEq, Eq)]
+struct Symbol {
+    path: String,
+    trait_path: Option<String>,
+    function: String,
+}
+
+impl Symbol {
+    fn parse(name: &str) -> Self {
+        let (path, trait_path) = match name.strip_prefix('<').and_then(|inner| {
+            let end = closing(inner)?;
+            Some((inner.get(..end)?, inner.get(end + 1..)?))
+        }) {
+            Some((qualified, rest)) => {
+                let qualified = without_generics(qualified);
+                let (of_type, of_trait) = match qualified.split_once(" as ") {
+                    Some((of_type, of_trait)) => (of_type.to_owned(), Some(of_trait.to_owned())),
+                    None => (qualified, None),
+                };
+                (format!("{of_type}{}", without_generics(rest)), of_trait)
+            }
+            None => (without_generics(name), None),
+        };
+        let function = path.rsplit("::").next().unwrap_or_default().to_owned();
+        Self {
+            path,
+            trait_path,
+            function,
+        }
+    }
+}
+
+/// Where the `<` that `text` follows closes: the index of its `>`.
+fn closing(text: &str) -> Option<usize> {
+    let mut depth = 1_usize;
+    let mut previous = ' ';
+    for (i, c) in text.char_indices() {
+        match c {
+            '<' => depth += 1,
+            // `->`, of a function type, closes nothing.
+            '>' if previous != '-' => {
+                depth -= 1;
+                if depth == 0 {
+                    return Some(i);
+                }
+            }
+            _ => {}
+        }
+        previous = c;
+    }
+    None
+}
+
+/// `text` without what its `<…>` enclose.
+fn without_generics(text: &str) -> String {
+    let mut depth = 0_usize;
+    let mut previous = ' ';
+    let mut out = String::new();
+    for c in text.chars() {
+        match c {
+            '<' => depth += 1,
+            '>' if previous != '-' => depth = depth.saturating_sub(1),
+            _ if depth == 0 => out.push(c),
+            _ => {}
+        }
+        previous = c;
+    }
+    out
 }
 
 /// The phase of an address whose functions are `inlined`, innermost first and the function
@@ -408,6 +521,40 @@ pub fn plugin() -> Result<PathBuf> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_symbol_is_read_without_its_generic_arguments() {
+        let symbol = |path: &str, trait_path: Option<&str>, function: &str| Symbol {
+            path: path.to_owned(),
+            trait_path: trait_path.map(str::to_owned),
+            function: function.to_owned(),
+        };
+        assert_eq!(
+            Symbol::parse("obscura::shape::sphere::Sphere<S>::intersect"),
+            symbol(
+                "obscura::shape::sphere::Sphere::intersect",
+                None,
+                "intersect"
+            )
+        );
+        assert_eq!(
+            Symbol::parse("<obscura::scene::Scene<S,_,_,_> as obscura::words::Words>::take"),
+            symbol(
+                "obscura::scene::Scene::take",
+                Some("obscura::words::Words"),
+                "take"
+            )
+        );
+        assert_eq!(
+            Symbol::parse("obscura::render::trace_into<F, impl Fn(u32) -> bool>::{{closure}}"),
+            symbol(
+                "obscura::render::trace_into::{{closure}}",
+                None,
+                "{{closure}}"
+            )
+        );
+        assert_eq!(Symbol::parse("Reset"), symbol("Reset", None, "Reset"));
+    }
 
     #[test]
     fn an_address_belongs_to_the_innermost_phase_inlined_there() {

@@ -3,6 +3,8 @@
 //! so that a host (where `std`'s exact `f32::sqrt` would otherwise shadow them) and a
 //! microcontroller compute the same bits.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Arithmetic));
+
 use super::float::diff_f32;
 use super::{Precision, Scalar};
 use core::cmp::Ordering;

@@ -2,6 +2,8 @@
 //! core and comes back unchanged, as a proven scene does on its way from a firmware's build to
 //! the chip ([`crate::words`]).
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Arithmetic));
+
 use super::fixed_point::{Fx, Narrowed, Overflow, WideBits};
 use super::{F32Approx, Scalar};
 

@@ -15,6 +15,8 @@
 //!   divisor shrinks (a ray grazing a plane), and a saturated value reads as "beyond the
 //!   world" in every comparison the tracer makes.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Arithmetic));
+
 use super::isqrt::{
     MANTISSA_BITS, MANTISSA_SCALE, ROOT_SCALE, RootPair, isqrt_u64, one_step_holds_unit, root_pair,
     rsqrt_fixed, rsqrt_mantissa,

@@ -5,6 +5,8 @@
 //! microcontroller compute the very same bits: `libm`'s in software, or for `f32` on a
 //! Cortex-M4F the FPU's `vsqrt.f32` (a handful of instructions against several hundred).
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Arithmetic));
+
 use super::{Precision, Scalar};
 use core::cmp::Ordering;
 

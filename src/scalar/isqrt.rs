@@ -15,6 +15,8 @@
 //! every product has operands below 2³², which the Cortex-M0 multiplies without a library call
 //! ([`mul_u64_small`]).
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Arithmetic));
+
 use super::kernels::{
     leading_zeros_u64, mul_u64_small, round_shr_u64, shl_u64, shr_u64, square_u64_small,
 };

@@ -13,6 +13,8 @@
 //! compiler calls `__aeabi_llsl`, `__aeabi_llsr` or `__aeabi_lasr`, which [`shl_u64`],
 //! [`shr_u64`] and [`shr_i64`] replace by two 32-bit shifts inline.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Arithmetic));
+
 /// a·b exactly.
 #[inline(always)]
 pub fn mul_u32_wide(a: u32, b: u32) -> u64 {

@@ -28,12 +28,14 @@
 //!   fixed-point division by zero saturates towards the sign of the numerator.
 //! - Every tolerance is derived from the format through [`Precision::resolution`], never typed in.
 
-mod approx;
-mod bits;
-mod fixed_point;
-mod float;
-mod isqrt;
-mod kernels;
+crate::phase::declare_phase!(Some(crate::phase::Phase::Arithmetic));
+
+pub(crate) mod approx;
+pub(crate) mod bits;
+pub(crate) mod fixed_point;
+pub(crate) mod float;
+pub(crate) mod isqrt;
+pub(crate) mod kernels;
 
 pub use approx::F32Approx;
 pub use bits::{Bits, NumberBits};

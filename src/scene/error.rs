@@ -1,5 +1,7 @@
 //! [`SceneError`]: why a scene description cannot be built, and how to fix it.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Build));
+
 use crate::scalar::FormatSet;
 use crate::vec3::SHORTEST_DIRECTION;
 use core::fmt;

@@ -1,12 +1,14 @@
 //! [`Scene`]: a validated scene in one number format, in fixed-capacity storage, and the build
 //! that proves a description fits that format before converting it.
 
-mod error;
+crate::phase::declare_phase!(Some(crate::phase::Phase::Build));
+
+pub(crate) mod error;
 // The range proof's analysis (its bounds and features): the harness's `analyze`, predictions and
 // stress cases read it; a user of the core needs only `Scene::build`, which runs it.
 #[doc(hidden)]
 pub mod range;
-mod validate;
+pub(crate) mod validate;
 
 use validate::direction;
 

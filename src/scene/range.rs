@@ -54,6 +54,8 @@
 //! | narrow | light times a narrow number: the ambient and each light filtered by a surface, a sky's rise by its cosine, a ray's colour by its weight | no larger than the light: within a pixel's sum of colours |
 //! | quotients, roots | every division and root | total: they saturate (fixed point) or reach infinity (floats) |
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Build));
+
 use super::SURFACE_TOLERANCE_STEPS;
 use super::error::{Item, Remedy, SceneError};
 use crate::desc::{BackgroundDesc, ObjectDesc, SceneDesc, ShapeDesc};

@@ -1,6 +1,8 @@
 //! The checks a scene description must pass in every number format: finite values, sensible
 //! intervals, non-degenerate geometry, everything inside the world.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Build));
+
 use super::error::{Item, SceneError};
 use super::range::{self, distance};
 use crate::camera::Frame;

@@ -1,10 +1,12 @@
 //! The geometric primitives, one file each, and [`Shape`], which dispatches between them by
 //! the chosen [`Methods`].
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Tests));
+
 pub mod mesh;
-mod plane;
-mod sphere;
-mod triangle;
+pub(crate) mod plane;
+pub(crate) mod sphere;
+pub(crate) mod triangle;
 
 pub use plane::{CHECKER_PERIOD, Checker, Plane};
 pub use sphere::Sphere;

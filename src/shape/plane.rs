@@ -1,5 +1,7 @@
 //! Ray–plane intersection, and the checkerboard a plane can carry.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Tests));
+
 use crate::color::Rgb;
 use crate::methods::RootMethod;
 use crate::ray::{Ray, Span};

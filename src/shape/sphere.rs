@@ -1,5 +1,7 @@
 //! Ray–sphere intersection: the lecture's quadratic, or the stable form of Haines et al.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Tests));
+
 use crate::methods::{RootMethod, SphereMethod};
 use crate::ray::{Ray, Span};
 use crate::scalar::Scalar;

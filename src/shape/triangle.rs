@@ -1,6 +1,8 @@
 //! Ray–triangle intersection: Cramer's rule as in the lecture, Möller–Trumbore, or the
 //! watertight test of Woop, Benthin and Wald.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Tests));
+
 use super::Intersection;
 use crate::methods::{RootMethod, TriangleMethod};
 use crate::ray::{Ray, Span};

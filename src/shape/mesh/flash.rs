@@ -3,6 +3,8 @@
 //! takes no RAM however many triangles it has. [`crate::Scene::write_mesh_words`] writes them
 //! from a scene built and proven on the host.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Tests));
+
 use super::{Meshes, Node};
 use crate::scalar::Bits;
 use crate::shape::Triangle;

@@ -2,6 +2,8 @@
 //! the triangles' centroids, in place, without recursion or heap: what the host runs once per
 //! mesh and a firmware keeps in flash.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Build));
+
 use crate::desc::NodeDesc;
 use heapless::Vec;
 

@@ -16,10 +16,12 @@
 //! of the format ([`slack`]) so that a box is never missed by rounding where one of its
 //! triangles is met.
 
-mod flash;
-mod hierarchy;
+crate::phase::declare_phase!(Some(crate::phase::Phase::Tests));
+
+pub(crate) mod flash;
+pub(crate) mod hierarchy;
 #[cfg(feature = "alloc")]
-mod vecs;
+pub(crate) mod vecs;
 
 pub use flash::MeshWords;
 pub(crate) use flash::write as write_words;

@@ -2,6 +2,8 @@
 //! a machine with a heap keeps them (the harness's scenes, and the proof of a firmware's, which
 //! writes them to words). Behind the feature `alloc`.
 
+crate::phase::declare_phase!(Some(crate::phase::Phase::Tests));
+
 use super::{MeshStorage, Meshes, Node};
 use crate::shape::Triangle;
 use crate::vec3::Vec3;
