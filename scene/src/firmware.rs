@@ -340,8 +340,7 @@ pub fn generate(workspace: &Path) -> Result<Generated> {
 
 /// The name of the type of the tracer's parts in `format` ([`obscura::Parts`]).
 fn parts_name(format: Format) -> String {
-    let name = format.name().replace('-', "_");
-    format!("Parts{}{}", name[..1].to_uppercase(), &name[1..])
+    format!("Parts{format:?}")
 }
 
 /// The parts of the tracer that the proven frames in `format` use between them: the tracer the
@@ -661,6 +660,15 @@ mod tests {
                 "{message}"
             );
         }
+    }
+
+    #[test]
+    fn each_formats_parts_type_is_named_in_upper_camel_case() {
+        for &format in Format::FIRMWARE {
+            let name = parts_name(format);
+            assert!(name.chars().all(char::is_alphanumeric), "{name}");
+        }
+        assert_eq!(parts_name(Format::F32Approx), "PartsF32Approx");
     }
 
     #[test]
