@@ -164,6 +164,9 @@ pub struct Tally {
     test: Operations,
     /// The current ray's floor: the operations of the test that met what it meets.
     ray_floor: (Operations, u64),
+    /// The source file of the last operation and its phase: the next is most often formed in
+    /// the same file, whose phase is then not looked up again.
+    last_file: Option<(&'static str, Option<Phase>)>,
 }
 
 /// The searches of one kind of ray.
@@ -194,8 +197,17 @@ pub const fn kind_index(kind: RayKind) -> usize {
 }
 
 impl Tally {
-    fn operation(&mut self, operations: Operations, at: &Location<'_>) {
-        let named = Phase::of(at.file());
+    fn operation(&mut self, operations: Operations, at: &'static Location<'static>) {
+        let file = at.file();
+        let named = match self.last_file {
+            // The same place's file: the same string, by address.
+            Some((last, phase)) if std::ptr::eq(last, file) => phase,
+            _ => {
+                let phase = Phase::of(file);
+                self.last_file = Some((file, phase));
+                phase
+            }
+        };
         if named.is_some_and(|phase| phase != Phase::Tests) {
             self.in_test = false;
         }

@@ -95,9 +95,7 @@ impl Proof {
                     .map_err(|refusal| refused(frame, self.format, refusal))
             })
             .collect::<Result<_>>()?;
-        let uses = frames
-            .iter()
-            .fold(Uses::NOTHING, |uses, words| uses.union(words.uses));
+        let uses = parts_used(&frames);
         let desc = named.scene.desc();
         let (width, height) = self.size;
         let format = self.format.rust_type();
@@ -110,27 +108,20 @@ impl Proof {
             out,
             "{}\n/// The scene as the chip holds it, in {}: storage for its {} objects, {} lights \
              and ray trees {} deep, and a tracer of its parts ([`Parts`]).\n\
-             pub type Scene = obscura::Scene<{format}, {}, {}, {}, Parts, \
-             obscura::mesh::MeshWords<{format}>>;\n",
+             pub type Scene = obscura::Scene<{}, obscura::mesh::MeshWords<{format}>>;\n",
             parts_source("Parts", uses),
             self.format,
             desc.objects.len(),
             desc.lights.len(),
             desc.max_depth,
-            desc.objects.len(),
-            desc.lights.len(),
-            usize::from(desc.max_depth) + 1,
+            scene_generics(self.format, &desc, "Parts"),
         );
         let _ = writeln!(
             out,
             "/// The width of the image the camera was placed for.\npub const WIDTH: u32 = \
              {width};\n/// Its height.\npub const HEIGHT: u32 = {height};\n"
         );
-        let corners = if desc.adaptive_samples {
-            obscura::corner_rows(width)
-        } else {
-            0
-        };
+        let corners = corners_kept(desc.adaptive_samples, width);
         let _ = writeln!(
             out,
             "/// The corners adaptive anti-aliasing keeps: the corner rows `render_frame` takes \
@@ -248,6 +239,36 @@ pub(crate) fn refused(named: &NamedScene, format: Format, refusal: SceneError) -
             "the firmware cannot draw {} in {format}",
             named.name
         )),
+    }
+}
+
+/// The core's scene type's arguments but its meshes' storage, as Rust source: `format`,
+/// storage for exactly `desc`'s objects and lights, a ray stack for its ray trees, and the
+/// parts type `parts`.
+pub(crate) fn scene_generics(format: Format, desc: &SceneDesc<'_>, parts: &str) -> String {
+    format!(
+        "{}, {}, {}, {}, {parts}",
+        format.rust_type(),
+        desc.objects.len(),
+        desc.lights.len(),
+        usize::from(desc.max_depth) + 1,
+    )
+}
+
+/// The parts of the tracer that the proven `frames` use between them.
+pub(crate) fn parts_used<'a>(frames: impl IntoIterator<Item = &'a Words>) -> Uses {
+    frames
+        .into_iter()
+        .fold(Uses::NOTHING, |uses, words| uses.union(words.uses))
+}
+
+/// The corners of adaptive anti-aliasing a frame `width` pixels wide keeps: its corner rows
+/// where a scene takes adaptive samples, none where none does.
+pub(crate) fn corners_kept(adaptive: bool, width: u32) -> usize {
+    if adaptive {
+        obscura::corner_rows(width)
+    } else {
+        0
     }
 }
 

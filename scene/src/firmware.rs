@@ -11,7 +11,10 @@
 //! (`obscura firmware`, `obscura chart`) asks for an image through the same variables
 //! ([`FirmwareSettings::environment`]).
 
-use crate::build::{Words, array_source, parts_source, prove, refused, words_source};
+use crate::build::{
+    Words, array_source, corners_kept, parts_source, parts_used, prove, refused, scene_generics,
+    words_source,
+};
 use crate::{
     FirmwareSettings, Format, FormatChoice, MAX_LIGHTS, MAX_OBJECTS, NamedScene, RAY_STACK,
     Variants,
@@ -219,11 +222,7 @@ impl Configuration {
             out,
             "/// The corner rows of adaptive anti-aliasing a frame keeps (none if no scene takes \
              adaptive samples).\npub const CORNER_ROWS: usize = {};\n",
-            if adaptive {
-                obscura::corner_rows(SIDE)
-            } else {
-                0
-            }
+            corners_kept(adaptive, SIDE)
         );
         // One tracer per format: of the parts its frames use between them.
         for &format in &self.formats {
@@ -287,14 +286,7 @@ impl Configuration {
                 continue;
             };
             let desc = frame.scene.scene.desc();
-            let generics = format!(
-                "{}, {}, {}, {}, {}",
-                frame.format.rust_type(),
-                desc.objects.len(),
-                desc.lights.len(),
-                usize::from(desc.max_depth) + 1,
-                parts_name(frame.format),
-            );
+            let generics = scene_generics(frame.format, &desc, &parts_name(frame.format));
             if let Some(path) = path_of(&frames, i) {
                 for &j in &path {
                     drawn[j] = true;
@@ -346,11 +338,12 @@ fn parts_name(format: Format) -> String {
 /// The parts of the tracer that the proven frames in `format` use between them: the tracer the
 /// firmware holds for the format.
 fn tracer_uses(frames: &[Frame<'_>], format: Format) -> Uses {
-    frames
-        .iter()
-        .filter(|frame| frame.format == format)
-        .filter_map(|frame| frame.proven.as_ref().ok())
-        .fold(Uses::NOTHING, |uses, words| uses.union(words.uses))
+    parts_used(
+        frames
+            .iter()
+            .filter(|frame| frame.format == format)
+            .filter_map(|frame| frame.proven.as_ref().ok()),
+    )
 }
 
 /// One frame a firmware draws: a scene in a format by some methods, proven, or refused (a
