@@ -57,6 +57,24 @@ pub enum Command {
     /// Write the Utah teapot as a Wavefront OBJ mesh, tessellated from Newell's Bézier patches
     /// (host/scenes/teapot.obj is --steps 3): a model of any size for a scene's `shape.mesh`.
     Teapot(TeapotArgs),
+    /// Run the command of every generated block of the README and the book and write what it
+    /// prints into the block (or with --check, name each block that differs).
+    Book(BookArgs),
+}
+
+/// What `book` runs, and whether it writes or checks.
+#[derive(Debug, Args)]
+pub struct BookArgs {
+    /// Write nothing: exit non-zero naming each block whose command prints something else, or
+    /// writes another picture, than the page holds.
+    #[arg(long)]
+    pub check: bool,
+    /// Leave out the blocks marked `slow` (the firmware under QEMU, the chart).
+    #[arg(long)]
+    pub quick: bool,
+    /// Only the blocks whose page or command contains this text.
+    #[arg(long)]
+    pub only: Option<String>,
 }
 
 /// What `teapot` writes.
@@ -84,7 +102,7 @@ pub struct AutoArgs {
     /// The PSNR against f64, in dB, that `--format auto` and `analyze` aim for.
     #[arg(long, default_value_t = TARGET_PSNR, value_parser = parse_psnr)]
     pub target_psnr: f64,
-    /// The machine whose cost `--format auto` and `analyze` minimise, as the committed chart
+    /// The machine whose cost `--format auto` and `analyze` minimise, as the chart
     /// measured it.
     #[arg(long, value_enum, default_value_t = Machine::M4f)]
     pub cost_on: Machine,
@@ -296,9 +314,12 @@ pub struct PreviewArgs {
 /// `obscura chart`.
 #[derive(Debug, Args)]
 pub struct ChartArgs {
-    /// Where to write speed-accuracy.csv, .svg and .png (and the firmware's frames).
+    /// Where to write speed-accuracy.csv, .svg and .png, and samples-accuracy's.
     #[arg(long, default_value = "out/chart")]
     pub out_dir: PathBuf,
+    /// Where to write the frames the firmware drew under QEMU, a directory a run.
+    #[arg(long, default_value = "out/chart/firmware")]
+    pub frames_dir: PathBuf,
     /// The host's image size for accuracy and timing (the firmware draws 240x240).
     #[arg(long, value_parser = parse_size, default_value = "240x240")]
     pub size: (u32, u32),

@@ -269,7 +269,7 @@ mod tests {
     }
 
     /// The estimate of `scene` against what `obscura firmware --target T --scene S --format F`
-    /// measured under QEMU (the book's table, docs/boards.md), within `tolerance`.
+    /// measured under QEMU, within `tolerance`.
     fn near(target: Target, scene: &str, format: Format, measured: f64, tolerance: f64) {
         let named = obscura_scene::load(scene).unwrap();
         let estimate = frame(target, format, &named.scene.desc(), Methods::LECTURE)

@@ -5,6 +5,7 @@
 //! reads them with too.
 
 mod analysis;
+mod book;
 mod canvas;
 mod checked;
 mod cli;

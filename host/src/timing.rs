@@ -4,6 +4,17 @@
 
 use std::time::Instant;
 
+/// The environment variable and value under which commands leave wall-clock times out of what
+/// they print: as `obscura book` runs them, whose figures are those that come out the same on
+/// every run.
+pub const TIMES_OMITTED: (&str, &str) = ("OBSCURA_TIMES", "omit");
+
+/// Whether commands print wall-clock times (not under [`TIMES_OMITTED`]).
+#[must_use]
+pub fn shown() -> bool {
+    std::env::var_os(TIMES_OMITTED.0).is_none_or(|value| value != TIMES_OMITTED.1)
+}
+
 /// Runs each task `runs` times (at least once), round-robin, and returns each task's median
 /// time in milliseconds.
 pub fn interleaved_median_ms(runs: usize, tasks: &[&dyn Fn()]) -> Vec<f64> {

@@ -925,3 +925,82 @@ fn analyze_takes_every_frame_of_a_camera_path() {
         "{text}"
     );
 }
+
+/// `obscura book` in `dir` with `args`.
+fn book(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_obscura"))
+        .arg("book")
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn book_writes_each_figure_and_its_check_names_each_that_drifted() {
+    let dir = scratch("book");
+    std::fs::create_dir_all(dir.join("docs/images")).unwrap();
+    std::fs::write(dir.join("docs/SUMMARY.md"), "# Summary\n").unwrap();
+    let page = "# Page\n\n<!-- book: obscura scenes | head -n 1 -->\n<!-- /book -->\n\n\
+                <!-- book slow: printf 'a picture' > docs/images/a.txt; echo wrote it -->\n<!-- /book -->\n";
+    std::fs::write(dir.join("README.md"), page).unwrap();
+    let written = book(&dir, &[]);
+    assert!(written.status.success(), "{}", stderr(&written));
+    let readme = std::fs::read_to_string(dir.join("README.md")).unwrap();
+    assert!(
+        readme.contains("```text\n$ obscura scenes | head -n 1\nwhitted ")
+            && readme.contains("$ printf 'a picture' > docs/images/a.txt; echo wrote it\nwrote it\n```\n<!-- /book -->"),
+        "{readme}"
+    );
+    assert!(book(&dir, &["--check"]).status.success());
+
+    // A figure edited by hand, and a picture that is not what its command writes.
+    std::fs::write(
+        dir.join("README.md"),
+        readme.replace("wrote it\n```", "wrote that\n```"),
+    )
+    .unwrap();
+    std::fs::write(dir.join("docs/images/a.txt"), "another picture").unwrap();
+    let checked = book(&dir, &["--check"]);
+    assert!(!checked.status.success());
+    let said = stdout(&checked);
+    assert!(
+        said.contains("README.md:")
+            && said.contains("prints something else; line 3 of the block")
+            && said.contains("writes docs/images/a.txt other than the repository's"),
+        "{said}"
+    );
+    // The check writes nothing: the page's picture is back.
+    assert_eq!(
+        std::fs::read_to_string(dir.join("docs/images/a.txt")).unwrap(),
+        "another picture"
+    );
+    // --quick leaves the slow block out, so only what is quick is checked.
+    assert!(book(&dir, &["--check", "--quick"]).status.success());
+
+    // A marker that does not parse is placed at its line and column.
+    std::fs::write(
+        dir.join("README.md"),
+        "<!-- book soon: echo -->\n<!-- /book -->\n",
+    )
+    .unwrap();
+    let refused = book(&dir, &[]);
+    assert!(
+        stderr(&refused).contains("README.md:1:11: `soon` is not a word a book marker takes"),
+        "{}",
+        stderr(&refused)
+    );
+    // A command that must fail but does not.
+    std::fs::write(
+        dir.join("README.md"),
+        "<!-- book fails: true -->\n<!-- /book -->\n",
+    )
+    .unwrap();
+    let refused = book(&dir, &[]);
+    assert!(!refused.status.success());
+    assert!(
+        stderr(&refused).contains("README.md:1"),
+        "{}",
+        stderr(&refused)
+    );
+}

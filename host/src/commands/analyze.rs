@@ -71,7 +71,7 @@ fn print_split(analysis: &Analysis) -> io::Result<()> {
 }
 
 /// Every format: whether it holds the scene, its prediction beside the PSNR measured, and its
-/// costs from the committed chart.
+/// costs from the chart (`docs/images/speed-accuracy.csv`).
 fn print_formats(args: &AnalyzeArgs, named: &NamedScene, analysis: &Analysis) -> Result<()> {
     let size @ (width, height) = args.size;
     let methods = args.methods.methods();
@@ -82,7 +82,7 @@ fn print_formats(args: &AnalyzeArgs, named: &NamedScene, analysis: &Analysis) ->
          beside the PSNR measured on the host, which computes the firmware's bits. \"narrow\": \
          the format its cosines, colours and weights are kept in (2.14 bits on 16, or 2.30 on \
          32: one 16×16 product where the M0 takes four). Cost per \
-         pixel from the committed chart, on the built-in scene like this one ({}).\n",
+         pixel from the chart (docs/images/speed-accuracy.csv), on the built-in scene like this one ({}).\n",
         if analysis.has_triangles {
             "with triangles"
         } else {

@@ -140,8 +140,23 @@ fn time(args: &BenchArgs, named: &NamedScene, jobs: &[(Format, Methods)]) -> Res
 }
 
 /// The two tables (`f32_by_exact_roots`: f32 was timed by exact roots, as it has no fast ones),
-/// and for Whitted's own picture the VAX's 74 minutes beside it.
+/// and for Whitted's own picture the VAX's 74 minutes beside it. Where times are not shown
+/// ([`crate::timing::shown`]), only their ratios, measured in this run.
 fn print(bench: &Bench, f32_by_exact_roots: bool) -> std::io::Result<()> {
+    let times = crate::timing::shown();
+    // A time's cell, or nothing where times are not shown.
+    let ms = |ms: f64| {
+        if times {
+            format!(" {ms:.1} |")
+        } else {
+            String::new()
+        }
+    };
+    let (heading, rule) = if times {
+        (" ms/frame |", "---:|")
+    } else {
+        ("", "")
+    };
     say!(
         "{} {}x{}, median of {} interleaved runs:",
         bench.scene,
@@ -149,13 +164,13 @@ fn print(bench: &Bench, f32_by_exact_roots: bool) -> std::io::Result<()> {
         bench.height,
         bench.runs
     )?;
-    say!("| format | ms/frame (1 thread) | time ÷ f32 |")?;
-    say!("|---|---:|---:|")?;
+    say!("| format |{heading} time ÷ f32 (1 thread) |")?;
+    say!("|---|{rule}---:|")?;
     for f in &bench.formats {
         say!(
-            "| {} | {:.1} | {:.2} |",
+            "| {} |{} {:.2} |",
             f.format,
-            f.ms_per_frame,
+            ms(f.ms_per_frame),
             f.ratio_to_f32
         )?;
     }
@@ -163,14 +178,14 @@ fn print(bench: &Bench, f32_by_exact_roots: bool) -> std::io::Result<()> {
         say!("(f32, which has no fast roots, by exact roots)")?;
     }
     say!("")?;
-    say!("| format | threads | ms/frame | speed-up over 1 thread |")?;
-    say!("|---|---:|---:|---:|")?;
+    say!("| format | threads |{heading} speed-up over 1 thread |")?;
+    say!("|---|---:|{rule}---:|")?;
     for t in &bench.threads {
         say!(
-            "| {} | {} | {:.1} | {:.2} |",
+            "| {} | {} |{} {:.2} |",
             t.format,
             t.threads,
-            t.ms_per_frame,
+            ms(t.ms_per_frame),
             t.speedup
         )?;
     }
@@ -185,13 +200,21 @@ fn print(bench: &Bench, f32_by_exact_roots: bool) -> std::io::Result<()> {
             .iter()
             .map(|t| t.ms_per_frame)
             .fold(one.ms_per_frame, f64::min);
+        let taken = |ms: f64| {
+            if times {
+                format!("{ms:.1} ms, ")
+            } else {
+                String::new()
+            }
+        };
         say!(
             "\nWhitted's spheres and checkerboard took {VAX_MINUTES} minutes on a VAX-11/780 in \
-             1979; here {} takes {:.1} ms on one thread ({:.0}x faster) and {fastest:.1} ms on \
-             all threads tried ({:.0}x).",
+             1979; here {} takes {}{:.0}x less on one thread, and {}{:.0}x less on all threads \
+             tried.",
             one.format,
-            one.ms_per_frame,
+            taken(one.ms_per_frame),
             VAX_MINUTES * 60_000.0 / one.ms_per_frame,
+            taken(fastest),
             VAX_MINUTES * 60_000.0 / fastest
         )?;
     }

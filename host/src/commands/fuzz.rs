@@ -70,11 +70,12 @@ pub fn run(args: &FuzzArgs) -> Result<()> {
                 .map_or(String::new(), |f| format!(" (see {})", f.display()))
         )?;
     }
-    say!(
-        "fuzz seed {} in {:.0} s: {tally}",
-        args.seed,
-        start.elapsed().as_secs_f64()
-    )?;
+    let time = if crate::timing::shown() {
+        format!(" in {:.0} s", start.elapsed().as_secs_f64())
+    } else {
+        String::new()
+    };
+    say!("fuzz seed {}{time}: {tally}", args.seed)?;
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&tally)?;
         std::fs::write(path, text + "\n")

@@ -3,6 +3,7 @@
 mod analyze;
 mod animate;
 mod bench;
+mod book;
 mod chart;
 mod compare;
 mod firmware;
@@ -43,6 +44,7 @@ pub fn run(command: Command) -> Result<()> {
         Command::Compare(args) => compare::run(&args),
         Command::Animate(args) => animate::run(&args),
         Command::Bench(args) => bench::run(&args),
+        Command::Book(args) => book::run(&args),
         Command::Firmware(args) => firmware::run(&args),
         Command::Preview(args) => preview::run(&args),
         Command::Chart(args) => chart::run(&args),

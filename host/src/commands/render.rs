@@ -35,10 +35,13 @@ fn render(args: &RenderArgs, named: &NamedScene) -> Result<()> {
         super::refuse_useless(&args.scene.refusal, format, &scene, methods, &image, None)?;
     }
     super::save(&image, &args.output)?;
+    let time = if crate::timing::shown() {
+        format!(" on {} threads: {ms:.1} ms;", args.threads)
+    } else {
+        ":".to_owned()
+    };
     say!(
-        "{} {width}x{height} in {format} on {} threads: {ms:.1} ms; wrote {}",
-        name,
-        args.threads,
+        "{name} {width}x{height} in {format}{time} wrote {}",
         args.output.display()
     )?;
     if args.count {

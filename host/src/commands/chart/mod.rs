@@ -109,10 +109,7 @@ fn firmware_costs(args: &ChartArgs) -> Result<Costs> {
                 ..FirmwareSettings::default()
             };
             let elf = firmware::build(target, &settings)?;
-            let dir = args
-                .out_dir
-                .join("firmware")
-                .join(format!("{}-{i}", target.name()));
+            let dir = args.frames_dir.join(format!("{}-{i}", target.name()));
             std::fs::create_dir_all(&dir)
                 .with_context(|| format!("cannot create {}", dir.display()))?;
             eprintln!(

@@ -178,7 +178,7 @@ fn firmware_costs(args: &ChartArgs) -> Result<Vec<Cost>> {
                 ..FirmwareSettings::default()
             };
             let elf = firmware::build(target, &settings)?;
-            let dir = args.out_dir.join("firmware").join(format!(
+            let dir = args.frames_dir.join(format!(
                 "{}-samples-{samples}{}",
                 target.name(),
                 if adaptive { "-adaptive" } else { "" }
