@@ -203,6 +203,9 @@ step "the preview, headless, against the firmware's frame under QEMU, byte for b
     -o target/preview.png
 cmp target/preview.png out/firmware/m4f/pyramid-i16f16-lecture.png
 
+step "the book: every figure of the README and docs/ that takes seconds is what its command prints"
+"${OBSCURA[@]}" book --check --quick
+
 step "fuzz: random scenes for 150 s from a fixed seed, held to every promise"
 "${OBSCURA[@]}" fuzz --seconds 150 --seed 1 --out-dir target/fuzz
 

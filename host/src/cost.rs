@@ -1,5 +1,5 @@
 //! What a format costs on each machine, read off the committed speed–accuracy chart
-//! (`host/images/speed-accuracy.csv`, written by `obscura chart`): instructions per pixel on the
+//! (`docs/images/speed-accuracy.csv`, written by `obscura chart`): instructions per pixel on the
 //! Cortex-M4F and the Cortex-M0, nanoseconds per pixel on the host. `--format auto` picks the
 //! cheapest format by these measurements.
 
@@ -12,7 +12,7 @@ use std::fmt;
 use std::sync::OnceLock;
 
 /// The chart's measurements, as committed.
-const CHART: &str = include_str!("../images/speed-accuracy.csv");
+const CHART: &str = include_str!("../../docs/images/speed-accuracy.csv");
 
 /// Where the cost is paid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]

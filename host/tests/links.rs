@@ -1,6 +1,7 @@
 //! Every relative link of the front page and the book leads somewhere: to a file or directory
 //! of the repository, and where it names an anchor (`#…`), to a heading of that page, as
-//! GitHub names its headings' anchors.
+//! GitHub names its headings' anchors. The book builds as an mdBook from `docs/` alone: its
+//! chapters link only within `docs/`, and `docs/SUMMARY.md` lists each of them.
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -27,7 +28,8 @@ fn pages() -> Vec<PathBuf> {
     pages
 }
 
-/// `text`'s lines outside fenced code blocks.
+/// `text`'s lines outside fenced code blocks and comments (such as the book's markers, whose
+/// commands are not links).
 fn prose(text: &str) -> Vec<&str> {
     let mut fenced = false;
     text.lines()
@@ -36,7 +38,7 @@ fn prose(text: &str) -> Vec<&str> {
                 fenced = !fenced;
                 return false;
             }
-            !fenced
+            !fenced && !line.trim_start().starts_with("<!--")
         })
         .collect()
 }
@@ -131,6 +133,42 @@ fn every_relative_link_and_anchor_resolves() {
 }
 
 #[test]
+fn the_book_is_its_summarys_chapters_and_links_only_within_docs() {
+    let docs = workspace().join("docs");
+    let summary = std::fs::read_to_string(docs.join("SUMMARY.md")).expect("docs/SUMMARY.md");
+    let listed: BTreeSet<String> = links(&summary).into_iter().collect();
+    let mut wrong = Vec::new();
+    for page in pages().iter().filter(|page| page.starts_with(&docs)) {
+        let name = page
+            .file_name()
+            .expect("a page")
+            .to_string_lossy()
+            .into_owned();
+        if name != "SUMMARY.md" && !listed.contains(&name) {
+            wrong.push(format!("docs/{name} is not a chapter of docs/SUMMARY.md"));
+        }
+        let text = std::fs::read_to_string(page).expect("a page");
+        for link in links(&text) {
+            let path = link.split('#').next().unwrap_or_default();
+            if path.starts_with("../") || path.starts_with('/') {
+                wrong.push(format!(
+                    "docs/{name}: {link} leads out of docs/, which mdBook does not serve: name a \
+                     repository file as a path in code (`host/scenes/ball.toml`)"
+                ));
+            }
+        }
+    }
+    for chapter in &listed {
+        if !docs.join(chapter).is_file() {
+            wrong.push(format!(
+                "docs/SUMMARY.md lists {chapter}, which is not in docs/"
+            ));
+        }
+    }
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}
+
+#[test]
 fn anchors_are_named_as_github_names_them() {
     assert_eq!(
         anchor(" Narrow numbers: each quantity in the width it needs"),
@@ -145,7 +183,9 @@ fn anchors_are_named_as_github_names_them() {
         BTreeSet::from(["a".to_owned(), "a-1".to_owned()])
     );
     assert_eq!(
-        links("[x](a.md#b), `[y](c.md)` and [z](https://example.org)"),
+        links(
+            "[x](a.md#b), `[y](c.md)` and [z](https://example.org)\n<!-- book: echo '[w](d.md)' -->"
+        ),
         ["a.md#b"]
     );
 }
