@@ -19,7 +19,6 @@
 //! mdBook leave unseen.
 
 use anyhow::{Result, bail};
-use std::fmt::Write as _;
 
 /// What ends a block.
 pub const END: &str = "<!-- /book -->";
@@ -65,8 +64,8 @@ pub struct Block {
     pub command: String,
     /// What the marker's words say about it.
     pub kinds: Kinds,
-    /// The body as the page holds it, every line with its newline.
-    pub body: String,
+    /// Where its body is in its page's text (bytes): every line with its newline.
+    span: std::ops::Range<usize>,
 }
 
 impl Block {
@@ -94,8 +93,8 @@ impl Block {
 pub struct Page {
     /// The page as it is.
     pub text: String,
-    /// Its blocks, in order, with where each body starts and ends in `text` (bytes).
-    spans: Vec<(Block, std::ops::Range<usize>)>,
+    /// Its blocks, in order.
+    blocks: Vec<Block>,
 }
 
 impl Page {
@@ -105,7 +104,7 @@ impl Page {
     /// # Errors
     /// A marker that does not parse, a marker inside a block, or a block without its end.
     pub fn parse(name: &str, text: &str) -> Result<Self> {
-        let mut spans = Vec::new();
+        let mut blocks = Vec::new();
         let mut open: Option<(Block, usize)> = None;
         let mut offset = 0;
         for (index, line) in text.split_inclusive('\n').enumerate() {
@@ -116,9 +115,10 @@ impl Page {
                 let Some((block, start)) = open.take() else {
                     bail!("{name}:{number}:1: {END} without a block to end; remove it");
                 };
-                let mut block = block;
-                block.body = text[start..offset].to_owned();
-                spans.push((block, start..offset));
+                blocks.push(Block {
+                    span: start..offset,
+                    ..block
+                });
             } else if trimmed.starts_with(START) {
                 if let Some((block, _)) = &open {
                     bail!(
@@ -140,25 +140,31 @@ impl Page {
         }
         Ok(Self {
             text: text.to_owned(),
-            spans,
+            blocks,
         })
     }
 
     /// The page's blocks, in order.
     pub fn blocks(&self) -> impl Iterator<Item = &Block> {
-        self.spans.iter().map(|(block, _)| block)
+        self.blocks.iter()
+    }
+
+    /// The body of `block`, one of its blocks, as the page holds it.
+    #[must_use]
+    pub fn body(&self, block: &Block) -> &str {
+        self.text.get(block.span.clone()).unwrap_or_default()
     }
 
     /// The page with each block's body replaced by `bodies`' (in order, one a block).
     #[must_use]
     pub fn with_bodies(&self, bodies: &[String]) -> String {
-        assert_eq!(bodies.len(), self.spans.len(), "one body a block");
+        assert_eq!(bodies.len(), self.blocks.len(), "one body a block");
         let mut text = String::with_capacity(self.text.len());
         let mut from = 0;
-        for ((_, span), body) in self.spans.iter().zip(bodies) {
-            text.push_str(&self.text[from..span.start]);
+        for (block, body) in self.blocks.iter().zip(bodies) {
+            text.push_str(&self.text[from..block.span.start]);
             text.push_str(body);
-            from = span.end;
+            from = block.span.end;
         }
         text.push_str(&self.text[from..]);
         text
@@ -206,7 +212,7 @@ fn marker(name: &str, number: usize, line: &str) -> Result<Block> {
         line: number,
         command: command.to_owned(),
         kinds,
-        body: String::new(),
+        span: 0..0,
     })
 }
 
@@ -222,14 +228,11 @@ pub fn first_difference(expected: &str, found: &str) -> String {
             (None, None) => return "the same lines, other line ends".to_owned(),
             (a, b) if a == b => number += 1,
             (a, b) => {
-                let mut text = String::new();
-                let _ = write!(
-                    text,
+                return format!(
                     "line {number} of the block\n  the page: {}\n  printed:  {}",
                     a.unwrap_or("(nothing)"),
                     b.unwrap_or("(nothing)")
                 );
-                return text;
             }
         }
     }
@@ -255,9 +258,9 @@ mod tests {
                 ..Kinds::default()
             }
         );
-        assert_eq!(blocks[0].body, "old\n");
+        assert_eq!(page.body(blocks[0]), "old\n");
         assert!(blocks[1].kinds.markdown);
-        assert_eq!(blocks[1].body, "");
+        assert_eq!(page.body(blocks[1]), "");
     }
 
     #[test]
@@ -271,12 +274,8 @@ mod tests {
                 "settings -->\ntable\n<!-- /book -->"
             )
         );
-        assert!(
-            Page::parse("p.md", &text)
-                .unwrap()
-                .blocks()
-                .all(|b| !b.body.is_empty())
-        );
+        let rewritten = Page::parse("p.md", &text).unwrap();
+        assert!(rewritten.blocks().all(|b| !rewritten.body(b).is_empty()));
     }
 
     #[test]

@@ -28,6 +28,45 @@ pub enum Machine {
 impl Machine {
     /// Every machine, in the chart's order.
     pub const ALL: [Self; 3] = [Self::M4f, Self::M0, Self::Host];
+
+    /// The machines whose costs a table shows: every one, but the PC's, a time, where times are
+    /// not shown ([`crate::timing::shown`]).
+    #[must_use]
+    pub fn shown() -> &'static [Self] {
+        if crate::timing::shown() {
+            &Self::ALL
+        } else {
+            &[Self::M4f, Self::M0]
+        }
+    }
+
+    /// The heading of its cost's column in a table.
+    #[must_use]
+    pub const fn column(self) -> &'static str {
+        match self {
+            Self::M4f => "M4F instr/px",
+            Self::M0 => "M0 instr/px",
+            Self::Host => "host ns/px",
+        }
+    }
+
+    /// The cost columns of a Markdown table, for the machines shown: their headings and their
+    /// rule, each cell as ` … |`.
+    #[must_use]
+    pub fn columns() -> (String, String) {
+        let shown = Self::shown();
+        let headings = shown.iter().map(|m| format!(" {} |", m.column())).collect();
+        (headings, "---:|".repeat(shown.len()))
+    }
+
+    /// A row's cost cells, for the machines shown, `cost` giving each as text.
+    #[must_use]
+    pub fn cells(cost: impl Fn(Self) -> String) -> String {
+        Self::shown()
+            .iter()
+            .map(|&m| format!(" {} |", cost(m)))
+            .collect()
+    }
 }
 
 impl fmt::Display for Machine {

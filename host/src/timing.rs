@@ -15,6 +15,12 @@ pub fn shown() -> bool {
     std::env::var_os(TIMES_OMITTED.0).is_none_or(|value| value != TIMES_OMITTED.1)
 }
 
+/// The text `time` makes where times are shown, and nothing where they are not.
+#[must_use]
+pub fn or_omitted(time: impl FnOnce() -> String) -> String {
+    if shown() { time() } else { String::new() }
+}
+
 /// Runs each task `runs` times (at least once), round-robin, and returns each task's median
 /// time in milliseconds.
 pub fn interleaved_median_ms(runs: usize, tasks: &[&dyn Fn()]) -> Vec<f64> {

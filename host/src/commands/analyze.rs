@@ -99,27 +99,12 @@ fn print_formats(args: &AnalyzeArgs, named: &NamedScene, analysis: &Analysis) ->
             scene.shadow_samples
         )?;
     }
-    // The host's cost is a time: left out where times are not shown.
-    let machines: &[Machine] = if crate::timing::shown() {
-        &Machine::ALL
-    } else {
-        &[Machine::M4f, Machine::M0]
-    };
-    let mut heading = String::from(
+    let (cost_headings, cost_rule) = Machine::columns();
+    say!(
         "| format | narrow | holds the scene | predicted PSNR ≥ (dB) | shift (px) | predicted \
-         object mismatch ≤ | measured PSNR (dB) |",
-    );
-    let mut rule = String::from("|---|---|---|---:|---:|---:|---:|");
-    for machine in machines {
-        heading.push_str(match machine {
-            Machine::M4f => " M4F instr/px |",
-            Machine::M0 => " M0 instr/px |",
-            Machine::Host => " host ns/px |",
-        });
-        rule.push_str("---:|");
-    }
-    say!("{heading}")?;
-    say!("{rule}")?;
+         object mismatch ≤ | measured PSNR (dB) |{cost_headings}"
+    )?;
+    say!("|---|---|---|---:|---:|---:|---:|{cost_rule}")?;
     let number = |x: Option<f64>| x.map_or("–".to_owned(), |x| format!("{x:.0}"));
     for verdict in &analysis.verdicts {
         let scene = match verdict.fit {
@@ -136,10 +121,7 @@ fn print_formats(args: &AnalyzeArgs, named: &NamedScene, analysis: &Analysis) ->
             Fit::Refused(reason) => format!("no: {reason}"),
         };
         let p = verdict.prediction;
-        let costs: String = machines
-            .iter()
-            .map(|&m| format!(" {} |", number(analysis.cost(m, verdict.format, &methods))))
-            .collect();
+        let costs = Machine::cells(|m| number(analysis.cost(m, verdict.format, &methods)));
         say!(
             "| {} | {} | {fit} | {} | {} | {} | {} |{costs}",
             verdict.format,

@@ -143,20 +143,11 @@ fn time(args: &BenchArgs, named: &NamedScene, jobs: &[(Format, Methods)]) -> Res
 /// and for Whitted's own picture the VAX's 74 minutes beside it. Where times are not shown
 /// ([`crate::timing::shown`]), only their ratios, measured in this run.
 fn print(bench: &Bench, f32_by_exact_roots: bool) -> std::io::Result<()> {
-    let times = crate::timing::shown();
-    // A time's cell, or nothing where times are not shown.
-    let ms = |ms: f64| {
-        if times {
-            format!(" {ms:.1} |")
-        } else {
-            String::new()
-        }
-    };
-    let (heading, rule) = if times {
-        (" ms/frame |", "---:|")
-    } else {
-        ("", "")
-    };
+    use crate::timing::or_omitted;
+    // A time's cell, the column's heading and rule: nothing where times are not shown.
+    let ms = |ms: f64| or_omitted(|| format!(" {ms:.1} |"));
+    let heading = or_omitted(|| " ms/frame |".to_owned());
+    let rule = or_omitted(|| "---:|".to_owned());
     say!(
         "{} {}x{}, median of {} interleaved runs:",
         bench.scene,
@@ -200,13 +191,7 @@ fn print(bench: &Bench, f32_by_exact_roots: bool) -> std::io::Result<()> {
             .iter()
             .map(|t| t.ms_per_frame)
             .fold(one.ms_per_frame, f64::min);
-        let taken = |ms: f64| {
-            if times {
-                format!("{ms:.1} ms, ")
-            } else {
-                String::new()
-            }
-        };
+        let taken = |ms: f64| or_omitted(|| format!("{ms:.1} ms, "));
         say!(
             "\nWhitted's spheres and checkerboard took {VAX_MINUTES} minutes on a VAX-11/780 in \
              1979; here {} takes {}{:.0}x less on one thread, and {}{:.0}x less on all threads \

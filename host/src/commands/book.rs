@@ -48,7 +48,7 @@ pub fn run(args: &BookArgs) -> Result<()> {
         let mut bodies = Vec::new();
         for block in page.blocks() {
             if !chosen(file, block) {
-                bodies.push(block.body.clone());
+                bodies.push(page.body(block).to_owned());
                 continue;
             }
             run += 1;
@@ -60,11 +60,11 @@ pub fn run(args: &BookArgs) -> Result<()> {
                 timed += 1;
                 pictures.restore(&changed)?;
             } else if args.check {
-                if printed != block.body {
+                if printed != page.body(block) {
                     differing.push(format!(
                         "{place}: `{}` prints something else; {}",
                         block.command,
-                        first_difference(&block.body, &printed)
+                        first_difference(page.body(block), &printed)
                     ));
                 }
                 for picture in &changed {

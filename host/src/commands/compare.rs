@@ -259,17 +259,11 @@ fn print_table(r: &Report) -> io::Result<()> {
         format!("{:.2}", r.psnr_db)
     };
     // Times, where shown, as the last two columns.
-    let times = [r.ms_per_frame, r.reference_ms_per_frame];
-    let (time_heads, time_rule, time_cells) = if crate::timing::shown() {
-        let [ms, reference] = times;
-        (
-            " ms/frame | f64 ms/frame |",
-            "---:|---:|",
-            format!(" {ms:.1} | {reference:.1} |"),
-        )
-    } else {
-        ("", "", String::new())
-    };
+    use crate::timing::or_omitted;
+    let time_heads = or_omitted(|| " ms/frame | f64 ms/frame |".to_owned());
+    let time_rule = or_omitted(|| "---:|---:|".to_owned());
+    let time_cells =
+        or_omitted(|| format!(" {:.1} | {:.1} |", r.ms_per_frame, r.reference_ms_per_frame));
     say!(
         "| scene | size | format | PSNR (dB) | mean error | max error | pixels differing | object mismatch |{time_heads}"
     )?;

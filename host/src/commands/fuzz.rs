@@ -70,11 +70,7 @@ pub fn run(args: &FuzzArgs) -> Result<()> {
                 .map_or(String::new(), |f| format!(" (see {})", f.display()))
         )?;
     }
-    let time = if crate::timing::shown() {
-        format!(" in {:.0} s", start.elapsed().as_secs_f64())
-    } else {
-        String::new()
-    };
+    let time = crate::timing::or_omitted(|| format!(" in {:.0} s", start.elapsed().as_secs_f64()));
     say!("fuzz seed {}{time}: {tally}", args.seed)?;
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&tally)?;

@@ -35,13 +35,9 @@ fn render(args: &RenderArgs, named: &NamedScene) -> Result<()> {
         super::refuse_useless(&args.scene.refusal, format, &scene, methods, &image, None)?;
     }
     super::save(&image, &args.output)?;
-    let time = if crate::timing::shown() {
-        format!(" on {} threads: {ms:.1} ms;", args.threads)
-    } else {
-        ":".to_owned()
-    };
+    let time = crate::timing::or_omitted(|| format!(" on {} threads in {ms:.1} ms", args.threads));
     say!(
-        "{name} {width}x{height} in {format}{time} wrote {}",
+        "{name} {width}x{height} in {format}{time}: wrote {}",
         args.output.display()
     )?;
     if args.count {

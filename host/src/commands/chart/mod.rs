@@ -8,7 +8,7 @@ mod samples;
 
 use crate::analysis::TARGET_PSNR;
 use crate::cli::ChartArgs;
-use crate::cost;
+use crate::cost::{self, Machine};
 use crate::firmware::{self, Target};
 use crate::metrics::accuracy;
 use crate::output::{self, say};
@@ -337,27 +337,38 @@ fn narrow_of(format: &str) -> &'static str {
     Format::from_name(format).map_or("–", Format::narrow)
 }
 
-fn print_table(points: &[SpeedPoint]) -> io::Result<()> {
-    say!(
-        "| scene | format | narrow | methods | M4F instr/px | M0 instr/px | host ns/px | PSNR (dB) | object mismatch |"
-    )?;
-    say!("|---|---|---|---|---:|---:|---:|---:|---:|")?;
+/// A row's cost cells for the machines shown ([`Machine::cells`]): instructions per pixel on the
+/// M4F and the M0 ("–" where not measured), nanoseconds per pixel on the host.
+fn cost_cells(m4f: Option<f64>, m0: Option<f64>, host_ns: f64) -> String {
     let count = |x: Option<f64>| x.map_or("–".to_owned(), |x| format!("{x:.0}"));
+    Machine::cells(|machine| match machine {
+        Machine::M4f => count(m4f),
+        Machine::M0 => count(m0),
+        Machine::Host => format!("{host_ns:.0}"),
+    })
+}
+
+fn print_table(points: &[SpeedPoint]) -> io::Result<()> {
+    let (cost_headings, cost_rule) = Machine::columns();
+    say!("| scene | format | narrow | methods |{cost_headings} PSNR (dB) | object mismatch |")?;
+    say!("|---|---|---|---|{cost_rule}---:|---:|")?;
     for p in points {
         let psnr = if p.psnr_db.is_infinite() {
             "∞".to_owned()
         } else {
             format!("{:.2}", p.psnr_db)
         };
+        let costs = cost_cells(
+            p.m4f_instructions_per_pixel,
+            p.m0_instructions_per_pixel,
+            p.host_ns_per_pixel,
+        );
         say!(
-            "| {} | {} | {} | {} | {} | {} | {:.0} | {psnr} | {:.4} % |",
+            "| {} | {} | {} | {} |{costs} {psnr} | {:.4} % |",
             p.scene,
             p.format,
             narrow_of(&p.format),
             p.variant,
-            count(p.m4f_instructions_per_pixel),
-            count(p.m0_instructions_per_pixel),
-            p.host_ns_per_pixel,
             p.object_mismatch_pct
         )?;
     }

@@ -298,17 +298,19 @@ fn write_csv(points: &[Point], path: &Path) -> Result<()> {
 
 fn print_table(points: &[Point]) -> std::io::Result<()> {
     say!("\n{SCENE}, rays per pixel against cost (against f64 with {CONVERGED} rays per pixel):")?;
-    say!("| format | samples | M4F instr/px | M0 instr/px | host ns/px | PSNR (dB) |")?;
-    say!("|---|---|---:|---:|---:|---:|")?;
-    let count = |x: Option<f64>| x.map_or("–".to_owned(), |x| format!("{x:.0}"));
+    let (cost_headings, cost_rule) = crate::cost::Machine::columns();
+    say!("| format | samples |{cost_headings} PSNR (dB) |")?;
+    say!("|---|---|{cost_rule}---:|")?;
     for p in points {
+        let costs = super::cost_cells(
+            p.m4f_instructions_per_pixel,
+            p.m0_instructions_per_pixel,
+            p.host_ns_per_pixel,
+        );
         say!(
-            "| {} | {} | {} | {} | {:.0} | {:.2} |",
+            "| {} | {} |{costs} {:.2} |",
             p.format,
             p.sampling(),
-            count(p.m4f_instructions_per_pixel),
-            count(p.m0_instructions_per_pixel),
-            p.host_ns_per_pixel,
             p.psnr_db
         )?;
     }
