@@ -22,7 +22,8 @@ use super::isqrt::{
     rsqrt_fixed, rsqrt_mantissa,
 };
 use super::kernels::{
-    div_i32_fixed, mul_i32_i16_wide, mul_i32_wide, round_shr_i64, round_shr_u64, square_u32_wide,
+    div_i32_fixed, dot3_i32_rounded_wrapping, mul_i32_i16_rounded_wrapping, mul_i32_i16_wide,
+    mul_i32_rounded_wrapping, mul_i32_wide, round_shr_i64, round_shr_u64, square_u32_wide,
     square_u64_small,
 };
 use super::{Precision, Scalar};
@@ -78,6 +79,10 @@ impl fmt::Display for Operation {
 pub trait Overflow: Copy + Default + Eq + Ord + Hash + fmt::Debug + Send + Sync + 'static {
     /// `operation`, written at `at` in the source, overflowed.
     fn overflowed(operation: Operation, at: &'static Location<'static>);
+    /// Whether the policy hears of an overflow at all. Where it does not (a proven scene's
+    /// release build), a product is formed without the bits that would only say whether it
+    /// fits: on the M0, from its middle 32 bits rather than all 64 ([`WideBits::mul_rounded_wrapping`]).
+    const HEARS: bool = true;
 }
 
 /// The firmware's policy: the scene build's range proof keeps every sum and product in range,
@@ -87,6 +92,7 @@ pub trait Overflow: Copy + Default + Eq + Ord + Hash + fmt::Debug + Send + Sync 
 pub struct Proven;
 
 impl Overflow for Proven {
+    const HEARS: bool = cfg!(debug_assertions);
     #[inline(always)]
     fn overflowed(operation: Operation, at: &'static Location<'static>) {
         debug_assert!(
@@ -149,6 +155,20 @@ pub trait WideBits: Copy + Ord {
     fn div_fixed(self, rhs: Self, frac: u32) -> Option<Self>;
     /// `wide / 2^frac` rounded to nearest (ties up), and whether it wrapped.
     fn narrow(wide: Self::Wide, frac: u32) -> (Self, bool);
+    /// `self·rhs / 2^frac` rounded to nearest (ties up), wrapped: [`Self::narrow`] of
+    /// [`Self::wide_mul`] where it fits, without the bits that would only say whether it does.
+    #[inline]
+    fn mul_rounded_wrapping(self, rhs: Self, frac: u32) -> Self {
+        Self::narrow(self.wide_mul(rhs), frac).0
+    }
+    /// `Σ aᵢ·bᵢ / 2^frac` rounded once to nearest, wrapped: [`Self::mul_rounded_wrapping`]'s
+    /// dot product.
+    #[inline]
+    fn dot3_rounded_wrapping(a: [Self; 3], b: [Self; 3], frac: u32) -> Self {
+        let (partial, _) = Self::wide_add(a[0].wide_mul(b[0]), a[1].wide_mul(b[1]));
+        let (sum, _) = Self::wide_add(partial, a[2].wide_mul(b[2]));
+        Self::narrow(sum, frac).0
+    }
     /// `wide / 2^frac` rounded to nearest (ties up), saturated to `Self`.
     fn narrow_saturating(wide: Self::Wide, frac: u32) -> Self;
     /// a·b − c·d exactly in the wide integer (it cannot overflow), with its sign.
@@ -186,9 +206,19 @@ pub trait WideBits: Copy + Ord {
 }
 
 macro_rules! wide_bits {
-    ($($bits:ident => $wide:ident, mul: $mul:path, mul_level: $mul_level:path, div: $div:path, fast: $fast:literal, root_error: $root_error:expr, roots: $sqrt:path, $rsqrt:path, $normalize:path);*) => {$(
+    ($($bits:ident => $wide:ident, mul: $mul:path, mul_level: $mul_level:path, div: $div:path, fast: $fast:literal, root_error: $root_error:expr, roots: $sqrt:path, $rsqrt:path, $normalize:path $(, rounded: $mul_rounded:path, $dot_rounded:path)?);*) => {$(
         impl WideBits for $bits {
             type Wide = $wide;
+            $(
+                #[inline]
+                fn mul_rounded_wrapping(self, rhs: Self, frac: u32) -> Self {
+                    $mul_rounded(self, rhs, frac)
+                }
+                #[inline]
+                fn dot3_rounded_wrapping(a: [Self; 3], b: [Self; 3], frac: u32) -> Self {
+                    $dot_rounded(a, b, frac)
+                }
+            )?
             const WORDS: usize = <$bits>::BITS.div_ceil(32) as usize;
             #[inline]
             #[allow(clippy::cast_sign_loss, reason = "the bits, sign-extended")]
@@ -271,7 +301,7 @@ macro_rules! wide_bits {
 wide_bits!(
     // The 16-bit narrow format: its roots and quotients are the 32-bit ones', narrowed.
     i16 => i32, mul: mul_i16_wide, mul_level: mul_level_16, div: div_i16_fixed, fast: false, root_error: 0.0, roots: sqrt_raw_16, rsqrt_raw_16, normalize_raw_16;
-    i32 => i64, mul: mul_i32_wide, mul_level: mul_level_32, div: div_i32_fixed, fast: true, root_error: 0.0, roots: sqrt_raw_32, rsqrt_raw_32, normalize_raw_32;
+    i32 => i64, mul: mul_i32_wide, mul_level: mul_level_32, div: div_i32_fixed, fast: true, root_error: 0.0, roots: sqrt_raw_32, rsqrt_raw_32, normalize_raw_32, rounded: mul_i32_rounded_wrapping, dot3_i32_rounded_wrapping;
     // The root pair keeps about 30 bits, short of the 64-bit formats' fraction.
     i64 => i128, mul: mul_i64_wide, mul_level: mul_level_64, div: div_i64_fixed, fast: false, root_error: 1.0 / (1_u64 << 29) as f64, roots: sqrt_raw_64, rsqrt_raw_64, normalize_raw_64
 );
@@ -337,6 +367,16 @@ pub trait Narrowed:
         a: Self::Bits,
         k: <Self::Narrow as Fixed>::Bits,
     ) -> <Self::Bits as WideBits>::Wide;
+    /// The product of a number's bits and a narrow number's, rounded to `frac` fraction bits
+    /// and wrapped ([`WideBits::mul_rounded_wrapping`] for a narrow factor).
+    #[inline]
+    fn mul_narrow_rounded_wrapping(
+        a: Self::Bits,
+        k: <Self::Narrow as Fixed>::Bits,
+        frac: u32,
+    ) -> Self::Bits {
+        <Self::Bits as WideBits>::narrow(Self::wide_mul_narrow(a, k), frac).0
+    }
 }
 
 /// A 32-bit format's narrow format, by whether its fraction has at most 16 bits
@@ -346,6 +386,9 @@ pub trait NarrowOf32 {
     type Narrow: Narrowed;
     /// The exact product of a 32-bit number and a narrow one.
     fn wide_mul(a: i32, k: <Self::Narrow as Fixed>::Bits) -> i64;
+    /// The product of a 32-bit number and a narrow one, rounded to `frac` fraction bits and
+    /// wrapped.
+    fn mul_rounded_wrapping(a: i32, k: <Self::Narrow as Fixed>::Bits, frac: u32) -> i32;
 }
 
 impl NarrowOf32 for typenum::B1 {
@@ -354,6 +397,10 @@ impl NarrowOf32 for typenum::B1 {
     fn wide_mul(a: i32, k: i16) -> i64 {
         mul_i32_i16_wide(a, k)
     }
+    #[inline]
+    fn mul_rounded_wrapping(a: i32, k: i16, frac: u32) -> i32 {
+        mul_i32_i16_rounded_wrapping(a, k, frac)
+    }
 }
 
 impl NarrowOf32 for typenum::B0 {
@@ -361,6 +408,10 @@ impl NarrowOf32 for typenum::B0 {
     #[inline]
     fn wide_mul(a: i32, k: i32) -> i64 {
         mul_i32_wide(a, k)
+    }
+    #[inline]
+    fn mul_rounded_wrapping(a: i32, k: i32, frac: u32) -> i32 {
+        mul_i32_rounded_wrapping(a, k, frac)
     }
 }
 
@@ -376,6 +427,10 @@ where
     #[inline]
     fn wide_mul_narrow(a: i32, k: <Self::Narrow as Fixed>::Bits) -> i64 {
         <AtMost16<Frac> as NarrowOf32>::wide_mul(a, k)
+    }
+    #[inline]
+    fn mul_narrow_rounded_wrapping(a: i32, k: <Self::Narrow as Fixed>::Bits, frac: u32) -> i32 {
+        <AtMost16<Frac> as NarrowOf32>::mul_rounded_wrapping(a, k, frac)
     }
 }
 
@@ -565,6 +620,9 @@ where
     #[inline]
     #[track_caller]
     fn mul(self, rhs: Self) -> Self {
+        if !O::HEARS {
+            return Self::from_raw(self.raw().mul_rounded_wrapping(rhs.raw(), F::FRAC_NBITS));
+        }
         let wide = self.raw().wide_mul(rhs.raw());
         let (product, wrapped) = F::Bits::narrow(wide, F::FRAC_NBITS);
         if wrapped {
@@ -638,6 +696,10 @@ where
     #[inline]
     #[track_caller]
     fn mul_narrow(self, k: Self::Narrow) -> Self {
+        if !O::HEARS {
+            let (a, k) = (self.raw(), k.get().to_bits());
+            return Self::from_raw(F::mul_narrow_rounded_wrapping(a, k, F::Narrow::FRAC_NBITS));
+        }
         let wide = F::wide_mul_narrow(self.raw(), k.get().to_bits());
         let (product, wrapped) = F::Bits::narrow(wide, F::Narrow::FRAC_NBITS);
         if wrapped {
@@ -744,6 +806,10 @@ where
     #[inline]
     #[track_caller]
     fn dot3(a: [Self; 3], b: [Self; 3]) -> Self {
+        if !O::HEARS {
+            let (a, b) = (a.map(Self::raw), b.map(Self::raw));
+            return Self::from_raw(F::Bits::dot3_rounded_wrapping(a, b, F::FRAC_NBITS));
+        }
         let p0 = a[0].raw().wide_mul(b[0].raw());
         let p1 = a[1].raw().wide_mul(b[1].raw());
         let p2 = a[2].raw().wide_mul(b[2].raw());
@@ -945,6 +1011,49 @@ mod tests {
         // What fits is exact, and nobody hears of it.
         assert_eq!(big + one - one, big * one);
         assert_eq!(heard(), []);
+    }
+
+    /// A policy that hears of nothing: the proven firmware's in a release build.
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+    struct Deaf;
+
+    impl Overflow for Deaf {
+        const HEARS: bool = false;
+        fn overflowed(_: Operation, _: &'static Location<'static>) {}
+    }
+
+    /// Products, dot products and products by a narrow number formed without the bits that
+    /// say whether they fit are the heard ones wherever they fit, in a format whose narrow
+    /// format is 2.14 (16 fraction bits) and one whose is 2.30 (20).
+    fn unheard_products_are_the_heard_ones<F: Narrowed<Bits = i32>>() {
+        let operands: Vec<i32> = [0, 1, -1, 3, 255, -4_096, 65_535, 65_536, -65_537, 1 << 20]
+            .into_iter()
+            .chain((0..200).map(|i: i32| i.wrapping_mul(0x9E37_79B9_u32 as i32) >> 12))
+            .collect();
+        for &a in &operands {
+            for &b in &operands {
+                let listened = [a, b].map(|x| Fx::<F, Recording>::new(F::from_bits(x)));
+                let deaf = [a, b].map(|x| Fx::<F, Deaf>::new(F::from_bits(x)));
+                let product = listened[0] * listened[1];
+                let narrow_factor = listened[1].narrow();
+                let scaled = listened[0].mul_narrow(narrow_factor);
+                let dot = Scalar::dot3([listened[0]; 3], [listened[1], listened[0], listened[1]]);
+                let fits = heard().is_empty();
+                let narrow_factor = Fx::<F::Narrow, Deaf>::new(narrow_factor.get());
+                if fits {
+                    assert_eq!((deaf[0] * deaf[1]).raw(), product.raw(), "{a} × {b}");
+                    assert_eq!(deaf[0].mul_narrow(narrow_factor).raw(), scaled.raw());
+                    let deaf_dot = Scalar::dot3([deaf[0]; 3], [deaf[1], deaf[0], deaf[1]]);
+                    assert_eq!(deaf_dot.raw(), dot.raw(), "{a}·{b}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn products_that_fit_are_the_same_heard_or_not() {
+        unheard_products_are_the_heard_ones::<fixed::types::I16F16>();
+        unheard_products_are_the_heard_ones::<fixed::types::I12F20>();
     }
 
     #[test]

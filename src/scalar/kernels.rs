@@ -87,6 +87,124 @@ pub fn mul_i32_i16_wide(a: i32, b: i16) -> i64 {
     }
 }
 
+/// The most fraction bits a product may be rounded to from its middle 32 bits
+/// ([`mul_i32_rounded_wrapping`]): the partial products' 2¹⁶ steps must not be cut.
+#[cfg(any(armv6m, test))]
+const MIDDLE_FRAC_MAX: u32 = 16;
+
+/// (a·b + 2^(frac−1)) >> frac, a product rounded to nearest to `frac` fraction bits, mod 2³²:
+/// the format's product wherever it fits, which the range proof guarantees for a proven
+/// scene, without the bits that would only say whether it fits. A 64-bit product on a PC and
+/// the M4F; on the M0, for `frac` ≤ 16, its middle 32 bits (`mul_i32_middle`), which need no
+/// 64-bit sum.
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation, reason = "mod 2³² is the point")]
+pub fn mul_i32_rounded_wrapping(a: i32, b: i32, frac: u32) -> i32 {
+    #[cfg(armv6m)]
+    if frac <= MIDDLE_FRAC_MAX {
+        return mul_i32_middle(a, b, frac);
+    }
+    round_wrapping(mul_i32_wide(a, b), frac)
+}
+
+/// (a₀b₀ + a₁b₁ + a₂b₂ + 2^(frac−1)) >> frac, a dot product rounded once to `frac` fraction
+/// bits, mod 2³²: [`mul_i32_rounded_wrapping`]'s sum of three (`dot3_i32_middle` on the M0).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation, reason = "mod 2³² is the point")]
+pub fn dot3_i32_rounded_wrapping(a: [i32; 3], b: [i32; 3], frac: u32) -> i32 {
+    #[cfg(armv6m)]
+    if frac <= MIDDLE_FRAC_MAX {
+        return dot3_i32_middle(a, b, frac);
+    }
+    let sum = mul_i32_wide(a[0], b[0])
+        .wrapping_add(mul_i32_wide(a[1], b[1]))
+        .wrapping_add(mul_i32_wide(a[2], b[2]));
+    round_wrapping(sum, frac)
+}
+
+/// (a·k + 2^(frac−1)) >> frac for a narrow factor k, mod 2³² ([`mul_i32_rounded_wrapping`]
+/// for a cosine, a colour or a weight; `mul_i32_i16_middle` on the M0).
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation, reason = "mod 2³² is the point")]
+pub fn mul_i32_i16_rounded_wrapping(a: i32, k: i16, frac: u32) -> i32 {
+    #[cfg(armv6m)]
+    if frac <= MIDDLE_FRAC_MAX {
+        return mul_i32_i16_middle(a, k, frac);
+    }
+    round_wrapping(mul_i32_i16_wide(a, k), frac)
+}
+
+/// (x + 2^(frac−1)) >> frac mod 2³², for a product's exact `x`: with `smull` or `mul` and
+/// `mulh`, an add with carry and a shift of each half.
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation, reason = "mod 2³² is the point")]
+fn round_wrapping(x: i64, frac: u32) -> i32 {
+    (x.wrapping_add(1 << (frac - 1)) >> frac) as i32
+}
+
+/// The 16-bit halves of a, a = a₁·2¹⁶ + a₀ with a₁ = a >> 16 (arithmetic) and 0 ≤ a₀ < 2¹⁶.
+#[cfg(any(armv6m, test))]
+#[inline(always)]
+fn halves(a: i32) -> (i32, i32) {
+    (a >> 16, a & 0xFFFF)
+}
+
+/// A product's rounded middle, split from its low partial product: with the exact product
+/// a·b = a₁b₁·2³² + (a₁b₀ + a₀b₁)·2¹⁶ + a₀b₀ and f ≤ 16, every term but a₀b₀ is a multiple of
+/// 2^f, so (a·b + 2^(f−1)) >> f = a₁b₁·2^(32−f) + (a₁b₀ + a₀b₁)·2^(16−f) +
+/// ((a₀b₀ + 2^(f−1)) >> f): this returns the first two terms mod 2³² (32-bit products, which
+/// the M0's `muls` forms, wrapping where the whole would not) and a₀b₀ (below 2³² − 2¹⁷ + 2,
+/// so a₀b₀ + 2¹⁵ still fits a `u32`).
+#[cfg(any(armv6m, test))]
+#[inline(always)]
+#[allow(clippy::cast_sign_loss, reason = "0 ≤ a₀, b₀ < 2¹⁶")]
+fn middle_and_low(a: i32, b: i32, frac: u32) -> (i32, u32) {
+    let ((a1, a0), (b1, b0)) = (halves(a), halves(b));
+    let high = (a1.wrapping_mul(b1) << (32 - frac))
+        .wrapping_add(a1.wrapping_mul(b0).wrapping_add(a0.wrapping_mul(b1)) << (16 - frac));
+    (high, (a0 as u32) * (b0 as u32))
+}
+
+/// [`mul_i32_rounded_wrapping`] from the product's middle 32 bits ([`middle_and_low`]): four
+/// `muls` and no 64-bit sum, for f ≤ 16.
+#[cfg(any(armv6m, test))]
+#[inline(always)]
+#[allow(clippy::cast_possible_wrap, reason = "(a₀b₀ + 2¹⁵) >> f < 2³²⁻ᶠ ≤ 2³¹ for f ≥ 1")]
+fn mul_i32_middle(a: i32, b: i32, frac: u32) -> i32 {
+    let (high, low) = middle_and_low(a, b, frac);
+    high.wrapping_add(((low + (1 << (frac - 1))) >> frac) as i32)
+}
+
+/// [`dot3_i32_rounded_wrapping`] from middle 32 bits: the three products' middles add mod 2³²,
+/// and their low partial products, each split at bit f into ⌊a₀b₀/2^f⌋ and its remainder r,
+/// round once as the sum of the quotients and (Σr + 2^(f−1)) >> f (Σr < 3·2^f: no carry is
+/// lost).
+#[cfg(any(armv6m, test))]
+#[inline(always)]
+#[allow(clippy::cast_possible_wrap, reason = "each quotient is below 2³²⁻ᶠ ≤ 2³¹")]
+fn dot3_i32_middle(a: [i32; 3], b: [i32; 3], frac: u32) -> i32 {
+    let mask = (1_u32 << frac) - 1;
+    let mut high = 0_i32;
+    let mut remainders = 1_u32 << (frac - 1);
+    for (&a, &b) in a.iter().zip(&b) {
+        let (middle, low) = middle_and_low(a, b, frac);
+        high = high.wrapping_add(middle).wrapping_add((low >> frac) as i32);
+        remainders += low & mask;
+    }
+    high.wrapping_add((remainders >> frac) as i32)
+}
+
+/// [`mul_i32_i16_rounded_wrapping`] from two partial products, for f ≤ 16: a·k = a₁k·2¹⁶ + a₀k,
+/// so (a·k + 2^(f−1)) >> f = a₁k·2^(16−f) + ((a₀k + 2^(f−1)) >> f), and a₀k + 2¹⁵ stays
+/// within ±2³¹ (|a₀k| ≤ (2¹⁶ − 1)·2¹⁵).
+#[cfg(any(armv6m, test))]
+#[inline(always)]
+fn mul_i32_i16_middle(a: i32, k: i16, frac: u32) -> i32 {
+    let (a1, a0) = halves(a);
+    let k = i32::from(k);
+    (a1.wrapping_mul(k) << (16 - frac)).wrapping_add((a0 * k + (1 << (frac - 1))) >> frac)
+}
+
 /// a·b exactly from two partial products, a = a₁·2¹⁶ + a₀ with a₁ = a >> 16 (arithmetic) and
 /// 0 ≤ a₀ < 2¹⁶: a₁b (at most 2³⁰ in magnitude) and a₀b (within ±2³¹, an `i32`).
 #[cfg(any(armv6m, test))]
@@ -580,6 +698,58 @@ mod tests {
                 assert_eq!(mul_i32_i16_partial(a as i32, b), exact, "{a} × {b}");
             }
         }
+    }
+
+    /// The fraction bits the rounded products are tested with: every 32-bit format's, and the
+    /// narrow 2.14's.
+    const FRACS: [u32; 9] = [1, 8, 12, 14, 16, 18, 20, 24, 30];
+
+    /// (x + 2^(f−1)) >> f mod 2³², from the exact x.
+    #[allow(clippy::cast_possible_truncation, reason = "mod 2³² is the point")]
+    fn rounded(x: i128, frac: u32) -> i32 {
+        ((x + (1 << (frac - 1))) >> frac) as i32
+    }
+
+    #[test]
+    fn rounded_products_are_the_exact_products_rounded_mod_2_32() {
+        for_each_pair(|a, b| {
+            let (a, b) = (a as i32, b as i32);
+            for frac in FRACS {
+                let expected = rounded(i128::from(a) * i128::from(b), frac);
+                assert_eq!(mul_i32_rounded_wrapping(a, b, frac), expected, "{a} × {b}, {frac}");
+                if frac <= MIDDLE_FRAC_MAX {
+                    assert_eq!(mul_i32_middle(a, b, frac), expected, "{a} × {b} by its middle");
+                }
+                let k = b as i16;
+                let expected = rounded(i128::from(a) * i128::from(k), frac);
+                assert_eq!(mul_i32_i16_rounded_wrapping(a, k, frac), expected, "{a} × {k}");
+                if frac <= MIDDLE_FRAC_MAX {
+                    assert_eq!(mul_i32_i16_middle(a, k, frac), expected, "{a} × {k} by its middle");
+                }
+            }
+        });
+    }
+
+    #[test]
+    fn rounded_dot_products_round_once_mod_2_32() {
+        for_each_pair(|a, b| {
+            let (a, b) = (a as i32, b as i32);
+            // Three products whose low partial products carry into each other as well as not.
+            let left = [a, b, a ^ b];
+            let right = [b, a, !a];
+            let exact: i128 = left
+                .iter()
+                .zip(&right)
+                .map(|(&x, &y)| i128::from(x) * i128::from(y))
+                .sum();
+            for frac in FRACS {
+                let expected = rounded(exact, frac);
+                assert_eq!(dot3_i32_rounded_wrapping(left, right, frac), expected, "{left:?}·{right:?}");
+                if frac <= MIDDLE_FRAC_MAX {
+                    assert_eq!(dot3_i32_middle(left, right, frac), expected, "{left:?}·{right:?} by middles");
+                }
+            }
+        });
     }
 
     #[test]
