@@ -18,12 +18,13 @@ use crate::camera::{Camera, Frame, MAX_IMAGE_SIDE};
 use crate::color::Rgb;
 use crate::cull::{self, Bound};
 use crate::desc::{
-    BackgroundDesc, CheckerDesc, LightDesc, MaterialDesc, SceneDesc, ShapeDesc, triangle_has_area,
+    BackgroundDesc, CheckerDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc, ShapeDesc,
+    triangle_has_area,
 };
 use crate::light::{Background, Light};
 use crate::material::Material;
 use crate::methods::{Methods, RootMethod};
-use crate::occlusion::Cone;
+use crate::occlusion::{self, Cone, Side};
 use crate::scalar::REACH_ERRORS;
 use crate::scalar::{Bits, FormatInfo, FormatSet, Precision, Scalar};
 use crate::shape::mesh::{MeshStorage, MeshWords, Meshes, NoMeshes, Node};
@@ -517,13 +518,19 @@ impl<S: Scalar> Converter<S> {
         }
         let mut lights = Vec::new();
         let mut cones = Vec::new();
+        let tolerance = self.largest_tolerance(&objects);
         for (i, light) in desc.lights.iter().enumerate() {
             lights
                 .push(self.light(i, light, desc.shadow_samples)?)
                 .map_err(|_| too_many("lights", desc.lights.len(), L))?;
             let mut of_light = [Cone::Everywhere; O];
-            for (cone, object) in of_light.iter_mut().zip(desc.objects) {
-                *cone = self.cone(Item::Light(i), light, &object.shape, desc)?;
+            for (j, (cone, object)) in of_light.iter_mut().zip(desc.objects).enumerate() {
+                *cone = match object.shape {
+                    ShapeDesc::Plane { point, normal, .. } => self
+                        .plane_cone(j, light, (point, normal), desc, tolerance)
+                        .unwrap_or(Cone::Everywhere),
+                    _ => self.cone(Item::Light(i), light, &object.shape, desc)?,
+                };
             }
             cones
                 .push(of_light)
@@ -583,6 +590,126 @@ impl<S: Scalar> Converter<S> {
             .ok_or_else(|| self.out_of_range(item, "a shadow cone's axis", position))
     }
 
+    /// [`Cone::NOWHERE`] for plane `index` of `desc`, through `point` with `normal`, where no
+    /// shadow ray towards `light` can meet it (see [`crate::occlusion`]): the light's disc and
+    /// the far end of every shadow ray aimed at it clear the plane by more than the error with
+    /// which a ray finds the plane, and so does every point a shadow ray may start from on
+    /// every other object, less the error with which a ray finds that object (or, on an opaque
+    /// sphere met from outside, a shaded point's own) and the largest surface tolerance
+    /// (`tolerance`), by which a shadow ray starts off its surface; and the
+    /// light is steep enough over the plane that Lambert's cosine on its far side is negative
+    /// whatever its rounding. `None` where that is not so, or cannot be bounded. Out of line,
+    /// as [`Self::object`] is.
+    #[inline(never)]
+    fn plane_cone(
+        &self,
+        index: usize,
+        light: &LightDesc,
+        (point, normal): ([f32; 3], [f32; 3]),
+        desc: &SceneDesc<'_>,
+        tolerance: f64,
+    ) -> Option<Cone<S>> {
+        let position = Vec3::from_f32(light.position) - self.eye;
+        let disc = f64::from(light.radius);
+        // A shadow ray starts within the world (or its slack beyond it) and ends at the light.
+        let longest = self.world + self.slack + position.length();
+        let from_eye = |p| Vec3::from_f32(p) - self.eye;
+        let side = Side::towards(from_eye(point), Vec3::from_f32(normal), position)?;
+        let plane = &desc.objects.get(index)?.shape;
+        let needed = REACH_ERRORS * self.finding_error(plane, desc, longest)?;
+        let cosine_error = occlusion::cosine_error::<S>();
+        let light_height = side.height(position) - disc;
+        if light_height - occlusion::end_error::<S>(disc, longest) <= needed
+            || light_height <= cosine_error * longest
+        {
+            return None;
+        }
+        // Where a secondary ray can start: within the world, or its slack beyond it.
+        let anywhere = self.world + self.slack;
+        for (i, object) in desc.objects.iter().enumerate() {
+            if i == index {
+                continue;
+            }
+            let found = |shape| Some(REACH_ERRORS * self.finding_error(shape, desc, anywhere)?);
+            let lowest = match object.shape {
+                ShapeDesc::Plane { point, normal, .. } => {
+                    side.height_of_plane(from_eye(point), Vec3::from_f32(normal))?
+                        - found(&object.shape)?
+                }
+                ShapeDesc::Sphere { center, radius }
+                    if disc == 0.0 && self.met_from_outside(i, desc, tolerance) =>
+                {
+                    let (centre, radius) = (from_eye(center), f64::from(radius));
+                    // A shaded point of a sphere is c + r·n for its computed unit normal n
+                    // (`Sphere::surface`): off the surface by n's error times r and the
+                    // rounding of the product and sum, whatever the error of the ray's t.
+                    let off = REACH_ERRORS
+                        * 3.0_f64.sqrt()
+                        * (radius * occlusion::unit_error::<S>() + 2.0 * S::resolution(centre.length() + radius));
+                    side.lowest_of_lit_cap((centre, radius), off, position, cosine_error)
+                }
+                _ => {
+                    let (centre, radius) = cull::ball(&object.shape, &desc.meshes, self.eye)?;
+                    side.lowest_of_ball(centre, radius) - found(&object.shape)?
+                }
+            };
+            if lowest - tolerance <= needed {
+                return None;
+            }
+        }
+        Some(Cone::NOWHERE)
+    }
+
+    /// Whether every ray that meets sphere `index` of `desc` meets it from outside, so that
+    /// its inside starts no shadow ray: it is opaque, the eye (and the lens about it) is
+    /// outside it, and no object that sends rays on (by reflection or transmission) comes
+    /// within `margin` of it, where a ray it sends could start inside.
+    fn met_from_outside(&self, index: usize, desc: &SceneDesc<'_>, margin: f64) -> bool {
+        let Some(&ObjectDesc {
+            shape: ShapeDesc::Sphere { center, radius },
+            material,
+        }) = desc.objects.get(index)
+        else {
+            return false;
+        };
+        let (centre, radius) = (Vec3::from_f32(center) - self.eye, f64::from(radius));
+        let apart = |distance: f64| distance > radius + margin;
+        material.transmission == 0.0
+            && apart(centre.length() - f64::from(desc.camera.aperture))
+            && desc.objects.iter().enumerate().all(|(i, other)| {
+                let sends = other.material.reflection > 0.0 || other.material.transmission > 0.0;
+                if i == index || !sends {
+                    return true;
+                }
+                match other.shape {
+                    ShapeDesc::Plane { point, normal, .. } => {
+                        let length = Vec3::from_f32(normal).length();
+                        let offset = centre - (Vec3::from_f32(point) - self.eye);
+                        length > 0.0 && apart(Vec3::from_f32(normal).dot(offset).abs() / length)
+                    }
+                    _ => cull::ball(&other.shape, &desc.meshes, self.eye)
+                        .is_some_and(|(c, r)| apart((c - centre).length() - r)),
+                }
+            })
+    }
+
+    /// The largest surface tolerance anywhere a shadow ray may start: the tolerance at the
+    /// farthest a surface point can be from the eye, and the largest of `objects`' own parts.
+    fn largest_tolerance(&self, objects: &[Object<S>]) -> f64 {
+        let (base, per_unit) = self.tolerances();
+        let own = objects
+            .iter()
+            .map(|object| object.tolerance.to_f64())
+            .fold(0.0, f64::max);
+        base + per_unit * (self.world + self.slack) + own
+    }
+
+    /// The surface tolerance at the eye, and its growth per unit of a coordinate.
+    fn tolerances(&self) -> (f64, f64) {
+        let at = |reach| range::error_with(&range::tolerance_terms(reach, None), &self.tolerances);
+        (at(0.0), at(1.0) - at(0.0))
+    }
+
     /// What the tracer needs of `desc` besides its objects and lights. Out of line, as
     /// [`Self::object`] is.
     #[inline(never)]
@@ -609,12 +736,7 @@ impl<S: Scalar> Converter<S> {
                 )?,
             },
         };
-        // The tolerance at the eye, and its growth per unit of a coordinate.
-        let (tolerance_base, tolerance_per_unit) = (
-            range::error_with(&range::tolerance_terms(0.0, None), &self.tolerances),
-            range::error_with(&range::tolerance_terms(1.0, None), &self.tolerances)
-                - range::error_with(&range::tolerance_terms(0.0, None), &self.tolerances),
-        );
+        let (tolerance_base, tolerance_per_unit) = self.tolerances();
         Ok(Settings {
             ambient: self.colour(Item::Scene, "ambient", desc.ambient)?,
             background,
