@@ -460,6 +460,15 @@ fn capacity(what: &'static str, count: usize, capacity: usize) -> Result<(), Sce
     }
 }
 
+/// The shadow rays of one light, as a cone is found for them: the light's centre relative to
+/// the eye, its disc's radius, and the longest a shadow ray is.
+#[derive(Clone, Copy, Debug)]
+struct ShadowRays {
+    light: Vec3<f64>,
+    disc: f64,
+    longest: f64,
+}
+
 /// Converts validated `f64` values into format `S`, relative to the eye.
 struct Converter<S> {
     eye: Vec3<f64>,
@@ -524,13 +533,8 @@ impl<S: Scalar> Converter<S> {
                 .push(self.light(i, light, desc.shadow_samples)?)
                 .map_err(|_| too_many("lights", desc.lights.len(), L))?;
             let mut of_light = [Cone::Everywhere; O];
-            for (j, (cone, object)) in of_light.iter_mut().zip(desc.objects).enumerate() {
-                *cone = match object.shape {
-                    ShapeDesc::Plane { point, normal, .. } => self
-                        .plane_cone(j, light, (point, normal), desc, tolerance)
-                        .unwrap_or(Cone::Everywhere),
-                    _ => self.cone(Item::Light(i), light, &object.shape, desc)?,
-                };
+            for (j, cone) in of_light.iter_mut().take(desc.objects.len()).enumerate() {
+                *cone = self.cone(Item::Light(i), light, j, desc, tolerance)?;
             }
             cones
                 .push(of_light)
@@ -569,19 +573,34 @@ impl<S: Scalar> Converter<S> {
         })
     }
 
-    /// The cone of `shape` from `light` ([`crate::occlusion`]). Out of line, as
-    /// [`Self::object`] is.
+    /// The cone of object `index` of `desc` from `light` ([`crate::occlusion`]): of its ball,
+    /// or of a plane's side ([`Self::plane_cone`]), where shadow rays start off surfaces by at
+    /// most `tolerance`. Out of line, as [`Self::object`] is.
     #[inline(never)]
     fn cone(
         &self,
         item: Item,
         light: &LightDesc,
-        shape: &ShapeDesc,
+        index: usize,
         desc: &SceneDesc<'_>,
+        tolerance: f64,
     ) -> Result<Cone<S>, SceneError> {
         let position = Vec3::from_f32(light.position) - self.eye;
         // A shadow ray starts within the world (or its slack beyond it) and ends at the light.
         let longest = self.world + self.slack + position.length();
+        let Some(shape) = desc.objects.get(index).map(|object| &object.shape) else {
+            return Ok(Cone::Everywhere);
+        };
+        if let ShapeDesc::Plane { point, normal, .. } = *shape {
+            let shadow = ShadowRays {
+                light: position,
+                disc: f64::from(light.radius),
+                longest,
+            };
+            return Ok(self
+                .plane_cone(index, (point, normal), shadow, desc, tolerance)
+                .unwrap_or(Cone::Everywhere));
+        }
         let ball = self
             .finding_error(shape, desc, longest)
             .zip(cull::ball(shape, &desc.meshes, self.eye))
@@ -591,28 +610,26 @@ impl<S: Scalar> Converter<S> {
     }
 
     /// [`Cone::NOWHERE`] for plane `index` of `desc`, through `point` with `normal`, where no
-    /// shadow ray towards `light` can meet it (see [`crate::occlusion`]): the light's disc and
+    /// shadow ray towards the light can meet it (see [`crate::occlusion`]): the light's disc and
     /// the far end of every shadow ray aimed at it clear the plane by more than the error with
     /// which a ray finds the plane, and so does every point a shadow ray may start from on
     /// every other object, less the error with which a ray finds that object (or, on an opaque
     /// sphere met from outside, a shaded point's own) and the largest surface tolerance
     /// (`tolerance`), by which a shadow ray starts off its surface; and the
     /// light is steep enough over the plane that Lambert's cosine on its far side is negative
-    /// whatever its rounding. `None` where that is not so, or cannot be bounded. Out of line,
-    /// as [`Self::object`] is.
-    #[inline(never)]
+    /// whatever its rounding. `None` where that is not so, or cannot be bounded.
     fn plane_cone(
         &self,
         index: usize,
-        light: &LightDesc,
         (point, normal): ([f32; 3], [f32; 3]),
+        ShadowRays {
+            light: position,
+            disc,
+            longest,
+        }: ShadowRays,
         desc: &SceneDesc<'_>,
         tolerance: f64,
     ) -> Option<Cone<S>> {
-        let position = Vec3::from_f32(light.position) - self.eye;
-        let disc = f64::from(light.radius);
-        // A shadow ray starts within the world (or its slack beyond it) and ends at the light.
-        let longest = self.world + self.slack + position.length();
         let from_eye = |p| Vec3::from_f32(p) - self.eye;
         let side = Side::towards(from_eye(point), Vec3::from_f32(normal), position)?;
         let plane = &desc.objects.get(index)?.shape;
