@@ -492,6 +492,15 @@ impl<S: Scalar> Row<S> {
     /// The primary rays of the row's pixels, left to right, by the camera's [`RayMethod`].
     #[must_use]
     pub fn rays(self) -> Rays<S> {
+        Rays {
+            points: self.points(),
+        }
+    }
+
+    /// The points of the image plane the row's primary rays pass through, left to right, by
+    /// the camera's [`RayMethod`]: each pixel's s, before [`Self::through`] normalises it.
+    #[must_use]
+    pub(crate) fn points(self) -> Points<S> {
         let width = self.camera.width;
         let roots = self.camera.roots;
         // Stepping starts half a pixel in and adds a whole one each time.
@@ -506,7 +515,7 @@ impl<S: Scalar> Row<S> {
         let centres = (self.camera.rays == RayMethod::PerPixel && roots == RootMethod::Exact)
             .then(|| Centres::new(width))
             .flatten();
-        Rays {
+        Points {
             row: self,
             x: 0,
             s: first,
@@ -515,7 +524,26 @@ impl<S: Scalar> Row<S> {
         }
     }
 
-    fn through(&self, s: Vec3<S>) -> Ray<S> {
+    /// The coordinate `axis` (0, 1, 2: x, y, z) of every point of the row, where the row does
+    /// not move along it (the camera's `across` is exactly 0 there: a level camera's rows, on
+    /// the vertical axis), or `None`.
+    #[must_use]
+    pub(crate) fn level(&self, axis: usize) -> Option<S> {
+        (self.camera.across.get(axis) == Some(S::ZERO))
+            .then(|| self.start.get(axis))
+            .flatten()
+    }
+
+    /// The row's two ends on the image plane, its left edge and its right: every point of the
+    /// row lies between them.
+    #[must_use]
+    pub(crate) fn ends(&self) -> [Vec3<S>; 2] {
+        [self.start, self.start + self.camera.across]
+    }
+
+    /// The primary ray through the image-plane point `s`: from the eye along s/|s|.
+    #[must_use]
+    pub(crate) fn through(&self, s: Vec3<S>) -> Ray<S> {
         Ray::new(Vec3::ZERO, s.normalized(self.camera.roots))
     }
 }
@@ -523,6 +551,22 @@ impl<S: Scalar> Row<S> {
 /// The primary rays of one row, left to right (see [`Row::rays`]).
 #[derive(Clone, Copy, Debug)]
 pub struct Rays<S> {
+    points: Points<S>,
+}
+
+impl<S: Scalar> Iterator for Rays<S> {
+    type Item = Ray<S>;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<Ray<S>> {
+        let s = self.points.next()?;
+        Some(self.points.row.through(s))
+    }
+}
+
+/// The image-plane points of one row's primary rays, left to right (see [`Row::points`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Points<S> {
     row: Row<S>,
     x: u32,
     /// The stepped point on the image plane.
@@ -532,31 +576,30 @@ pub struct Rays<S> {
     centres: Option<Centres<S>>,
 }
 
-impl<S: Scalar> Iterator for Rays<S> {
-    type Item = Ray<S>;
+impl<S: Scalar> Iterator for Points<S> {
+    type Item = Vec3<S>;
 
     #[inline(always)]
-    fn next(&mut self) -> Option<Ray<S>> {
+    fn next(&mut self) -> Option<Vec3<S>> {
         if self.x >= self.row.camera.width {
             return None;
         }
-        let ray = match self.row.camera.rays {
+        let s = match self.row.camera.rays {
             RayMethod::PerPixel => {
                 let fx = match &mut self.centres {
                     Some(centres) => centres.next(),
                     None => pixel_centre::<S>(self.x, self.row.camera.width, self.row.camera.roots),
                 };
-                self.row
-                    .through(self.row.start.add_scaled(self.row.camera.across, fx))
+                self.row.start.add_scaled(self.row.camera.across, fx)
             }
             RayMethod::Stepped => {
-                let ray = self.row.through(self.s);
+                let s = self.s;
                 self.s = self.s + self.step;
-                ray
+                s
             }
         };
         self.x += 1;
-        Some(ray)
+        Some(s)
     }
 }
 

@@ -77,6 +77,7 @@ internal_modules! {
     phase;
     ray;
     render;
+    row_pass;
     scalar;
     scene;
     shade;
@@ -108,6 +109,7 @@ const MODULE_PHASES: &[phase::Module] = &[
     phase::PHASE,
     ray::PHASE,
     render::PHASE,
+    row_pass::PHASE,
     scalar::PHASE,
     scalar::approx::PHASE,
     scalar::bits::PHASE,

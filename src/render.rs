@@ -150,14 +150,34 @@ fn trace_into<S, C, M, P: Parts>(
     let bounds = tracer.objects().iter().map(|object| &object.bound);
     let ranges = RowRanges::new(bounds, row.camera().image_plane(), y);
     let mut candidates = ranges.candidates();
-    let mut centres = row.rays();
+    // A pixel of one ray that can meet a matte plane alone takes the row pass: shaded where
+    // it finds the ray's hit, or the background beyond the world's rim.
+    let plane_row = if sampled {
+        None
+    } else {
+        tracer.plane_row(row)
+    };
+    let mut points = row.points();
     for (x, pixel) in (0..).zip(line.iter_mut()) {
+        let point = points.next();
+        let candidates = candidates.at(x);
+        let passed = plane_row
+            .as_ref()
+            .filter(|plane| candidates == plane.candidates())
+            .zip(point);
+        if let Some((plane, s)) = passed {
+            let colour = match plane.hit(s) {
+                Some(hit) => tracer.shade_plane_row(plane, hit, SampleId { x, y, sample: 0 }),
+                None => tracer.background(row.through(s).dir),
+            };
+            *pixel = colour.quantize_at(dither, x, y);
+            continue;
+        }
         // One call of the tracer for either kind of pixel: a second would change how the
         // compiler inlines it, and so the cost of the one-sample image.
-        let centre = centres.next();
+        let centre = point.map(|s| row.through(s));
         let pattern = sampled.then(|| PixelSamples::new(row, x, y));
         let (mut colour, mut sum) = (Rgb::BLACK, [0_u32; 3]);
-        let candidates = candidates.at(x);
         for i in 0..samples {
             let ray = match &pattern {
                 None => centre,

@@ -6,12 +6,15 @@
 
 crate::phase::declare_phase!(Some(crate::phase::Phase::Shading));
 
+use crate::camera::Row;
 use crate::color::Rgb;
 use crate::light::Light;
+use crate::material::Material;
 use crate::methods::{BiasMethod, Methods, RootMethod};
 use crate::occlusion::Cone;
 use crate::pattern::{Pattern, SHADOW_PROBES, SampleId};
 use crate::ray::{Ray, Span};
+use crate::row_pass::PlaneRow;
 use crate::scalar::{RayKind, Scalar, Work, shl_u64};
 use crate::scene::{Object, Scene, Settings};
 use crate::shape::mesh::{Meshes, Search};
@@ -63,6 +66,21 @@ struct Hit<'a, S: Scalar> {
     object: &'a Object<S>,
     index: usize,
     at: Intersection<S>,
+}
+
+/// A point being shaded: where its shadow rays start, the side they leave and its normals.
+#[derive(Clone, Copy, Debug)]
+struct Shaded<S: Scalar> {
+    /// The point, moved off the surface to the side the ray arrived on by the bias method.
+    above: Vec3<S>,
+    /// The surface's normal on that side.
+    facing: Vec3<S>,
+    /// The normal that shades it, in the narrow format (a smooth mesh's own).
+    shading: Vec3<S::Narrow>,
+    /// The mirror direction about `shading`, read only where the material has a highlight.
+    shading_mirror: Vec3<S::Narrow>,
+    /// The surface the shadow rays leave.
+    from: Leaving<S>,
 }
 
 impl<
@@ -255,13 +273,19 @@ impl<S: Scalar, M: Meshes<S>, P: Parts> Tracer<'_, S, M, P> {
         sample: &mut Sample<S>,
     ) {
         let colour = match hit {
-            None => self.settings.background.colour(task.ray.dir),
+            None => self.background(task.ray.dir),
             Some(hit) => {
                 sample.met |= bit(hit.index);
                 self.shade(task, &hit, stack, &mut sample.met)
             }
         };
         sample.colour = sample.colour + colour.filter(task.weight);
+    }
+
+    /// What a ray along the unit direction `dir` that meets nothing sees.
+    #[inline(always)]
+    pub(crate) fn background(&self, dir: Vec3<S>) -> Rgb<S> {
+        self.settings.background.colour(dir)
     }
 
     /// The span a ray leaving `from` searches: beyond the surface's tolerance for the epsilon
@@ -275,6 +299,17 @@ impl<S: Scalar, M: Meshes<S>, P: Parts> Tracer<'_, S, M, P> {
         Span { min, max }
     }
 
+    /// The row pass of `row` ([`PlaneRow`]), or `None` where it has none (in a tracer without
+    /// planes, none at all).
+    #[inline(always)]
+    pub(crate) fn plane_row(&self, row: &Row<S>) -> Option<PlaneRow<'_, S>> {
+        if !Self::has(Uses::PLANES) {
+            return None;
+        }
+        let span = self.span(None, self.settings.ray_length);
+        PlaneRow::new(self.objects, row, span, self.methods().roots)
+    }
+
     /// How far off the surface of `object` at `point` a secondary ray starts by the epsilon
     /// method: a multiple of the rounding error of a surface point, which grows with its
     /// coordinates, plus the object's own part ([`crate::scene::SURFACE_TOLERANCE_STEPS`]).
@@ -282,6 +317,16 @@ impl<S: Scalar, M: Meshes<S>, P: Parts> Tracer<'_, S, M, P> {
     fn tolerance(&self, point: Vec3<S>, object: &Object<S>) -> S {
         let reach = point.x.abs().max(point.y.abs()).max(point.z.abs());
         self.settings.tolerance_base + self.settings.tolerance_per_unit * reach + object.tolerance
+    }
+
+    /// How far off a surface whose tolerance is `tolerance` its secondary rays start: the
+    /// tolerance by the epsilon method, none by exclusion.
+    #[inline(always)]
+    fn bias_offset(&self, tolerance: S) -> S {
+        match self.methods().bias {
+            BiasMethod::Epsilon => tolerance,
+            BiasMethod::Exclude => S::ZERO,
+        }
     }
 
     /// Where `ray` meets `object` (number `index`), given the surface it leaves; on a mesh
@@ -402,51 +447,25 @@ impl<S: Scalar, M: Meshes<S>, P: Parts> Tracer<'_, S, M, P> {
             tolerance,
         };
         let (this_side, other_side) = (leaving(solid && !entering), leaving(solid && entering));
-        let offset = match self.methods().bias {
-            BiasMethod::Epsilon => tolerance,
-            BiasMethod::Exclude => S::ZERO,
-        };
+        let offset = self.bias_offset(tolerance);
         let above = point.add_scaled(facing, offset);
         let below = point.add_scaled(facing, -offset);
 
-        // The light a surface sends back is the light's colour (in the format) filtered by the
-        // surface's colour, weights and cosines (narrow numbers, at most 1 each).
         let surface = shape.surface_colour(point, material.colour);
-        let mut local = self.settings.ambient.filter(surface);
         // Lambert's and Phong's cosines are of unit vectors: taken in the narrow format, a
         // 16×16 product a coordinate in the formats whose narrow format is 2.14.
-        let (shading, shading_mirror) = (shading.narrow(), shading_mirror.narrow());
-        for light in self.lights {
-            let (l, distance) = (light.position - above).normalized_with_length(roots);
-            let towards = l.narrow();
-            let lambert = shading.dot(towards);
-            if lambert <= S::Narrow::ZERO {
-                continue;
-            }
-            let shadow = if Self::has(Uses::AREA_LIGHTS) && light.shadow_rays > 1 {
-                self.visible_share(light, above, facing, this_side, met)
-            } else {
-                let cones = self.cones_of(light);
-                self.transmittance(&Ray::new(above, l), distance, this_side, met, |i| {
-                    cones.get(i).is_none_or(|cone| cone.admits(l))
-                })
-            };
-            if shadow == S::Narrow::ZERO {
-                continue;
-            }
-            let arriving = light.colour.scale_narrow(shadow);
-            let diffuse = surface.scale(material.diffuse * lambert);
-            local = local + arriving.filter(diffuse);
-            let highlight = shading_mirror.dot(towards);
-            if material.specular > S::Narrow::ZERO && highlight > S::Narrow::ZERO {
-                // The cosine of two unit vectors, which rounding can lift a few steps above 1,
-                // where the power would multiply the excess by the exponent: clamped, it loses
-                // nothing and stays within 1 whatever the exponent.
-                let cosine = highlight.min(S::Narrow::ONE);
-                let phong = material.specular * cosine.powi(material.shininess);
-                local = local + arriving.scale_narrow(phong);
-            }
-        }
+        let local = self.local(
+            material,
+            surface,
+            Shaded {
+                above,
+                facing,
+                shading: shading.narrow(),
+                shading_mirror: shading_mirror.narrow(),
+                from: this_side,
+            },
+            met,
+        );
 
         if task.depth < self.settings.max_depth {
             let depth = task.depth + 1;
@@ -491,6 +510,93 @@ impl<S: Scalar, M: Meshes<S>, P: Parts> Tracer<'_, S, M, P> {
             }
         }
         local
+    }
+
+    /// The light a surface of `material` and colour `surface` sends back at a shaded point
+    /// ([`Shaded`]): the ambient light, and each light's Lambert and Phong terms where a shadow
+    /// ray finds it, adding the objects that shadow it to `met`. The light's colour (in the
+    /// format) is filtered by the surface's colour, weights and cosines (narrow numbers, at
+    /// most 1 each).
+    ///
+    /// Inlined into [`Self::shade`] and the row pass's [`Self::shade_plane_row`], whose copy
+    /// knows the surface matte and its normal the row's.
+    #[inline(always)]
+    fn local(
+        &self,
+        material: &Material<S>,
+        surface: Rgb<S::Narrow>,
+        at: Shaded<S>,
+        met: &mut u64,
+    ) -> Rgb<S> {
+        let roots = self.methods().roots;
+        let mut local = self.settings.ambient.filter(surface);
+        for light in self.lights {
+            let (l, distance) = (light.position - at.above).normalized_with_length(roots);
+            let towards = l.narrow();
+            let lambert = at.shading.dot(towards);
+            if lambert <= S::Narrow::ZERO {
+                continue;
+            }
+            let shadow = if Self::has(Uses::AREA_LIGHTS) && light.shadow_rays > 1 {
+                self.visible_share(light, at.above, at.facing, at.from, met)
+            } else {
+                let cones = self.cones_of(light);
+                self.transmittance(&Ray::new(at.above, l), distance, at.from, met, |i| {
+                    cones.get(i).is_none_or(|cone| cone.admits(l))
+                })
+            };
+            if shadow == S::Narrow::ZERO {
+                continue;
+            }
+            let arriving = light.colour.scale_narrow(shadow);
+            let diffuse = surface.scale(material.diffuse * lambert);
+            local = local + arriving.filter(diffuse);
+            let highlight = at.shading_mirror.dot(towards);
+            if material.specular > S::Narrow::ZERO && highlight > S::Narrow::ZERO {
+                // The cosine of two unit vectors, which rounding can lift a few steps above 1,
+                // where the power would multiply the excess by the exponent: clamped, it loses
+                // nothing and stays within 1 whatever the exponent.
+                let cosine = highlight.min(S::Narrow::ONE);
+                let phong = material.specular * cosine.powi(material.shininess);
+                local = local + arriving.scale_narrow(phong);
+            }
+        }
+        local
+    }
+
+    /// What primary ray `id` of a row pass brings back from `point` on the matte plane `row`
+    /// is of, which the ray met from the side `row` faces ([`PlaneRow`]): its local light
+    /// alone, as [`Self::shade`] finds it (the surface's terms read no direction but the side
+    /// the ray arrives on), a matte surface spawning no ray.
+    ///
+    /// Out of line on the M0, where a copy of the lights' code inlined into the pixel loop
+    /// would take a one-scene image past its 32 KiB of flash, for about 1 % of its cycles.
+    #[cfg_attr(armv6m, inline(never))]
+    pub(crate) fn shade_plane_row(
+        &self,
+        row: &PlaneRow<'_, S>,
+        point: Vec3<S>,
+        id: SampleId,
+    ) -> Rgb<S> {
+        let this = Tracer { id, ..*self };
+        let (index, object) = row.object();
+        let (facing, shading) = row.facing();
+        let tolerance = this.tolerance(point, object);
+        let at = Shaded {
+            above: point.add_scaled(facing, this.bias_offset(tolerance)),
+            facing,
+            shading,
+            // A matte surface has no highlight.
+            shading_mirror: shading,
+            from: Leaving {
+                object: index,
+                part: 0,
+                into: false,
+                tolerance,
+            },
+        };
+        let surface = row.surface_colour(point);
+        this.local(&object.material, surface, at, &mut 0)
     }
 
     /// Pushes a secondary ray unless its weight is too small to show.

@@ -124,6 +124,30 @@ impl<S: Scalar> Vec3<S> {
         self.add_scaled(normal, offset - normal.dot(self))
     }
 
+    /// Coordinate `axis` (0, 1, 2: x, y, z), or `None` beyond z.
+    #[inline]
+    #[must_use]
+    pub(crate) const fn get(self, axis: usize) -> Option<S> {
+        match axis {
+            0 => Some(self.x),
+            1 => Some(self.y),
+            2 => Some(self.z),
+            _ => None,
+        }
+    }
+
+    /// The vector with coordinate `axis` (0, 1, 2: x, y, z) set to `value`; itself beyond z.
+    #[inline]
+    #[must_use]
+    pub(crate) const fn with(self, axis: usize, value: S) -> Self {
+        match axis {
+            0 => Self { x: value, ..self },
+            1 => Self { y: value, ..self },
+            2 => Self { z: value, ..self },
+            _ => self,
+        }
+    }
+
     /// `self + d·t`: the point at parameter `t` along a ray.
     #[inline]
     #[must_use]

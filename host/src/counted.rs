@@ -153,6 +153,8 @@ pub struct Tally {
     /// By kind of ray ([`kind_index`]): rays, tests, tests that met their object, and the
     /// tests' operations.
     pub rays: [Rays; 3],
+    /// The primary rays the row pass found ([`Work::RowPass`]), which take no unit vector.
+    pub row_passed: u64,
     phase: Option<Phase>,
     in_test: bool,
     /// Whether the operations are a box test's, which no floor keeps.
@@ -265,6 +267,7 @@ impl Tally {
                 }
             }
             Work::Hit => self.hit = Some(self.test),
+            Work::RowPass => self.row_passed += 1,
             Work::Met => {
                 let test = self.hit.take().unwrap_or(self.test);
                 let Some(kind) = self.searching else { return };

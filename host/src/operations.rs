@@ -5,7 +5,8 @@
 //!
 //! The floor keeps the scene's shading and the picture, and assumes the best a tracer can do
 //! with the rest: each primary ray's direction stepped along its row by three additions and
-//! made a unit vector (three squares, two sums, a root, three products); each ray tests only
+//! made a unit vector (three squares, two sums, a root, three products), but the row pass's,
+//! which need none ([`obscura::row_pass`]); each ray tests only
 //! the object it meets, at what that test cost here (a ray that meets nothing and a shadow ray
 //! that reaches its light test nothing); shading as measured; and each pixel's colour a product
 //! and a sum per channel on its way to the display.
@@ -82,11 +83,12 @@ impl FrameCount {
     /// The model's lines, the whole pixel last.
     pub fn lines(&self) -> Vec<Line> {
         let tally = &self.tally;
-        let primary = tally.rays[kind_index(RayKind::Primary)].rays;
+        // The row pass's rays take no unit vector.
+        let directed = tally.rays[kind_index(RayKind::Primary)].rays - tally.row_passed;
         let mut lines = vec![Line {
             phase: "primary rays (camera)",
             measured: (tally.camera, 0),
-            floor: (DIRECTION_FLOOR * primary, 0),
+            floor: (DIRECTION_FLOOR * directed, 0),
         }];
         lines.extend(KINDS.iter().map(|&(kind, phase)| {
             let rays = &tally.rays[kind_index(kind)];
@@ -167,10 +169,19 @@ impl FrameCount {
             } else {
                 String::new()
             };
+            // The primary rays the row pass found, where it found any.
+            let passed = if kind == kind_index(RayKind::Primary) && self.tally.row_passed > 0 {
+                format!(
+                    "; {:.0} % by the row pass",
+                    100.0 * per_ray(self.tally.row_passed)
+                )
+            } else {
+                String::new()
+            };
             let _ = writeln!(
                 table,
                 "{name} rays per pixel {:.2}: {:.2} object tests{boxes} each, {:.0} % of them meet \
-                 their object",
+                 their object{passed}",
                 per_pixel(rays.rays),
                 per_ray(rays.tests),
                 100.0 * rays.met as f64 / rays.tests.max(1) as f64,

@@ -337,6 +337,9 @@ pub enum Work {
     Node,
     /// The object just tested is met: the nearest so far, or an occluder of a shadow ray.
     Met,
+    /// The primary ray whose search follows is the row pass's ([`crate::row_pass`]): it
+    /// needs no unit vector.
+    RowPass,
     /// Within a mesh's search, the triangle just tested is met: the mesh's nearest so far, or
     /// an occluder of a shadow ray (the mesh is [met](Self::Met) once its search is over).
     Hit,

@@ -33,6 +33,7 @@
 //! | lens | a lens point A·(a·right + b·up), its tilt (A/f)·(a·right + b·up) | within A ≤ R and A/f, a² + b² ≤ 1 |
 //! | every shape | o + t·d, o − (corner or centre) and their sums | [`magnitudes`]: a point along a ray, P |
 //! | plane | n·d·t for t in the span, offset − n·o | a ray's length T, and P |
+//! | plane, row pass | n·p over the row's n·s, tested against min·(n·s) and (T/2)·(n·s) first; t·s | t ≤ T/2 and each coordinate of s within 3 (rows reaching further trace in general, [`crate::row_pass`]): within 3T/2 = P |
 //! | plane | the world test | a hit less the eye's foot, P + R; each coordinate tested against ρ, then scaled within 1 by a power of two near 1/ρ, which must fit |
 //! | plane | checker coordinates (p − corner)·axis/size | a checker coordinate |
 //! | sphere, quadratic | o − c, b = d·(o − c), \|o − c\|², b², b² − c | b² − c: (\|o\| + \|c\|)² + r² |

@@ -112,7 +112,13 @@ impl<S: Scalar> Plane<S> {
 
     /// The nearest t in `span` where `ray` meets the plane within the world: t = (offset − n·o)
     /// / (n·d). A ray parallel to the plane (n·d = 0) misses it.
-    #[inline(always)]
+    ///
+    /// Out of line on the M0, where a copy inlined into each search (primary, secondary,
+    /// shadow) costs flash a one-scene image cannot spare, and the call costs fewer cycles than
+    /// the copies' register spills (`whitted` in `i16f16`: about a hundred instructions a pixel
+    /// fewer out of line); inlined on the other cores, where it is the cheaper.
+    #[cfg_attr(armv6m, inline(never))]
+    #[cfg_attr(not(armv6m), inline(always))]
     #[must_use]
     pub fn intersect(&self, ray: &Ray<S>, span: Span<S>, roots: RootMethod) -> Option<S> {
         let denominator = self.normal.dot(ray.dir);
@@ -138,6 +144,16 @@ impl<S: Scalar> Plane<S> {
         self.inside_world(ray.at(t)).then_some(t)
     }
 
+    /// Where the ray from the eye along the image-plane point `s` meets the plane, for the `t`
+    /// at which it does (the row pass's, [`crate::row_pass`]): t·s, its coordinate on the
+    /// plane's `axis` the plane's `level` exactly ([`Self::axis`]), or `None` beyond the
+    /// world's rim.
+    #[inline(always)]
+    pub(crate) fn hit_along(&self, s: Vec3<S>, t: S, (axis, level): (usize, S)) -> Option<Vec3<S>> {
+        let point = (s * t).with(axis, level);
+        self.inside_world(point).then_some(point)
+    }
+
     /// Whether `p`, a point of the plane, lies in the visible disc: |q| ≤ ρ for q = p − foot,
     /// tested as |q·s|² ≤ (ρ·s)² with the power of two s ≈ 1/ρ. Each coordinate of q is tested
     /// against ρ first, so that the squares are of numbers within 1 (ρ² itself may not fit the
@@ -150,6 +166,27 @@ impl<S: Scalar> Plane<S> {
             && within(q.y)
             && within(q.z)
             && (q * self.rim_scale).length_squared() <= self.scaled_rim_squared
+    }
+
+    /// The axis (0, 1, 2: x, y, z) the normal lies along exactly, if it does, and the
+    /// coordinate every point of the plane has on it: n·p is then ± that coordinate.
+    #[must_use]
+    pub(crate) fn axis(&self) -> Option<(usize, S)> {
+        let Vec3 { x, y, z } = self.normal;
+        let zero = S::ZERO;
+        let (axis, along) = match (x == zero, y == zero, z == zero) {
+            (false, true, true) => (0, x),
+            (true, false, true) => (1, y),
+            (true, true, false) => (2, z),
+            _ => return None,
+        };
+        if along == S::ONE {
+            Some((axis, self.offset))
+        } else if along == -S::ONE {
+            Some((axis, -self.offset))
+        } else {
+            None
+        }
     }
 
     /// The unit normal (the same everywhere).
