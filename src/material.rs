@@ -38,3 +38,15 @@ crate::words::words_of_struct!(Material<S> {
     ior,
     inv_ior
 });
+
+impl<S: Scalar> Material<S> {
+    /// Whether the surface sends back light along no ray's direction: no highlight, mirror or
+    /// transmission, so that it shades alike whatever the direction a ray arrives along on a
+    /// side (the row pass's planes, [`crate::row_pass`]).
+    #[must_use]
+    pub(crate) fn is_matte(&self) -> bool {
+        [self.specular, self.reflection, self.transmission]
+            .iter()
+            .all(|weight| *weight == S::Narrow::ZERO)
+    }
+}

@@ -29,7 +29,9 @@ use crate::scene::Object;
 use crate::shape::{Plane, Shape};
 use crate::vec3::Vec3;
 
-/// The largest coordinate of an image-plane point a row pass takes (see [`crate::row_pass`]).
+/// The largest coordinate of an image-plane point a row pass takes (see [`crate::row_pass`]):
+/// with t at most T/2, t·s stays within a point along a ray's bound P = O + T = 3T/2
+/// ([`crate::scene::range`]) while each coordinate of s is within P / (T/2) = 3.
 const REACH: i32 = 3;
 
 /// One row's primary rays as they meet a matte plane along an axis (see [`crate::row_pass`]).
@@ -65,7 +67,7 @@ impl<'a, S: Scalar> PlaneRow<'a, S> {
             .take(31)
             .enumerate()
             .find_map(|(index, object)| match &object.shape {
-                Shape::Plane(plane) if is_matte(object) => {
+                Shape::Plane(plane) if object.material.is_matte() => {
                     Some((index, object, plane, plane.axis()?))
                 }
                 _ => None,
@@ -144,19 +146,6 @@ impl<'a, S: Scalar> PlaneRow<'a, S> {
         }
         hit
     }
-}
-
-/// Whether `object`'s surface sends back light along no ray's direction: no highlight, mirror
-/// or transmission.
-fn is_matte<S: Scalar>(object: &Object<S>) -> bool {
-    let material = &object.material;
-    [
-        material.specular,
-        material.reflection,
-        material.transmission,
-    ]
-    .iter()
-    .all(|weight| *weight == S::Narrow::ZERO)
 }
 
 #[cfg(test)]
