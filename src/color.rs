@@ -289,8 +289,12 @@ mod tests {
             1.0 - 1e-7,
             1.0,
             1.5,
+            1e30,
+            -1e30,
+            -1e-30,
             f64::NAN,
             f64::INFINITY,
+            f64::NEG_INFINITY,
         ];
         check::<f32>(
             (0..=4096)

@@ -132,7 +132,7 @@ const _SAMPLE_SUMS_FIT: () = assert!(
 /// line: a firmware holds one copy per format however many scenes it draws.
 #[inline(never)]
 fn trace_into<S, C, M, P: Parts>(
-    tracer: &Tracer<'_, S, M, P>,
+    mut tracer: Tracer<'_, S, M, P>,
     stack: &mut VecView<Task<S>>,
     row: &Row<S>,
     y: u32,
@@ -229,7 +229,7 @@ fn trace_pixels<
         _ => {
             let mut stack: Vec<Task<S>, RAYS> = Vec::new();
             let tracer = scene.tracer(SampleId::default());
-            trace_into(&tracer, stack.as_mut_view(), row, y, dither, line);
+            trace_into(tracer, stack.as_mut_view(), row, y, dither, line);
         }
     }
 }

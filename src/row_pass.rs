@@ -249,7 +249,7 @@ mod tests {
         fn check<S: Scalar>(&self) {
             let (mut shaded, mut differing) = (0, 0);
             each_built_in_scene::<S>(SIDE, |_, _, scene, camera| {
-                let tracer = scene.tracer(SampleId::default());
+                let mut tracer = scene.tracer(SampleId::default());
                 let mut stack: heapless::Vec<crate::shade::Task<S>, 8> = heapless::Vec::new();
                 for y in 0..SIDE {
                     let row = camera.row(y).expect("a row");

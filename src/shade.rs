@@ -175,7 +175,7 @@ pub(crate) struct Tracer<'a, S: Scalar, M, P: Parts> {
     parts: PhantomData<fn() -> P>,
 }
 
-impl<S: Scalar, M: Meshes<S>, P: Parts> Tracer<'_, S, M, P> {
+impl<'a, S: Scalar, M: Meshes<S>, P: Parts> Tracer<'a, S, M, P> {
     /// The parts the tracer has.
     pub(crate) const USES: Uses = P::USES;
 
@@ -222,14 +222,18 @@ impl<S: Scalar, M: Meshes<S>, P: Parts> Tracer<'_, S, M, P> {
     /// [`Scene::trace`] of ray `id` of the image, its primary ray testing only the objects in
     /// `candidates` (those it can meet, [`crate::cull::Candidates`]: bit i for object i, objects
     /// 31 and beyond sharing bit 31), on `stack` (empty, and at least `max_depth + 1` deep).
+    ///
+    /// Sets the tracer's ray in place: a pixel loop's one tracer, where a copy a pixel cost
+    /// the M4F more than a quantised colour.
     pub(crate) fn trace_ray(
-        &self,
+        &mut self,
         primary: Ray<S>,
         id: SampleId,
         candidates: u32,
         stack: &mut VecView<Task<S>>,
     ) -> Sample<S> {
-        Tracer { id, ..*self }.trace(primary, candidates, stack)
+        self.id = id;
+        self.trace(primary, candidates, stack)
     }
 
     /// Traces a primary ray, which tests the objects in `candidates`, through the whole ray
@@ -302,7 +306,7 @@ impl<S: Scalar, M: Meshes<S>, P: Parts> Tracer<'_, S, M, P> {
     /// The row pass of `row` ([`PlaneRow`]), or `None` where it has none (in a tracer without
     /// planes, none at all).
     #[inline(always)]
-    pub(crate) fn plane_row(&self, row: &Row<S>) -> Option<PlaneRow<'_, S>> {
+    pub(crate) fn plane_row(&self, row: &Row<S>) -> Option<PlaneRow<'a, S>> {
         if !Self::has(Uses::PLANES) {
             return None;
         }
@@ -578,6 +582,8 @@ impl<S: Scalar, M: Meshes<S>, P: Parts> Tracer<'_, S, M, P> {
         point: Vec3<S>,
         id: SampleId,
     ) -> Rgb<S> {
+        // A copy with the ray's place, as the M0 (where this is out of line) reads its fields
+        // fastest.
         let this = Tracer { id, ..*self };
         let (index, object) = row.object();
         let (facing, shading) = row.facing();
