@@ -137,7 +137,7 @@ impl<
     #[must_use]
     pub fn first_hit(&self, ray: &Ray<S>) -> Option<(usize, u32)> {
         self.tracer(SampleId::default())
-            .nearest(ray, None, |_| true)
+            .nearest(ray, None, || true)
             .map(|hit| (hit.index, hit.at.part))
     }
 
@@ -249,8 +249,13 @@ impl<'a, S: Scalar, M: Meshes<S>, P: Parts> Tracer<'a, S, M, P> {
             depth: 0,
             from: None,
         };
-        let hit = self.nearest(&task.ray, None, |index| {
-            candidates & (1 << index.min(31)) != 0
+        // Object i's bit is bit i of what is left of the mask shifted right i times: an
+        // arithmetic shift, which keeps bit 31 for the objects beyond 30 that share it.
+        let mut rest = candidates;
+        let hit = self.nearest(&task.ray, None, || {
+            let wanted = rest & 1 != 0;
+            rest = (rest.cast_signed() >> 1).cast_unsigned();
+            wanted
         });
         let mut sample = Sample {
             colour: Rgb::BLACK,
@@ -260,7 +265,7 @@ impl<'a, S: Scalar, M: Meshes<S>, P: Parts> Tracer<'a, S, M, P> {
         self.add(&task, hit, stack, &mut sample);
         // Secondary rays test every object.
         while let Some(task) = stack.pop() {
-            let hit = self.nearest(&task.ray, task.from, |_| true);
+            let hit = self.nearest(&task.ray, task.from, || true);
             self.add(&task, hit, stack, &mut sample);
         }
         sample
@@ -373,13 +378,14 @@ impl<'a, S: Scalar, M: Meshes<S>, P: Parts> Tracer<'a, S, M, P> {
         }
     }
 
-    /// The nearest object along `ray` within the world, of those `wanted` by their index.
+    /// The nearest object along `ray` within the world, of those `wanted`: asked once for
+    /// each object, in order.
     #[inline(always)]
     fn nearest(
         &self,
         ray: &Ray<S>,
         from: Option<Leaving<S>>,
-        wanted: impl Fn(usize) -> bool,
+        mut wanted: impl FnMut() -> bool,
     ) -> Option<Hit<'_, S>> {
         S::note(Work::Search(if from.is_some() {
             RayKind::Secondary
@@ -390,7 +396,7 @@ impl<'a, S: Scalar, M: Meshes<S>, P: Parts> Tracer<'a, S, M, P> {
         let mut nearest = None;
         let mut per_ray = PerRay::new();
         for (index, object) in self.objects.iter().enumerate() {
-            if !wanted(index) {
+            if !wanted() {
                 continue;
             }
             S::note(Work::Test);
