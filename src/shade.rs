@@ -254,7 +254,8 @@ impl<'a, S: Scalar, M: Meshes<S>, P: Parts> Tracer<'a, S, M, P> {
         let mut rest = candidates;
         let hit = self.nearest(&task.ray, None, || {
             let wanted = rest & 1 != 0;
-            rest = (rest.cast_signed() >> 1).cast_unsigned();
+            let shifted = i32::from_ne_bytes(rest.to_ne_bytes()) >> 1;
+            rest = u32::from_ne_bytes(shifted.to_ne_bytes());
             wanted
         });
         let mut sample = Sample {
