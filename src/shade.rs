@@ -1043,6 +1043,40 @@ mod tests {
     }
 
     #[test]
+    fn a_primary_ray_tests_the_objects_its_mask_names_those_beyond_30_by_bit_31() {
+        // Forty balls: 3 and 35 on the ray's axis (3 nearer), the rest above it.
+        let ball = |i: u16| {
+            let on_axis = i == 3 || i == 35;
+            let (y, z, radius) = if on_axis {
+                (0.0, if i == 3 { 3.0 } else { 6.0 }, 0.5)
+            } else {
+                (3.0, 1.0 + 0.2 * f32::from(i), 0.05)
+            };
+            ObjectDesc {
+                shape: ShapeDesc::Sphere {
+                    center: [0.0, y, z],
+                    radius,
+                },
+                material: MaterialDesc::matte([1.0; 3]),
+            }
+        };
+        let objects: std::vec::Vec<ObjectDesc> = (0..40).map(ball).collect();
+        let scene = Scene::<f32, 40, 1, 8>::build(&desc(&objects, &[], 0.1, 0)).unwrap();
+        let mut tracer = scene.tracer(SampleId::default());
+        let mut stack: Vec<Task<f32>, 8> = Vec::new();
+        let ray = Ray::new(Vec3::ZERO, v(0.0, 0.0, 1.0));
+        let mut met = |candidates: u32| {
+            tracer
+                .trace_ray(ray, SampleId::default(), candidates, stack.as_mut_view())
+                .object
+        };
+        assert_eq!(met(u32::MAX), Some(3));
+        assert_eq!(met(!(1 << 3)), Some(35));
+        assert_eq!(met(1 << 31), Some(35));
+        assert_eq!(met(!(1 << 3) & !(1 << 31)), None);
+    }
+
+    #[test]
     fn a_miss_sees_the_background_and_names_no_object() {
         for_each_format!(S, {
             let scene = Scene::<S, 4, 2, 8>::build(&desc(&[], &[], 0.1, 2)).unwrap();
