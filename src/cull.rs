@@ -198,12 +198,16 @@ fn extent(f: f64, g: f64, h: f64) -> Option<Option<[f64; 2]>> {
     Some(Some([(-b + root) / a, (-b - root) / a]))
 }
 
+/// The bit of a candidate mask ([`Candidates::at`]) that the objects from this index on share:
+/// the last of a `u32`. The objects before it have a bit of their own.
+pub(crate) const SHARED_BIT: usize = 31;
+
 /// For each object of a scene, the pixels of one row whose primary rays may meet it: one range
-/// per bit of [`Candidates::at`], the objects from 31 on sharing the last.
+/// per bit of [`Candidates::at`], the objects from [`SHARED_BIT`] on sharing the last.
 #[derive(Clone, Debug)]
 pub struct RowRanges {
     /// The first and the last pixel of each range (first > last: none).
-    ranges: [(u32, u32); 32],
+    ranges: [(u32, u32); SHARED_BIT + 1],
     /// How many ranges are in use.
     len: usize,
 }
@@ -217,15 +221,15 @@ impl RowRanges {
         plane: Option<&ImagePlane>,
         y: u32,
     ) -> Self {
-        let mut ranges = [NONE; 32];
+        let mut ranges = [NONE; SHARED_BIT + 1];
         let mut len = 0;
         for (i, bound) in bounds.into_iter().enumerate() {
             let range = plane.map_or(ALL, |plane| plane.row_range(bound, y));
-            // The objects from 31 on share the last range: the span of theirs.
-            if let Some(slot) = ranges.get_mut(i.min(31)) {
-                *slot = if i < 32 { range } else { hull(*slot, range) };
+            // The objects from SHARED_BIT on share the last range: the span of theirs.
+            if let Some(slot) = ranges.get_mut(i.min(SHARED_BIT)) {
+                *slot = if i <= SHARED_BIT { range } else { hull(*slot, range) };
             }
-            len = (i + 1).min(32);
+            len = (i + 1).min(SHARED_BIT + 1);
         }
         Self { ranges, len }
     }
@@ -277,7 +281,7 @@ impl Candidates<'_> {
             self.next = u32::MAX;
             for (i, &(first, last)) in self.ranges.iter().enumerate() {
                 if first <= x && x <= last {
-                    self.mask |= 1 << i.min(31);
+                    self.mask |= 1 << i.min(SHARED_BIT);
                     self.next = self.next.min(last.saturating_add(1));
                 } else if first > x {
                     self.next = self.next.min(first);

@@ -21,6 +21,7 @@
 crate::phase::declare_phase!(Some(crate::phase::Phase::Camera));
 
 use crate::camera::Row;
+use crate::cull::SHARED_BIT;
 use crate::color::Rgb;
 use crate::methods::RootMethod;
 use crate::ray::Span;
@@ -53,7 +54,7 @@ pub(crate) struct PlaneRow<'a, S: Scalar> {
 
 impl<'a, S: Scalar> PlaneRow<'a, S> {
     /// The row pass of `row` for the first matte plane along an axis of `objects` (one of the
-    /// first 31, which have a culling bit of their own), whose primary rays search `span` and
+    /// first [`SHARED_BIT`], which have a culling bit of their own), whose primary rays search `span` and
     /// divide by `roots`, or `None` where no plane qualifies or the row's rays meet it behind
     /// the eye, too near or too far.
     pub(crate) fn new(
@@ -64,7 +65,7 @@ impl<'a, S: Scalar> PlaneRow<'a, S> {
     ) -> Option<Self> {
         let (index, object, plane, (axis, level)) = objects
             .iter()
-            .take(31)
+            .take(SHARED_BIT)
             .enumerate()
             .find_map(|(index, object)| match &object.shape {
                 Shape::Plane(plane) if object.material.is_matte() => {
@@ -73,8 +74,7 @@ impl<'a, S: Scalar> PlaneRow<'a, S> {
                 _ => None,
             })?;
         let [left, right] = row.ends();
-        let farthest = |s: Vec3<S>| s.x.abs().max(s.y.abs()).max(s.z.abs());
-        if farthest(left).max(farthest(right)) > S::from_int(REACH) {
+        if left.max_abs().max(right.max_abs()) > S::from_int(REACH) {
             return None;
         }
         // s's coordinate on the axis, the same all along the row: n·s but for its sign.

@@ -325,7 +325,7 @@ impl<'a, S: Scalar, M: Meshes<S>, P: Parts> Tracer<'a, S, M, P> {
     /// coordinates, plus the object's own part ([`crate::scene::SURFACE_TOLERANCE_STEPS`]).
     #[inline(always)]
     fn tolerance(&self, point: Vec3<S>, object: &Object<S>) -> S {
-        let reach = point.x.abs().max(point.y.abs()).max(point.z.abs());
+        let reach = point.max_abs();
         self.settings.tolerance_base + self.settings.tolerance_per_unit * reach + object.tolerance
     }
 

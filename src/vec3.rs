@@ -124,6 +124,13 @@ impl<S: Scalar> Vec3<S> {
         self.add_scaled(normal, offset - normal.dot(self))
     }
 
+    /// The largest magnitude of a coordinate: the vector's size in the maximum norm.
+    #[inline]
+    #[must_use]
+    pub fn max_abs(self) -> S {
+        self.x.abs().max(self.y.abs()).max(self.z.abs())
+    }
+
     /// Coordinate `axis` (0, 1, 2: x, y, z), or `None` beyond z.
     #[inline]
     #[must_use]

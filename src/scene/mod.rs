@@ -1118,7 +1118,7 @@ impl<S: Scalar> Converter<S> {
     /// A value that does not fit: the range proof has ruled out all but positions too far
     /// for the format, which a smaller world brings in.
     fn out_of_range(&self, item: Item, quantity: &'static str, v: Vec3<f64>) -> SceneError {
-        let value = v.x.abs().max(v.y.abs()).max(v.z.abs());
+        let value = v.max_abs();
         SceneError::OutOfRange {
             item,
             quantity,
