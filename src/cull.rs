@@ -200,7 +200,7 @@ fn extent(f: f64, g: f64, h: f64) -> Option<Option<[f64; 2]>> {
 
 /// The bit of a candidate mask ([`Candidates::at`]) that the objects from this index on share:
 /// the last of a `u32`. The objects before it have a bit of their own.
-pub(crate) const SHARED_BIT: usize = 31;
+pub const SHARED_BIT: usize = 31;
 
 /// For each object of a scene, the pixels of one row whose primary rays may meet it: one range
 /// per bit of [`Candidates::at`], the objects from [`SHARED_BIT`] on sharing the last.
