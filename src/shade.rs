@@ -150,6 +150,7 @@ impl<
             lights: &self.lights,
             cones: self.cones.as_flattened(),
             objects_capacity: OBJECTS,
+            lone_balls: self.settings.lone_balls,
             settings: &self.settings,
             id,
             parts: PhantomData,
@@ -169,6 +170,8 @@ pub(crate) struct Tracer<'a, S: Scalar, M, P: Parts> {
     /// `objects_capacity` for each light.
     cones: &'a [Cone<S>],
     objects_capacity: usize,
+    /// [`Settings::lone_balls`] (none: rays inside a ball test every object).
+    lone_balls: u32,
     settings: &'a Settings<S>,
     /// Which ray of the image is traced.
     id: SampleId,
@@ -197,10 +200,15 @@ impl<'a, S: Scalar, M: Meshes<S>, P: Parts> Tracer<'a, S, M, P> {
         self.objects
     }
 
-    /// This tracer with shadow rays that test every object, whatever their cones: what the
-    /// cones are checked against ([`crate::skips::first_skipped_shadow`]).
-    pub(crate) fn without_cones(self) -> Self {
-        Self { cones: &[], ..self }
+    /// This tracer with shadow rays that test every object, whatever their cones, and rays
+    /// inside a lone ball too: what the cones and the lone balls are checked against
+    /// ([`crate::skips::first_skipped_secondary`]).
+    pub(crate) fn testing_everything(self) -> Self {
+        Self {
+            cones: &[],
+            lone_balls: 0,
+            ..self
+        }
     }
 
     /// The cones of the objects from `light` (none: every object is tested).
@@ -243,33 +251,60 @@ impl<'a, S: Scalar, M: Meshes<S>, P: Parts> Tracer<'a, S, M, P> {
     /// different capacities) it draws.
     #[inline(never)]
     fn trace(&self, primary: Ray<S>, candidates: u32, stack: &mut VecView<Task<S>>) -> Sample<S> {
-        let task = Task {
+        let mut task = Task {
             ray: primary,
             weight: Rgb::WHITE,
             depth: 0,
             from: None,
         };
-        // Object i's bit is bit i of what is left of the mask shifted right i times: an
-        // arithmetic shift, which keeps bit 31 for the objects beyond 30 that share it.
-        let mut rest = candidates;
-        let hit = self.nearest(&task.ray, None, || {
-            let wanted = rest & 1 != 0;
-            let shifted = i32::from_ne_bytes(rest.to_ne_bytes()) >> 1;
-            rest = u32::from_ne_bytes(shifted.to_ne_bytes());
-            wanted
-        });
+        let mut candidates = candidates;
         let mut sample = Sample {
             colour: Rgb::BLACK,
-            object: hit.as_ref().map(|hit| hit.index),
+            object: None,
             met: 0,
         };
-        self.add(&task, hit, stack, &mut sample);
-        // Secondary rays test every object.
-        while let Some(task) = stack.pop() {
-            let hit = self.nearest(&task.ray, task.from, || true);
+        loop {
+            // Object i's bit is bit i of what is left of the mask shifted right i times: an
+            // arithmetic shift, which keeps bit 31 for the objects beyond 30 that share it.
+            let mut rest = candidates;
+            let hit = self.nearest(&task.ray, task.from, || {
+                let wanted = rest & 1 != 0;
+                let shifted = i32::from_ne_bytes(rest.to_ne_bytes()) >> 1;
+                rest = u32::from_ne_bytes(shifted.to_ne_bytes());
+                wanted
+            });
+            if task.from.is_some() && hit.is_none() && candidates != u32::MAX {
+                // A ray inside a lone ball that misses its wall (it started, within the
+                // rounding, already out) searches everything.
+                candidates = u32::MAX;
+                continue;
+            }
+            if task.from.is_none() {
+                sample.object = hit.as_ref().map(|hit| hit.index);
+            }
             self.add(&task, hit, stack, &mut sample);
+            let Some(next) = stack.pop() else {
+                return sample;
+            };
+            task = next;
+            candidates = self.secondary_candidates(task.from);
         }
-        sample
+    }
+
+    /// The objects a secondary ray leaving `from` tests: a ray inside a lone ball
+    /// ([`Settings::lone_balls`]) its wall alone, every other ray every object.
+    #[inline(always)]
+    fn secondary_candidates(&self, from: Option<Leaving<S>>) -> u32 {
+        let ball = from
+            .filter(|leaving| leaving.into)
+            .and_then(|leaving| u32::try_from(leaving.object).ok())
+            .and_then(|object| 1_u32.checked_shl(object))
+            .unwrap_or(0);
+        if self.lone_balls & ball != 0 {
+            ball
+        } else {
+            u32::MAX
+        }
     }
 
     /// Adds what `task`'s ray brings back, having met `hit`, to `sample`, pushing the rays its
@@ -1074,6 +1109,64 @@ mod tests {
         assert_eq!(met(!(1 << 3)), Some(35));
         assert_eq!(met(1 << 31), Some(35));
         assert_eq!(met(!(1 << 3) & !(1 << 31)), None);
+    }
+
+    #[test]
+    fn whitteds_glass_ball_is_lone_and_a_ball_near_another_object_or_opaque_is_not() {
+        use crate::scalar::{I16F16, I20F12};
+        use crate::scenes::WHITTED;
+        let lone = |objects: &[ObjectDesc]| {
+            let desc = SceneDesc { objects, ..WHITTED };
+            Scene::<f32, 4, 1, 8>::build(&desc).unwrap().settings.lone_balls
+        };
+        // The glass ball (object 2) floats 0.9 over the floor and 1.3 from the mirror ball;
+        // the mirror ball lets no light through.
+        assert_eq!(lone(WHITTED.objects), 1 << 2);
+        assert_eq!(Scene::<I16F16, 4, 1, 8>::build(&WHITTED).unwrap().settings.lone_balls, 1 << 2);
+        // A format whose errors reach the clearance (i20f12 finds the ball to within 0.45,
+        // four times that over the floor's 0.9) tests every object.
+        assert_eq!(Scene::<I20F12, 4, 1, 8>::build(&WHITTED).unwrap().settings.lone_balls, 0);
+        let moved = |center| {
+            let mut objects: [ObjectDesc; 3] = WHITTED.objects.try_into().unwrap();
+            objects[2].shape = ShapeDesc::Sphere {
+                center,
+                radius: 1.0,
+            };
+            lone(&objects)
+        };
+        // Clear of both by a hundredth: lone; resting on the floor, or touching the other
+        // ball: not.
+        assert_eq!(moved([0.55, 1.01, 0.6]), 1 << 2);
+        assert_eq!(moved([0.55, 1.0, 0.6]), 0);
+        assert_eq!(moved([0.75, 1.3, 3.2]), 0);
+        let mut opaque: [ObjectDesc; 3] = WHITTED.objects.try_into().unwrap();
+        opaque[2].material.transmission = 0.0;
+        assert_eq!(lone(&opaque), 0);
+    }
+
+    #[test]
+    fn a_ray_inside_a_lone_ball_meets_its_wall_alone() {
+        // A small matte ball inside a glass one, on the axis: the ray through the glass meets
+        // it. Were the glass ball lone, the rays inside would test only its wall.
+        let glass = MaterialDesc {
+            transmission: 0.9,
+            ior: 1.0,
+            ..MaterialDesc::matte([1.0; 3])
+        };
+        let ball = |radius, material| ObjectDesc {
+            shape: ShapeDesc::Sphere {
+                center: [0.0, 0.0, 5.0],
+                radius,
+            },
+            material,
+        };
+        let objects = [ball(2.0, glass), ball(0.5, MaterialDesc::matte([1.0; 3]))];
+        let mut scene = Scene::<f32, 2, 1, 8>::build(&desc(&objects, &[], 0.1, 4)).unwrap();
+        assert_eq!(scene.settings.lone_balls, 0, "a ball with one inside is not lone");
+        let ray = Ray::new(Vec3::ZERO, v(0.0, 0.0, 1.0));
+        assert_eq!(scene.trace(ray, SampleId::default()).met, 0b11);
+        scene.settings.lone_balls = 1;
+        assert_eq!(scene.trace(ray, SampleId::default()).met, 0b01);
     }
 
     #[test]

@@ -1,6 +1,7 @@
-//! Whether culling ([`crate::cull`]) or the shadow cones ([`crate::occlusion`]) ever skip a
-//! test that would meet its object: each traced against the tracer with every object tested.
-//! What the tests and the fuzzer hold both to; the tracer itself never calls them.
+//! Whether culling ([`crate::cull`]), the shadow cones ([`crate::occlusion`]) or the lone balls
+//! (`Settings::lone_balls`) ever skip a test that would meet its object: each traced against
+//! the tracer with every object tested. What the tests and the fuzzer hold them to; the tracer
+//! itself never calls them.
 
 crate::phase::declare_phase!(Some(crate::phase::Phase::Build));
 
@@ -81,12 +82,13 @@ pub fn first_skipped_hit<
     None
 }
 
-/// The first pixel whose centre's ray tree, traced with the shadow cones, differs from the one
-/// traced testing every object, as (x, y, object): the object whose shadow differs (the lowest
-/// in [`crate::Sample::met`] that does), or the one the primary ray meets. `None` when none differs.
-/// What the tests and the fuzzer hold the cones to.
+/// The first pixel whose centre's ray tree, traced with the shadow cones and the lone balls
+/// (whose inside rays test their wall alone), differs from the one traced testing every
+/// object, as (x, y, object): the object whose shadow or hit differs (the lowest in
+/// [`crate::Sample::met`] that does), or the one the primary ray meets. `None` when none
+/// differs. What the tests and the fuzzer hold the cones and the lone balls to.
 #[must_use]
-pub fn first_skipped_shadow<
+pub fn first_skipped_secondary<
     S: Scalar,
     const OBJECTS: usize,
     const LIGHTS: usize,
@@ -101,14 +103,15 @@ pub fn first_skipped_shadow<
         let row = camera.row(y)?;
         for (x, ray) in (0..).zip(row.rays()) {
             let id = SampleId { x, y, sample: 0 };
-            let coned = scene.trace(ray, id);
-            let open =
-                scene
-                    .tracer(id)
-                    .without_cones()
-                    .trace_ray(ray, id, u32::MAX, stack.as_mut_view());
-            if coned != open {
-                let differing = coned.met ^ open.met;
+            let skipping = scene.trace(ray, id);
+            let open = scene.tracer(id).testing_everything().trace_ray(
+                ray,
+                id,
+                u32::MAX,
+                stack.as_mut_view(),
+            );
+            if skipping != open {
+                let differing = skipping.met ^ open.met;
                 let object = if differing == 0 {
                     open.object.unwrap_or(0)
                 } else {
@@ -153,14 +156,14 @@ mod tests {
 
     /// Every built-in scene that the format holds, by the lecture's methods and each variant,
     /// at a small size: no pixel's ray tree changes when its shadow rays skip what the cones
-    /// rule out.
-    struct ConesKeepEveryShadow;
+    /// rule out and rays inside a lone ball test its wall alone.
+    struct ConesAndLoneBallsKeepEveryTree;
 
-    impl FormatCheck for ConesKeepEveryShadow {
+    impl FormatCheck for ConesAndLoneBallsKeepEveryTree {
         fn check<S: Scalar>(&self) {
             each_built_in_scene::<S>(40, |name, methods, scene, camera| {
                 assert_eq!(
-                    first_skipped_shadow(scene, camera),
+                    first_skipped_secondary(scene, camera),
                     None,
                     "{name} in {} by {methods:?}",
                     S::NAME
@@ -170,7 +173,7 @@ mod tests {
     }
 
     #[test]
-    fn cones_keep_every_shadow_of_the_built_in_scenes_in_every_format() {
-        for_every_format(&ConesKeepEveryShadow);
+    fn cones_and_lone_balls_keep_every_ray_tree_of_the_built_in_scenes_in_every_format() {
+        for_every_format(&ConesAndLoneBallsKeepEveryTree);
     }
 }

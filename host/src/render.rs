@@ -10,7 +10,7 @@ use embedded_graphics::primitives::Rectangle;
 use image::RgbImage;
 use indicatif::{ProgressBar, ProgressStyle};
 use obscura::pattern::{Pattern, SampleId};
-use obscura::skips::{first_skipped_hit, first_skipped_shadow};
+use obscura::skips::{first_skipped_hit, first_skipped_secondary};
 use obscura::{
     Camera, Corner, Dither, Methods, Presentation, Ray, RenderError, Rgb, RootMethod, RowTracer,
     Scalar, SceneDesc, SceneError, corner_rows, render_frame, send_row,
@@ -293,7 +293,8 @@ impl<S: Scalar> Prepared<S> {
 
     /// The first pixel whose rays meet an object that culling leaves out of its row
     /// ([`obscura::skips::first_skipped_hit`]), or whose ray tree changes when its shadow rays
-    /// skip what the shadow cones rule out ([`obscura::skips::first_skipped_shadow`]), as
+    /// skip what the shadow cones rule out or rays inside a lone ball test its wall alone
+    /// ([`obscura::skips::first_skipped_secondary`]), as
     /// (x, y, object), or `None`.
     ///
     /// # Errors
@@ -306,7 +307,7 @@ impl<S: Scalar> Prepared<S> {
                 return Ok(Some((x, y, object)));
             }
         }
-        checked::catch(|| first_skipped_shadow(&self.scene, &self.camera))
+        checked::catch(|| first_skipped_secondary(&self.scene, &self.camera))
             .map_err(|overflowed| self.overflow_at(0..self.camera.height(), overflowed))
     }
 

@@ -125,6 +125,11 @@ pub(crate) struct Settings<S: Scalar> {
     /// See [`SceneDesc::adaptive_shadows`].
     pub(crate) adaptive_shadows: bool,
     pub(crate) methods: Methods,
+    /// The balls a ray may be inside of (they let light through) with nothing else inside, a
+    /// bit each (bit i for object i, below [`crate::cull::SHARED_BIT`]): every other object is
+    /// clear of the ball by more than the errors with which a ray finds either, so a ray inside
+    /// can meet only its wall, and tests that alone ([`Converter::lone_balls`]).
+    pub(crate) lone_balls: u32,
 }
 
 crate::words::words_of_struct!(Settings<S> {
@@ -139,7 +144,8 @@ crate::words::words_of_struct!(Settings<S> {
     samples,
     adaptive_samples,
     adaptive_shadows,
-    methods
+    methods,
+    lone_balls
 });
 
 impl<S: Scalar, const OBJECTS: usize, const LIGHTS: usize, const RAYS: usize, M: MeshStorage<S>>
@@ -545,7 +551,7 @@ impl<S: Scalar> Converter<S> {
             meshes,
             lights,
             cones,
-            settings: self.settings(desc)?,
+            settings: self.settings(desc, tolerance)?,
             frame: self.frame,
             parts: PhantomData,
         })
@@ -730,7 +736,8 @@ impl<S: Scalar> Converter<S> {
     /// What the tracer needs of `desc` besides its objects and lights. Out of line, as
     /// [`Self::object`] is.
     #[inline(never)]
-    fn settings(&self, desc: &SceneDesc<'_>) -> Result<Settings<S>, SceneError> {
+    /// The settings of `desc`, where secondary rays start off surfaces by at most `tolerance`.
+    fn settings(&self, desc: &SceneDesc<'_>, tolerance: f64) -> Result<Settings<S>, SceneError> {
         let background = match desc.background {
             BackgroundDesc::Solid(c) => {
                 Background::Solid(self.colour(Item::Scene, "background.solid", c)?)
@@ -783,7 +790,55 @@ impl<S: Scalar> Converter<S> {
             adaptive_samples: desc.adaptive_samples,
             adaptive_shadows: desc.adaptive_shadows,
             methods: self.methods,
+            lone_balls: self.lone_balls(desc, tolerance),
         })
+    }
+
+    /// [`Settings::lone_balls`] of `desc`: its spheres that let light through, of the first
+    /// [`crate::cull::SHARED_BIT`] objects, that every other object clears by more than
+    /// [`REACH_ERRORS`] times the errors with which a ray from anywhere in the world finds
+    /// either, and `tolerance`, the farthest a secondary ray starts off its surface. A ray
+    /// inside such a ball meets its wall before anything else; if it misses the wall (it
+    /// started, within the rounding, already out), the tracer searches everything.
+    fn lone_balls(&self, desc: &SceneDesc<'_>, tolerance: f64) -> u32 {
+        let anywhere = self.world + self.slack;
+        let found = |shape: &ShapeDesc| Some(REACH_ERRORS * self.finding_error(shape, desc, anywhere)?);
+        let lone = |i: usize, object: &ObjectDesc| {
+            let ShapeDesc::Sphere { center, radius } = object.shape else {
+                return Some(false);
+            };
+            if object.material.transmission == 0.0 {
+                return Some(false);
+            }
+            let (centre, radius) = (Vec3::from_f32(center) - self.eye, f64::from(radius));
+            let own = found(&object.shape)?;
+            for (j, other) in desc.objects.iter().enumerate() {
+                if j == i {
+                    continue;
+                }
+                let gap = match other.shape {
+                    ShapeDesc::Plane { point, normal, .. } => {
+                        let normal = Vec3::from_f32(normal);
+                        let offset = centre - (Vec3::from_f32(point) - self.eye);
+                        normal.dot(offset).abs() / normal.length() - radius
+                    }
+                    _ => {
+                        let (c, r) = cull::ball(&other.shape, &desc.meshes, self.eye)?;
+                        (c - centre).length() - r - radius
+                    }
+                };
+                // A NaN gap (a plane without a normal) is not clear.
+                let clear = gap > own + found(&other.shape)? + tolerance;
+                if !clear {
+                    return Some(false);
+                }
+            }
+            Some(true)
+        };
+        (0..)
+            .zip(desc.objects.iter().take(cull::SHARED_BIT))
+            .filter(|&(i, object)| lone(i, object) == Some(true))
+            .fold(0, |balls, (i, _)| balls | 1 << i)
     }
 
     /// Object `item` of `desc`. Out of line, so that a firmware holds one copy per format
