@@ -19,7 +19,7 @@ use crate::firmware::{self, Board, Target};
 use crate::operations;
 use crate::render::Request;
 use anyhow::Result;
-use obscura::{Methods, SceneDesc};
+use obscura::{Methods, RowOrder, SceneDesc};
 use obscura_scene::firmware::SIDE;
 use obscura_scene::{Format, NamedScene};
 use serde::Deserialize;
@@ -182,12 +182,27 @@ pub struct Estimate {
     pub board: Board,
     /// Instructions and cycles per pixel.
     pub per_pixel: PerPixel,
-    /// Seconds per frame.
-    pub seconds: f64,
+    /// Seconds tracing a frame.
+    pub tracing: f64,
     /// The scene whose firmware run priced an operation, as `obscura firmware --scene` names it.
     pub priced_by: &'static str,
     /// The format of that run.
     pub priced_in: Format,
+}
+
+impl Estimate {
+    /// The seconds the display's SPI takes to send the frame drawn in `order`
+    /// ([`Board::sending_seconds`]).
+    pub fn sending(&self, order: RowOrder) -> f64 {
+        self.board.sending_seconds(order, SIDE, SIDE)
+    }
+
+    /// The seconds a frame drawn in `order` takes as the boards draw it: tracing, then
+    /// sending, one after the other (core 0 sends both cores' rows of each pair once traced,
+    /// and core 1 waits for its next row meanwhile).
+    pub fn seconds(&self, order: RowOrder) -> f64 {
+        self.tracing + self.sending(order)
+    }
 }
 
 /// The estimate for a `SIDE`×`SIDE` frame of `desc` in `format` by `methods` on `target`'s
@@ -212,7 +227,7 @@ pub fn frame(
     Ok(Some(Estimate {
         board,
         per_pixel,
-        seconds: board.seconds((per_pixel.cycles * pixels) as u64),
+        tracing: board.seconds((per_pixel.cycles * pixels) as u64),
         priced_by: pricing.scene.scene(),
         priced_in: pricing.format,
     }))
@@ -307,7 +322,7 @@ mod tests {
             frame(Target::M0, Format::I16f16, desc, Methods::LECTURE)
                 .unwrap()
                 .unwrap()
-                .seconds
+                .tracing
         };
         assert!(
             cost(&all) > 8.0 * cost(&one),

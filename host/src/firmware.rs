@@ -6,7 +6,7 @@ use anyhow::{Context, Result, bail};
 use clap::ValueEnum;
 use object::{Object, ObjectSection, SectionFlags, SectionKind};
 use obscura::methods::MethodName;
-use obscura::{Methods, Presentation};
+use obscura::{Methods, Presentation, RowOrder};
 use obscura_scene::FirmwareSettings;
 use obscura_scene::Format;
 use std::ffi::OsString;
@@ -135,21 +135,26 @@ impl Target {
                 name: "Black Pill (STM32F411, Cortex-M4F)",
                 core_hz: 100_000_000,
                 cores: 1,
+                // SPI1 from the 100 MHz APB2 clock, divided by 2 (`boards/black-pill`).
+                spi_hz: 50_000_000,
             },
             Self::M0 => Board {
                 name: "Raspberry Pi Pico (RP2040, Cortex-M0+)",
                 core_hz: 125_000_000,
                 cores: 2,
+                spi_hz: rp_spi_hz(125_000_000, ST7789_SPI_HZ),
             },
             Self::M33 => Board {
                 name: "Raspberry Pi Pico 2 (RP2350, Cortex-M33)",
                 core_hz: 150_000_000,
                 cores: 2,
+                spi_hz: rp_spi_hz(150_000_000, ST7789_SPI_HZ),
             },
             Self::Rv32 => Board {
                 name: "Raspberry Pi Pico 2 (RP2350, Hazard3 RISC-V)",
                 core_hz: 150_000_000,
                 cores: 2,
+                spi_hz: rp_spi_hz(150_000_000, ST7789_SPI_HZ),
             },
         }
     }
@@ -160,8 +165,8 @@ impl Target {
     }
 }
 
-/// A board the firmware runs on: its core clock and how many cores trace (the Pico's two share
-/// the rows, `boards/pico`).
+/// A board the firmware runs on: its core clock, how many cores trace (the Pico's two share
+/// the rows, `boards/pico`) and the clock of the SPI that feeds its display.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Board {
     /// What it is called.
@@ -170,12 +175,52 @@ pub struct Board {
     pub core_hz: u64,
     /// The cores that trace rows.
     pub cores: u32,
+    /// The display's SPI clock, as the board's HAL sets it from what the board asks.
+    pub spi_hz: u32,
+}
+
+/// The SPI clock the Pico boards ask for the ST7789 (`boards/pico`, `boards/pico2`,
+/// `templates/pico`): its fastest write clock, 62.5 MHz.
+pub const ST7789_SPI_HZ: u32 = 62_500_000;
+
+/// Bytes the ST7789 is sent for each rectangle besides its pixels: CASET and RASET, a command
+/// byte and four bytes of addresses each, and RAMWR's command byte (mipidsi's address window).
+const WINDOW_BYTES: u32 = 11;
+
+/// The SPI clock rp2040-hal's and rp235x-hal's `Spi::set_baudrate` set for `asked` from a
+/// peripheral clock of `peri_hz`, by their own search: the smallest even prescale from 2 to 254
+/// that leaves the post-divider room, then the post-divide (1 to 256) that gives the fastest
+/// clock at or below `asked`. Not the nearest: 62 MHz of 125 gives 31.25.
+#[must_use]
+pub const fn rp_spi_hz(peri_hz: u32, asked: u32) -> u32 {
+    let mut prescale = 2;
+    while prescale < 254 && (peri_hz as u64) >= (prescale as u64 + 2) * 256 * asked as u64 {
+        prescale += 2;
+    }
+    let mut post = 255;
+    while post > 0 && peri_hz / (prescale * post) <= asked {
+        post -= 1;
+    }
+    peri_hz / (prescale * (1 + post))
 }
 
 impl Board {
-    /// The seconds a frame of `cycles` takes, with the rows shared evenly between the cores.
+    /// The seconds tracing a frame of `cycles` takes, with the rows shared evenly between the
+    /// cores.
     pub fn seconds(self, cycles: u64) -> f64 {
         cycles as f64 / f64::from(self.cores) / self.core_hz as f64
+    }
+
+    /// The seconds the display's SPI takes to send a frame `width` pixels wide drawn in
+    /// `order` (`height` rows): each row (or progressive block) one rectangle, its address
+    /// window and two bytes a pixel, at the SPI clock. The wire's time alone, without the
+    /// CPU's between the bytes: a bound below the transfer.
+    pub fn sending_seconds(self, order: RowOrder, width: u32, height: u32) -> f64 {
+        let bytes: u64 = order
+            .rows(height)
+            .map(|(_, rows)| u64::from(WINDOW_BYTES) + 2 * u64::from(width) * u64::from(rows))
+            .sum();
+        (8 * bytes) as f64 / f64::from(self.spi_hz)
     }
 }
 
@@ -551,7 +596,7 @@ mod tests {
             frame.presentation,
             Presentation {
                 dither: obscura::Dither::Ordered,
-                order: obscura::RowOrder::Progressive
+                order: RowOrder::Progressive
             }
         );
         let sideways = line.replace("bias=exclude", "rays=sideways");
@@ -562,6 +607,36 @@ mod tests {
         );
         let error = parse_frame("frame scene=whitted").unwrap_err().to_string();
         assert!(error.contains("no format"), "{error}");
+    }
+
+    #[test]
+    fn the_spi_clock_is_what_the_rp_hals_set_from_what_the_boards_ask() {
+        // Half the Pico's 125 MHz exactly, where 62 MHz gets a quarter; the Pico 2's 150 MHz
+        // divides to 75 (above the ST7789's 62.5) or 37.5.
+        assert_eq!(rp_spi_hz(125_000_000, 62_500_000), 62_500_000);
+        assert_eq!(rp_spi_hz(125_000_000, 62_000_000), 31_250_000);
+        assert_eq!(rp_spi_hz(150_000_000, 62_500_000), 37_500_000);
+        assert_eq!(rp_spi_hz(150_000_000, 75_000_000), 75_000_000);
+        // 1 MHz: a prescale of 2 and a post-divide of 63.
+        assert_eq!(rp_spi_hz(125_000_000, 1_000_000), 125_000_000 / 126);
+        assert_eq!(Target::M0.board().spi_hz, 62_500_000);
+        assert_eq!(Target::M33.board().spi_hz, 37_500_000);
+    }
+
+    #[test]
+    fn a_frame_is_sent_as_its_rows_windows_and_pixels_at_the_spi_clock() {
+        let pico = Target::M0.board();
+        // 240 rows of an address window (11 bytes) and 480 bytes of pixels, at 62.5 MHz.
+        let top_down = pico.sending_seconds(RowOrder::TopDown, 240, 240);
+        assert!(
+            (top_down - 8.0 * 240.0 * 491.0 / 62.5e6).abs() < 1e-12,
+            "{top_down}"
+        );
+        // A progressive frame sends each row once and each pass's blocks besides: 600 rows of
+        // pixels in all.
+        let progressive = pico.sending_seconds(RowOrder::Progressive, 240, 240);
+        let expected = 8.0 * (240.0 * 11.0 + 600.0 * 480.0) / 62.5e6;
+        assert!((progressive - expected).abs() < 1e-12, "{progressive}");
     }
 
     #[test]

@@ -10,8 +10,8 @@ use crate::output::{self, say};
 use crate::profile::{self, Counts, Profile};
 use crate::render::{Request, rgb565_image};
 use anyhow::{Context, Result, bail};
-use obscura::Methods;
 use obscura::methods::MethodName;
+use obscura::{Methods, RowOrder};
 use obscura_scene::firmware::{Configuration, SIDE, with_paths_as_frames};
 use obscura_scene::{FirmwareSettings, Format, FormatChoice, Variants};
 use serde::Serialize;
@@ -336,30 +336,35 @@ fn frame_cycles(
     Ok(estimate)
 }
 
-/// Each camera path's loop on the board: its frames' cycles added up, at the board's clock.
+/// Each camera path's loop on the board: its frames' cycles added up, at the board's clock,
+/// and each frame sent to the display after it is traced.
 fn print_paths(target: Target, reports: &[Report]) -> Result<()> {
     let board = target.board();
-    let mut paths: Vec<(&str, &str, u64, u32)> = Vec::new();
+    // Each path and format: its frames' cycles, and their seconds on the display's SPI.
+    let mut paths: Vec<(&str, &str, u64, f64, u32)> = Vec::new();
     for r in reports {
         let Some((path, _)) = obscura_scene::path_frame(&r.scene) else {
             continue;
         };
+        let order = RowOrder::from_name(r.order).unwrap_or_default();
+        let sending = board.sending_seconds(order, r.width, r.height);
         match paths
             .iter_mut()
-            .find(|(p, f, _, _)| *p == path && *f == r.format)
+            .find(|(p, f, ..)| *p == path && *f == r.format)
         {
             Some(entry) => {
                 entry.2 += r.cycles_per_frame;
-                entry.3 += 1;
+                entry.3 += sending;
+                entry.4 += 1;
             }
-            None => paths.push((path, &r.format, r.cycles_per_frame, 1)),
+            None => paths.push((path, &r.format, r.cycles_per_frame, sending, 1)),
         }
     }
-    for (path, format, cycles, frames) in paths {
-        let seconds = board.seconds(cycles);
+    for (path, format, cycles, sending, frames) in paths {
+        let seconds = board.seconds(cycles) + sending;
         say!(
-            "{path}'s loop of {frames} frames in {format} on a {}, estimated in cycles: {seconds:.1} s \
-             a loop, {:.2} frames a second",
+            "{path}'s loop of {frames} frames in {format} on a {}, estimated in cycles and the \
+             display's SPI: {seconds:.1} s a loop, {:.2} frames a second",
             board.name,
             f64::from(frames) / seconds
         )?;
@@ -672,10 +677,13 @@ fn print_table(target: Target, reports: &[Report]) -> io::Result<()> {
     let board = target.board();
     for r in reports {
         let frame_pixels = u64::from(r.width) * u64::from(r.height);
-        let seconds = board.seconds(r.cycles_per_frame);
+        let tracing = board.seconds(r.cycles_per_frame);
+        let order = RowOrder::from_name(r.order).unwrap_or_default();
+        let sending = board.sending_seconds(order, r.width, r.height);
         say!(
-            "{} in {} on a {}, {} core{} at {} MHz, estimated in cycles: {seconds:.2} s per {}x{} \
-             frame ({:.2} frames a second), {:.1} s at 512x512",
+            "{} in {} on a {}, {} core{} at {} MHz, estimated in cycles: {tracing:.2} s tracing a \
+             {}x{} frame, then {:.1} ms sending it at {} MHz SPI: {:.2} frames a second; {:.1} s \
+             tracing 512x512",
             r.scene,
             r.format,
             board.name,
@@ -684,8 +692,10 @@ fn print_table(target: Target, reports: &[Report]) -> io::Result<()> {
             board.core_hz / 1_000_000,
             r.width,
             r.height,
-            1.0 / seconds,
-            seconds * (512 * 512) as f64 / frame_pixels.max(1) as f64
+            1e3 * sending,
+            f64::from(board.spi_hz) / 1e6,
+            1.0 / (tracing + sending),
+            tracing * (512 * 512) as f64 / frame_pixels.max(1) as f64
         )?;
     }
     Ok(())

@@ -54,14 +54,17 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
         match &estimate {
             Ok(Some(e)) => format!(
                 "about {:.1} s a frame ({:.0} instructions, {:.0} cycles a pixel, {} core{} at \
-                 {} MHz), estimated by the instructions and cycles an operation takes in `{}` in \
-                 {} under QEMU (`obscura firmware` measures it)",
-                e.seconds,
+                 {} MHz; then {:.1} ms sending it at {} MHz SPI), estimated by the instructions \
+                 and cycles an operation takes in `{}` in {} under QEMU (`obscura firmware` \
+                 measures it)",
+                e.seconds(presentation.order),
                 e.per_pixel.instructions,
                 e.per_pixel.cycles,
                 e.board.cores,
                 if e.board.cores == 1 { "" } else { "s" },
                 e.board.core_hz / 1_000_000,
+                1e3 * e.sending(presentation.order),
+                f64::from(e.board.spi_hz) / 1e6,
                 e.priced_by,
                 e.priced_in,
             ),
@@ -72,7 +75,7 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
     let frame_time = estimate
         .ok()
         .flatten()
-        .map(|e| Duration::from_secs_f64(e.seconds));
+        .map(|e| Duration::from_secs_f64(e.seconds(presentation.order)));
     let pixels = if args.headless {
         prepared.rgb565_frame(presentation, &mut |_, _| {})?
     } else {
@@ -103,7 +106,7 @@ fn preview_path(args: &PreviewArgs, named: &NamedScene, animation: &Animation) -
         let paced = estimate::frame(args.target, format, &request.desc, methods)
             .ok()
             .flatten()
-            .map(|e| Duration::from_secs_f64(e.seconds));
+            .map(|e| Duration::from_secs_f64(e.seconds(presentation.order)));
         Ok((pixels, paced))
     };
     let drawn = frames

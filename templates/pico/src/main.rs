@@ -59,7 +59,9 @@ fn main() -> ! {
     .init(
         &mut pac.RESETS,
         clocks.peripheral_clock.freq(),
-        62.MHz(),
+        // The ST7789's fastest clock, exactly half the 125 MHz peripheral clock (the HAL
+        // never exceeds what is asked: 62 MHz would give 31.25).
+        62_500_000.Hz(),
         embedded_hal::spi::MODE_0,
     );
     let device = ExclusiveDevice::new(bus, pins.gpio9.into_push_pull_output(), timer).unwrap();
