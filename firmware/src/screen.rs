@@ -1,6 +1,7 @@
 //! A real display as the firmware's back-end: each frame drawn on it in turn, and each report
-//! written across its bottom two rows of text (the frame's time from SysTick, which counts real
-//! core cycles on a board; its stack; its scene's storage), or why a frame could not be drawn.
+//! written across its bottom rows of text (the frame's time from SysTick, which counts real
+//! core cycles on a board; its stack; its scene's storage; the display's SPI clock where the
+//! board's HAL says it), or why a frame could not be drawn.
 
 use crate::frames::{Backend, Job, Report};
 use core::fmt;
@@ -16,6 +17,9 @@ pub struct Screen<D> {
     pub display: D,
     /// The core clock in MHz: SysTick ticks per microsecond.
     pub core_mhz: u32,
+    /// The display's SPI clock in kHz, as the board's HAL set it (`None` where the HAL does
+    /// not say).
+    pub spi_khz: Option<u32>,
 }
 
 impl<D: DrawTarget<Color = Rgb565, Error: fmt::Debug>> Backend for Screen<D> {
@@ -38,6 +42,9 @@ impl<D: DrawTarget<Color = Rgb565, Error: fmt::Debug>> Backend for Screen<D> {
             format_args!("stack {stack} B, scene {storage} B ({fixed})"),
             white,
         );
+        if let Some(khz) = self.spi_khz {
+            self.caption(2, format_args!("display SPI at {khz} kHz"), white);
+        }
     }
 
     fn failed(&mut self, job: &Job<'_>, why: &dyn fmt::Display) {

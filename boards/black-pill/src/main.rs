@@ -77,6 +77,8 @@ fn main() -> ! {
     let mut screen = Screen {
         display: panel,
         core_mhz: SYSCLK_MHZ,
+        // stm32f4xx-hal does not say which divider it took.
+        spi_khz: None,
     };
     frames::show(&mut screen, &clock);
     halt();

@@ -91,12 +91,16 @@ fn main() -> ! {
     let sck = pins.gpio10.into_function::<FunctionSpi>();
     let tx = pins.gpio11.into_function::<FunctionSpi>();
     let reset = pins.gpio12.into_push_pull_output();
-    let bus = spi::Spi::<_, _, _, 8>::new(pac.SPI1, (tx, sck)).init(
+    let mut bus = spi::Spi::<_, _, _, 8>::new(pac.SPI1, (tx, sck)).init(
         &mut pac.RESETS,
         clocks.peripheral_clock.freq(),
         SPI_HZ.Hz(),
         embedded_hal::spi::MODE_0,
     );
+    // The clock the HAL set (`init` asked the same), shown under each frame.
+    let spi_khz = bus
+        .set_baudrate(clocks.peripheral_clock.freq(), SPI_HZ.Hz())
+        .to_kHz();
     let Ok(device) = ExclusiveDevice::new(bus, chip_select, timer);
     // mipidsi batches pixels through this buffer; `main` never returns, so it outlives the
     // display.
@@ -128,6 +132,7 @@ fn main() -> ! {
         screen: Screen {
             display: panel,
             core_mhz,
+            spi_khz: Some(spi_khz),
         },
         mailbox: Fifo(sio.fifo),
     };
