@@ -704,16 +704,31 @@ impl<S: Scalar> Converter<S> {
                 if i == index || !sends {
                     return true;
                 }
-                match other.shape {
-                    ShapeDesc::Plane { point, normal, .. } => {
-                        let length = Vec3::from_f32(normal).length();
-                        let offset = centre - (Vec3::from_f32(point) - self.eye);
-                        length > 0.0 && apart(Vec3::from_f32(normal).dot(offset).abs() / length)
-                    }
-                    _ => cull::ball(&other.shape, &desc.meshes, self.eye)
-                        .is_some_and(|(c, r)| apart((c - centre).length() - r)),
-                }
+                // A NaN gap (a plane without a normal) is not apart.
+                self.gap((centre, radius), &other.shape, desc)
+                    .is_some_and(|gap| gap > margin)
             })
+    }
+
+    /// How far `shape` of `desc` lies outside the ball about `centre` (from the eye) of
+    /// `radius`: a plane's distance from the centre, or the distance between the centres less
+    /// the radius of the shape's ball ([`cull::ball`]), less `radius`. Negative where they
+    /// meet; NaN for a plane without a normal; `None` for a shape without a ball.
+    fn gap(
+        &self,
+        (centre, radius): (Vec3<f64>, f64),
+        shape: &ShapeDesc,
+        desc: &SceneDesc<'_>,
+    ) -> Option<f64> {
+        match *shape {
+            ShapeDesc::Plane { point, normal, .. } => {
+                let normal = Vec3::from_f32(normal);
+                let offset = centre - (Vec3::from_f32(point) - self.eye);
+                Some(normal.dot(offset).abs() / normal.length() - radius)
+            }
+            _ => cull::ball(shape, &desc.meshes, self.eye)
+                .map(|(c, r)| (c - centre).length() - r - radius),
+        }
     }
 
     /// The largest surface tolerance anywhere a shadow ray may start: the tolerance at the
@@ -733,10 +748,9 @@ impl<S: Scalar> Converter<S> {
         (at(0.0), at(1.0) - at(0.0))
     }
 
-    /// What the tracer needs of `desc` besides its objects and lights. Out of line, as
-    /// [`Self::object`] is.
+    /// What the tracer needs of `desc` besides its objects and lights, where secondary rays
+    /// start off surfaces by at most `tolerance`. Out of line, as [`Self::object`] is.
     #[inline(never)]
-    /// The settings of `desc`, where secondary rays start off surfaces by at most `tolerance`.
     fn settings(&self, desc: &SceneDesc<'_>, tolerance: f64) -> Result<Settings<S>, SceneError> {
         let background = match desc.background {
             BackgroundDesc::Solid(c) => {
@@ -816,17 +830,7 @@ impl<S: Scalar> Converter<S> {
                 if j == i {
                     continue;
                 }
-                let gap = match other.shape {
-                    ShapeDesc::Plane { point, normal, .. } => {
-                        let normal = Vec3::from_f32(normal);
-                        let offset = centre - (Vec3::from_f32(point) - self.eye);
-                        normal.dot(offset).abs() / normal.length() - radius
-                    }
-                    _ => {
-                        let (c, r) = cull::ball(&other.shape, &desc.meshes, self.eye)?;
-                        (c - centre).length() - r - radius
-                    }
-                };
+                let gap = self.gap((centre, radius), &other.shape, desc)?;
                 // A NaN gap (a plane without a normal) is not clear.
                 let clear = gap > own + found(&other.shape)? + tolerance;
                 if !clear {
