@@ -38,13 +38,13 @@ use crate::vec3::Vec3;
 /// in 16-bit fractions: 1 and 1 − 2⁻¹⁶ are both kept as 0xFFFF, which reads back as 1, so that
 /// white stays white in every format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Corner([u16; 3]);
+pub struct Corner(pub(crate) [u16; 3]);
 
 impl Corner {
     /// Black: what a corner buffer starts as, before any corner is traced into it.
     pub const ZERO: Self = Self([0; 3]);
 
-    fn of<S: Scalar>(colour: Rgb<S>) -> Self {
+    pub(crate) fn of<S: Scalar>(colour: Rgb<S>) -> Self {
         Self(
             colour
                 .to_q16()
@@ -53,7 +53,7 @@ impl Corner {
     }
 
     /// The colour in 16-bit fractions, as [`Rgb::to_q16`] gives it (0xFFFF read as 1).
-    fn q16(self) -> [u32; 3] {
+    pub(crate) fn q16(self) -> [u32; 3] {
         self.0.map(|c| u32::from(c) + u32::from(c == u16::MAX))
     }
 }
@@ -86,10 +86,19 @@ impl CornerRows for [Corner] {
 /// full scale, some sixteen levels of an 8-bit channel.
 pub const CONTRAST: u16 = 0x1000;
 
-/// The corners a renderer keeps for adaptive anti-aliasing of an image `width` pixels wide:
-/// a row of `width + 1` above the row of pixels it traces and one below.
+/// The most corners any scene keeps for an image `width` pixels wide: what a renderer that
+/// does not know its scene passes. What a given scene needs is
+/// [`SceneDesc::corner_rows`](crate::SceneDesc::corner_rows).
 #[must_use]
 pub const fn corner_rows(width: u32) -> usize {
+    let samples = sample_rows(width);
+    let blocks = crate::blocks::node_rows(width, 8);
+    if samples > blocks { samples } else { blocks }
+}
+
+/// The corners a renderer keeps for adaptive anti-aliasing of an image `width` pixels wide:
+/// a row of `width + 1` above the row of pixels it traces and one below.
+pub(crate) const fn sample_rows(width: u32) -> usize {
     2 * (width as usize + 1)
 }
 
@@ -240,7 +249,7 @@ impl<
 }
 
 /// The largest difference between two of the corners in one channel.
-fn contrast(corners: &[Corner; 4]) -> u16 {
+pub(crate) fn contrast(corners: &[Corner; 4]) -> u16 {
     let (low, high) =
         corners
             .iter()

@@ -234,6 +234,27 @@ impl RowRanges {
         Self { ranges, len }
     }
 
+    /// Widens each range to hold `other`'s too: the ranges of a band of rows.
+    pub(crate) fn widen(&mut self, other: &Self) {
+        for (range, &wider) in self.ranges.iter_mut().zip(&other.ranges) {
+            *range = hull(*range, wider);
+        }
+        self.len = self.len.max(other.len);
+    }
+
+    /// The objects whose ranges reach any pixel from `first` to `last`, as [`Candidates::at`]
+    /// gives them.
+    pub(crate) fn within(&self, first: u32, last: u32) -> u32 {
+        let ranges = self.ranges.iter().take(self.len);
+        (0..).zip(ranges).fold(0, |mask, (i, &(low, high))| {
+            if low <= last && first <= high && low <= high {
+                mask | 1 << i
+            } else {
+                mask
+            }
+        })
+    }
+
     /// The candidates of the row's pixels from left to right: see [`Candidates`].
     #[must_use]
     pub fn candidates(&self) -> Candidates<'_> {

@@ -4,6 +4,8 @@
 
 crate::phase::declare_phase!(Some(crate::phase::Phase::Build));
 
+use crate::blocks::Pixels;
+
 /// A scene as its author writes it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SceneDesc<'a> {
@@ -47,6 +49,10 @@ pub struct SceneDesc<'a> {
     /// disagree (in the penumbra). Faster where most points are in full light or full shadow;
     /// a sliver of penumbra that all the first rays miss is taken for full light or shadow.
     pub adaptive_shadows: bool,
+    /// How the frame's pixels are found: each by its own ray ([`Pixels::Exact`]), or in blocks
+    /// filled from their corners where the corners agree ([`Pixels::Adaptive`]: one sample a
+    /// pixel, not with a lens or adaptive samples).
+    pub pixels: Pixels,
 }
 
 impl SceneDesc<'static> {
@@ -85,6 +91,7 @@ impl SceneDesc<'static> {
         adaptive_samples: false,
         shadow_samples: 1,
         adaptive_shadows: false,
+        pixels: Pixels::Exact,
     };
 }
 
@@ -107,6 +114,14 @@ impl SceneDesc<'_> {
             rest = others;
         }
         self.samples == 1 && !self.adaptive_samples && (point_lights || self.shadow_samples == 1)
+    }
+
+    /// The corner rows ([`crate::Corner`]s) a renderer of this scene passes for an image
+    /// `width` pixels wide: adaptive samples' (two rows of `width + 1`), adaptive
+    /// pixels' ([`crate::blocks::node_rows`]), or none.
+    #[must_use]
+    pub const fn corner_rows(&self, width: u32) -> usize {
+        corners_kept(self.adaptive_samples, self.pixels.block(), width)
     }
 
     /// Whether any object is a triangle or a mesh (the triangle methods matter only then).
@@ -476,4 +491,16 @@ pub const Y_UP: [f32; 3] = [0.0, 1.0, 0.0];
 #[cfg(feature = "serde")]
 fn y_up() -> [f32; 3] {
     Y_UP
+}
+
+/// The corner rows a scene keeps at `width` with adaptive samples or not and adaptive pixels'
+/// blocks of `block` (1: exact pixels).
+pub(crate) const fn corners_kept(adaptive_samples: bool, block: u8, width: u32) -> usize {
+    if adaptive_samples {
+        crate::adaptive::sample_rows(width)
+    } else if block > 1 {
+        crate::blocks::node_rows(width, block)
+    } else {
+        0
+    }
 }

@@ -65,6 +65,7 @@ mod format_list;
 
 internal_modules! {
     adaptive;
+    blocks;
     camera;
     color;
     cull;
@@ -96,6 +97,7 @@ pub mod scenes;
 const MODULE_PHASES: &[phase::Module] = &[
     PHASE,
     adaptive::PHASE,
+    blocks::PHASE,
     camera::PHASE,
     color::PHASE,
     cull::PHASE,
@@ -142,6 +144,7 @@ const MODULE_PHASES: &[phase::Module] = &[
 mod test_util;
 
 pub use adaptive::{Corner, CornerRows, corner_rows};
+pub use blocks::Pixels;
 pub use camera::{Camera, MAX_IMAGE_SIDE};
 pub use color::{DisplayColor, Dither, Rgb};
 pub use desc::{

@@ -6,6 +6,8 @@
 crate::phase::declare_phase!(Some(crate::phase::Phase::Output));
 
 use crate::adaptive::{self, Corner, CornerRows, Pixel};
+use crate::blocks::{self, Blocks};
+use crate::desc::corners_kept;
 use crate::camera::{Camera, Row};
 use crate::color::{DisplayColor, Dither, Rgb};
 use crate::cull::RowRanges;
@@ -36,8 +38,9 @@ pub enum RenderError<E> {
         /// The buffer's length.
         got: usize,
     },
-    /// The scene takes adaptive samples and the corner rows hold fewer corners than it keeps.
-    /// Pass [`corner_rows`](crate::adaptive::corner_rows)`(width)` of them.
+    /// The scene takes adaptive samples or adaptive pixels and the corner rows hold fewer
+    /// corners than it keeps. Pass [`SceneDesc::corner_rows`](crate::SceneDesc::corner_rows)
+    /// of them, or [`corner_rows`](crate::adaptive::corner_rows)`(width)` for any scene.
     CornerRowsTooSmall {
         /// Corners the image needs.
         needed: usize,
@@ -74,8 +77,8 @@ impl<E: fmt::Debug> fmt::Display for RenderError<E> {
             Self::CornerRowsTooSmall { needed, got } => {
                 write!(
                     f,
-                    "the corner rows hold {got} corners but adaptive samples keep {needed}; \
-                     pass corner_rows(width) of them"
+                    "the corner rows hold {got} corners but the scene's adaptive samples or \
+                     pixels keep {needed}; pass corner_rows(width) of them"
                 )
             }
             Self::RowsOutOfRange { end, height } => {
@@ -199,9 +202,9 @@ fn trace_into<S, C, M, P: Parts>(
     }
 }
 
-/// Traces `row` into `line`: by [`trace_into`], or with adaptive samples by [`adaptive_row`]
-/// through `window`. Corner rows of a type that holds none ([`CornerRows::NONE`]) leave the
-/// adaptive code out of the build.
+/// Traces `row` into `line`: by [`trace_into`], with adaptive samples by [`adaptive_row`], or
+/// with adaptive pixels by [`blocks::trace_row`], through what `kept` keeps. Corner rows of a
+/// type that holds none ([`CornerRows::NONE`]) leave the adaptive code out of the build.
 #[inline(always)]
 fn trace_pixels<
     K,
@@ -218,14 +221,19 @@ fn trace_pixels<
     y: u32,
     dither: Dither,
     line: &mut [C],
-    window: &mut Option<Window<'_, S>>,
+    kept: &mut Option<Kept<'_, S>>,
 ) where
     K: CornerRows + ?Sized,
     S: Scalar,
     C: DisplayColor,
 {
-    match window {
-        Some(window) if !K::NONE => adaptive_row(scene, row, y, dither, line, window),
+    match kept {
+        Some(Kept::Samples(window)) if !K::NONE => {
+            adaptive_row(scene, row, y, dither, line, window);
+        }
+        Some(Kept::Blocks(blocks)) if !K::NONE => {
+            blocks::trace_row(scene, row, y, dither, line, blocks);
+        }
         _ => {
             let mut stack: Vec<Task<S>, RAYS> = Vec::new();
             let tracer = scene.tracer(SampleId::default());
@@ -235,8 +243,8 @@ fn trace_pixels<
 }
 
 /// The buffers a render traces through, checked against the image: `line` cut to a row, and
-/// for a scene with adaptive samples the corner rows ([`Window`]). Inline, so that a caller
-/// whose corner rows are an empty array leaves the adaptive code out.
+/// for a scene with adaptive samples or pixels the corner rows ([`Kept`]). Inline, so that a
+/// caller whose corner rows are an empty array leaves the adaptive code out.
 #[inline(always)]
 fn buffers<
     'a,
@@ -266,11 +274,8 @@ where
         .ok()
         .and_then(|w| line.get_mut(..w))
         .ok_or(RenderError::LineBufferTooSmall { needed: width, got })?;
-    let needed = if scene.settings.adaptive_samples {
-        adaptive::corner_rows(width)
-    } else {
-        0
-    };
+    let settings = &scene.settings;
+    let needed = corners_kept(settings.adaptive_samples, settings.pixel_block, width);
     let got = corners.len();
     let too_small = RenderError::CornerRowsTooSmall { needed, got };
     if corners.is_empty() {
@@ -284,16 +289,32 @@ where
         return Ok((line, None));
     }
     let corners = corners.get_mut(..needed).ok_or(too_small)?;
-    let window = Window {
-        camera,
-        corners,
-        held: None,
+    let kept = if settings.adaptive_samples {
+        Kept::Samples(Window {
+            camera,
+            corners,
+            held: None,
+        })
+    } else {
+        Kept::Blocks(Blocks::new(corners, settings.pixel_block))
     };
-    Ok((line, Some(window)))
+    Ok((line, Some(kept)))
 }
 
-/// A line cut to a row, and the corner rows with adaptive samples.
-type Buffers<'a, C, S> = (&'a mut [C], Option<Window<'a, S>>);
+/// A line cut to a row, and what adaptive samples or pixels keep.
+type Buffers<'a, C, S> = (&'a mut [C], Option<Kept<'a, S>>);
+
+/// What a render keeps between rows in its corner rows.
+#[allow(
+    clippy::large_enum_variant,
+    reason = "one a render, on the stack beside corner rows far larger"
+)]
+enum Kept<'a, S> {
+    /// Adaptive samples' corners.
+    Samples(Window<'a, S>),
+    /// Adaptive pixels' blocks.
+    Blocks(Blocks<'a>),
+}
 
 /// What adaptive anti-aliasing keeps between rows ([`crate::adaptive`]): corner row cy in the
 /// half cy % 2 of `corners`, and which corner row the last row traced left below it.
@@ -418,9 +439,10 @@ pub fn send_row<C: DisplayColor, D: DrawTarget<Color = C>>(
 /// first `width` pixels), each pixel rounded by `dither`, for a renderer that sends each row
 /// itself ([`send_row`]): to a display that takes a row at a time, or with a frame's rows
 /// shared among cores, as the Pico's firmware shares them. [`render_frame`] draws a whole frame
-/// through one. A scene with adaptive samples keeps its corner rows in `corners`
-/// ([`corner_rows`](crate::adaptive::corner_rows)`(width)` of them; else `&mut []`), and rows
-/// traced top to bottom share them.
+/// through one. A scene with adaptive samples or adaptive pixels keeps its corner rows in
+/// `corners` ([`SceneDesc::corner_rows`](crate::SceneDesc::corner_rows) of them, or
+/// [`corner_rows`](crate::adaptive::corner_rows)`(width)` for any scene; else `&mut []`), and
+/// rows traced top to bottom share them.
 pub struct RowTracer<
     'a,
     S: Scalar,
@@ -436,7 +458,7 @@ pub struct RowTracer<
     camera: Camera<S>,
     dither: Dither,
     line: &'a mut [C],
-    window: Option<Window<'a, S>>,
+    kept: Option<Kept<'a, S>>,
     corners: PhantomData<fn(&K)>,
 }
 
@@ -466,13 +488,13 @@ impl<
         line: &'a mut [C],
         corners: &'a mut K,
     ) -> Result<Self, RenderError<Infallible>> {
-        let (line, window) = buffers(scene, camera, line, corners.rows())?;
+        let (line, kept) = buffers(scene, camera, line, corners.rows())?;
         Ok(Self {
             scene,
             camera: camera.narrowed(P::USES),
             dither,
             line,
-            window,
+            kept,
             corners: PhantomData,
         })
     }
@@ -493,7 +515,7 @@ impl<
             y,
             self.dither,
             self.line,
-            &mut self.window,
+            &mut self.kept,
         );
         Ok(self.line)
     }

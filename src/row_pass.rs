@@ -134,6 +134,11 @@ impl<'a, S: Scalar> PlaneRow<'a, S> {
         self.plane.pattern_colour(point).unwrap_or(colour)
     }
 
+    /// The checker's square at `point`, one of the plane's points ([`Plane::square`]).
+    pub(crate) fn square(&self, point: Vec3<S>) -> Option<[i32; 2]> {
+        self.plane.square(point)
+    }
+
     /// Where the primary ray through the image-plane point `s` of the row meets the plane, or
     /// `None` beyond the world's rim: a primary ray's search, which tests the plane alone.
     pub(crate) fn hit(&self, s: Vec3<S>) -> Option<Vec3<S>> {

@@ -624,6 +624,19 @@ impl<'a, S: Scalar, M: Meshes<S>, P: Parts> Tracer<'a, S, M, P> {
         point: Vec3<S>,
         id: SampleId,
     ) -> Rgb<S> {
+        self.light_plane_row(row, point, id, &mut 0)
+    }
+
+    /// [`Self::shade_plane_row`], adding to `met` the objects that shadow the point
+    /// ([`Sample::met`]).
+    #[inline(always)]
+    pub(crate) fn light_plane_row(
+        &self,
+        row: &PlaneRow<'_, S>,
+        point: Vec3<S>,
+        id: SampleId,
+        met: &mut u64,
+    ) -> Rgb<S> {
         // A copy with the ray's place, as the M0 (where this is out of line) reads its fields
         // fastest.
         let this = Tracer { id, ..*self };
@@ -644,7 +657,7 @@ impl<'a, S: Scalar, M: Meshes<S>, P: Parts> Tracer<'a, S, M, P> {
             },
         };
         let surface = row.surface_colour(point);
-        this.local(&object.material, surface, at, &mut 0)
+        this.local(&object.material, surface, at, met)
     }
 
     /// Pushes a secondary ray unless its weight is too small to show.
@@ -794,7 +807,7 @@ fn perpendiculars<S: Scalar>(n: Vec3<S>, roots: RootMethod) -> [Vec3<S>; 2] {
 
 /// The bit of object `index` in [`Sample::met`].
 #[inline]
-fn bit(index: usize) -> u64 {
+pub(crate) fn bit(index: usize) -> u64 {
     // Below 64, so the conversion is exact.
     shl_u64(1, u32::try_from(index.min(63)).unwrap_or(63))
 }

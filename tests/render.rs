@@ -10,8 +10,9 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use obscura::adaptive::CornerRows;
 use obscura::{
-    Corner, Dither, I16F16, Presentation, RenderError, RowOrder, RowTracer, Scene, SceneDesc,
-    corner_rows, render_frame, scenes, send_row,
+    BackgroundDesc, CameraDesc, Corner, Dither, I16F16, LightDesc, MaterialDesc, ObjectDesc,
+    Pixels, Presentation, RenderError, RowOrder, RowTracer, Scene, SceneDesc, ShapeDesc,
+    render_frame, scenes, send_row,
 };
 
 /// A display that records what it is sent.
@@ -145,13 +146,14 @@ fn the_same_rows_in_two_bands_equal_one_pass() {
 }
 
 /// `whitted` with adaptive samples.
+const ADAPTIVE_WHITTED: SceneDesc<'static> = SceneDesc {
+    samples: 16,
+    adaptive_samples: true,
+    ..scenes::WHITTED
+};
+
 fn adaptive_whitted() -> SmallScene {
-    let desc = SceneDesc {
-        samples: 16,
-        adaptive_samples: true,
-        ..scenes::WHITTED
-    };
-    SmallScene::build(&desc).unwrap()
+    SmallScene::build(&ADAPTIVE_WHITTED).unwrap()
 }
 
 /// A corner's ray depends on its place in the image alone: a frame with adaptive samples is the
@@ -164,7 +166,7 @@ fn adaptive_samples_draw_the_same_frame_however_the_rows_are_split() {
     let camera = scene.camera(32, 32).unwrap();
     let mut line = [Rgb565::BLACK; 32];
     let mut corners = [Corner::ZERO; 66];
-    assert_eq!(corner_rows(32), corners.len());
+    assert_eq!(ADAPTIVE_WHITTED.corner_rows(32), corners.len());
     let mut whole = MockDisplay::new();
     draw_band(&scene, &camera, 0..32, &mut line, &mut corners, &mut whole);
     let mut banded = MockDisplay::new();
@@ -214,6 +216,176 @@ fn adaptive_samples_draw_the_same_frame_however_the_rows_are_split() {
     let mut one = MockDisplay::new();
     draw_band(&plain, &camera, 0..32, &mut line, &mut [], &mut one);
     assert_ne!(one, whole);
+}
+
+/// Adaptive pixels ([`Pixels::Adaptive`]): a pixel's colour depends on its place alone, so a
+/// frame is the same top down, row by row from the bottom up, in bands and progressive; and
+/// the frame is not the exact one, but close to it.
+#[test]
+fn adaptive_pixels_draw_the_same_frame_however_the_rows_are_split() {
+    let (width, height) = (48, 40);
+    let mut line = [Rgb565::BLACK; 48];
+    let exact_scene = SmallScene::build(&scenes::WHITTED).unwrap();
+    let camera = exact_scene.camera(width, height).unwrap();
+    let mut exact = Recorder::new(width, height);
+    draw_band(
+        &exact_scene,
+        &camera,
+        0..height,
+        &mut line,
+        &mut [],
+        &mut exact,
+    );
+    for block in Pixels::BLOCKS {
+        let desc = SceneDesc {
+            pixels: Pixels::Adaptive(block),
+            ..scenes::WHITTED
+        };
+        let scene = SmallScene::build(&desc).unwrap();
+        let mut corners = vec![Corner::ZERO; desc.corner_rows(width)];
+        let mut whole = Recorder::new(width, height);
+        draw_band(
+            &scene,
+            &camera,
+            0..height,
+            &mut line,
+            corners.as_mut_slice(),
+            &mut whole,
+        );
+        let mut banded = Recorder::new(width, height);
+        for rows in [0..13, 13..29, 29..height] {
+            draw_band(
+                &scene,
+                &camera,
+                rows,
+                &mut line,
+                corners.as_mut_slice(),
+                &mut banded,
+            );
+        }
+        assert_eq!(whole.pixels, banded.pixels, "blocks of {block}");
+        let mut upwards = Recorder::new(width, height);
+        let mut tracer = RowTracer::new(
+            &scene,
+            &camera,
+            Dither::None,
+            &mut line,
+            corners.as_mut_slice(),
+        )
+        .unwrap();
+        for y in (0..height).rev() {
+            send_row(&mut upwards, tracer.trace(y).unwrap(), y, 1).unwrap();
+        }
+        assert_eq!(whole.pixels, upwards.pixels, "blocks of {block}");
+        let progressive = Presentation {
+            order: RowOrder::Progressive,
+            dither: Dither::None,
+        };
+        let mut frame = Recorder::new(width, height);
+        let corners = corners.as_mut_slice();
+        render_frame(&scene, &camera, progressive, &mut line, corners, &mut frame).unwrap();
+        assert_eq!(whole.pixels, frame.pixels, "blocks of {block}");
+        let differing = whole
+            .pixels
+            .iter()
+            .zip(&exact.pixels)
+            .filter(|(a, b)| a != b)
+            .count();
+        eprintln!("blocks of {block}: {differing} pixels differ from the exact frame");
+        assert!(
+            differing < whole.pixels.len() / 8,
+            "blocks of {block}: {differing} pixels differ from the exact frame"
+        );
+    }
+}
+
+/// A ball smaller than a block, between the corners of blocks over a floor, is not filled
+/// over: culling says a primary ray of those blocks may meet it, so they are traced, and every
+/// pixel that shows the ball in the exact frame shows it with adaptive pixels.
+#[test]
+fn a_ball_between_the_corners_of_a_block_is_traced_not_filled_over() {
+    const OBJECTS: &[ObjectDesc] = &[
+        ObjectDesc {
+            shape: ShapeDesc::Plane {
+                point: [0.0, 0.0, 0.0],
+                normal: [0.0, 1.0, 0.0],
+                checker: None,
+            },
+            material: MaterialDesc::matte([0.2, 0.6, 0.2]),
+        },
+        ObjectDesc {
+            // About 5 pixels across at 64x64, centred near pixel (36, 36): between the
+            // corners of a block of 8.
+            shape: ShapeDesc::Sphere {
+                center: [0.25, 0.75, 0.0],
+                radius: 0.13,
+            },
+            material: MaterialDesc::matte([1.0, 0.1, 0.1]),
+        },
+    ];
+    let exact = SceneDesc {
+        camera: CameraDesc::pinhole([0.0, 1.0, -5.0], [0.0, 1.0, 0.0], [0.0, 1.0, 0.0], 40.0),
+        objects: OBJECTS,
+        lights: &[LightDesc::point([2.0, 6.0, -3.0], [1.0; 3])],
+        far: 8.0,
+        background: BackgroundDesc::Solid([0.2, 0.3, 0.6]),
+        ..SceneDesc::DEFAULT
+    };
+    let adaptive = SceneDesc {
+        pixels: Pixels::Adaptive(8),
+        ..exact
+    };
+    let (width, height) = (64, 64);
+    let mut line = [Rgb565::BLACK; 64];
+    let mut corners = vec![Corner::ZERO; adaptive.corner_rows(width)];
+    let frames = [exact, adaptive].map(|desc| {
+        let scene = SmallScene::build(&desc).unwrap();
+        let camera = scene.camera(width, height).unwrap();
+        let mut frame = Recorder::new(width, height);
+        draw_band(
+            &scene,
+            &camera,
+            0..height,
+            &mut line,
+            corners.as_mut_slice(),
+            &mut frame,
+        );
+        frame.pixels
+    });
+    let red = |c: &Rgb565| c.r() > 2 * c.g();
+    let ball: Vec<_> = frames[0].iter().map(red).collect();
+    assert!(ball.iter().filter(|&&b| b).count() >= 4, "the ball shows");
+    assert_eq!(ball, frames[1].iter().map(red).collect::<Vec<_>>());
+}
+
+/// Adaptive pixels take blocks of 2, 4 or 8, one ray a pixel and no lens; anything else is
+/// refused, saying what to set.
+#[test]
+fn adaptive_pixels_other_than_blocks_of_two_to_eight_or_with_samples_are_refused() {
+    let refused = |desc: SceneDesc<'_>| SmallScene::build(&desc).unwrap_err().to_string();
+    let odd = refused(SceneDesc {
+        pixels: Pixels::Adaptive(3),
+        ..scenes::WHITTED
+    });
+    assert!(
+        odd.contains("adaptive:2, adaptive:4 or adaptive:8"),
+        "{odd}"
+    );
+    let sampled = refused(SceneDesc {
+        pixels: Pixels::Adaptive(4),
+        samples: 4,
+        ..scenes::WHITTED
+    });
+    assert!(sampled.contains("samples = 1"), "{sampled}");
+    let lens = refused(SceneDesc {
+        pixels: Pixels::Adaptive(4),
+        camera: CameraDesc {
+            aperture: 0.05,
+            ..scenes::WHITTED.camera
+        },
+        ..scenes::WHITTED
+    });
+    assert!(lens.contains("aperture"), "{lens}");
 }
 
 #[test]

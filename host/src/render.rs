@@ -9,11 +9,12 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use image::RgbImage;
 use indicatif::{ProgressBar, ProgressStyle};
+use obscura::blocks;
 use obscura::pattern::{Pattern, SampleId};
 use obscura::skips::{first_skipped_hit, first_skipped_secondary};
 use obscura::{
-    Camera, Corner, Dither, Methods, Presentation, Ray, RenderError, Rgb, RootMethod, RowTracer,
-    Scalar, SceneDesc, SceneError, corner_rows, render_frame, send_row,
+    Camera, Corner, Dither, Methods, Pixels, Presentation, Ray, RenderError, Rgb, RootMethod,
+    RowTracer, Scalar, SceneDesc, SceneError, corner_rows, render_frame, send_row,
 };
 pub use obscura_scene::HostScene;
 use obscura_scene::{Format, FormatJob};
@@ -47,14 +48,21 @@ pub fn exact_roots(methods: Methods) -> Methods {
 }
 
 /// The f64 reference a format is measured against: the same scene, size and methods, with
-/// exact roots (f64 has no others), so that a difference is the format's numeric error alone.
+/// exact roots (f64 has no others) and exact pixels (every pixel by its own ray), so that a
+/// difference is the format's numeric error and what adaptive pixels fill in.
 ///
 /// # Errors
 /// When the scene is invalid or too large even for f64.
 pub fn prepare_reference(request: &Request<'_>) -> Result<Box<dyn AnyFormat>> {
+    let exact = SceneDesc {
+        pixels: Pixels::Exact,
+        ..request.desc
+    };
     prepare(
         Format::F64,
-        &request.with_methods(exact_roots(request.methods)),
+        &request
+            .with_desc(exact)
+            .with_methods(exact_roots(request.methods)),
     )
 }
 
@@ -256,7 +264,28 @@ impl<S: Scalar> Prepared<S> {
     ///
     /// # Errors
     /// As [`Self::render`].
+    /// With adaptive pixels, the object each pixel shows: its block's corners' where it is
+    /// filled from them ([`obscura::blocks::shown_objects`]), so that an object that vanished
+    /// between corners is a mismatch.
     pub fn object_map(&self) -> Result<Vec<Option<usize>>> {
+        if let Pixels::Adaptive(block) = self.scene.pixels() {
+            let width = self.camera.width();
+            let rows: Vec<Result<Vec<_>, Overflowed>> = (0..self.camera.height())
+                .into_par_iter()
+                .map(|y| {
+                    let mut nodes = vec![Corner::ZERO; corner_rows(width)];
+                    checked::catch(|| {
+                        blocks::shown_objects(&self.scene, &self.camera, &mut nodes, block, y)
+                            .collect()
+                    })
+                })
+                .collect();
+            let mut all = Vec::new();
+            for (y, row) in (0..).zip(rows) {
+                all.extend(row.map_err(|overflowed| self.overflow_at(y..y + 1, overflowed))?);
+            }
+            return Ok(all);
+        }
         Ok(self
             .hit_map()?
             .into_iter()

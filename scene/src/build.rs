@@ -121,12 +121,11 @@ impl Proof {
             "/// The width of the image the camera was placed for.\npub const WIDTH: u32 = \
              {width};\n/// Its height.\npub const HEIGHT: u32 = {height};\n"
         );
-        let corners = corners_kept(desc.adaptive_samples, width);
+        let corners = corners_kept([&desc], width);
         let _ = writeln!(
             out,
-            "/// The corners adaptive anti-aliasing keeps: the corner rows `render_frame` takes \
-             (0: the scene takes no adaptive samples).\npub const CORNER_ROWS: usize = \
-             {corners};\n"
+            "/// The corners adaptive samples or pixels keep: the corner rows `render_frame` \
+             takes (0: the scene takes neither).\npub const CORNER_ROWS: usize = {corners};\n"
         );
         let _ = writeln!(
             out,
@@ -262,14 +261,14 @@ pub(crate) fn parts_used<'a>(frames: impl IntoIterator<Item = &'a Words>) -> Use
         .fold(Uses::NOTHING, |uses, words| uses.union(words.uses))
 }
 
-/// The corners of adaptive anti-aliasing a frame `width` pixels wide keeps: its corner rows
-/// where a scene takes adaptive samples, none where none does.
-pub(crate) fn corners_kept(adaptive: bool, width: u32) -> usize {
-    if adaptive {
-        obscura::corner_rows(width)
-    } else {
-        0
-    }
+/// The corners a frame `width` pixels wide of any of `scenes` keeps: the most any of them
+/// keeps for adaptive samples or pixels ([`SceneDesc::corner_rows`]), none where none does.
+pub fn corners_kept<'a>(scenes: impl IntoIterator<Item = &'a SceneDesc<'a>>, width: u32) -> usize {
+    scenes
+        .into_iter()
+        .map(|desc| desc.corner_rows(width))
+        .max()
+        .unwrap_or(0)
 }
 
 /// The Rust source of a type `name` of the tracer's parts `uses` ([`obscura::Parts`]).

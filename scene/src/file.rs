@@ -620,6 +620,26 @@ mod tests {
     }
 
     #[test]
+    fn adaptive_pixels_are_read_by_name_and_refused_with_samples_or_an_unknown_name() {
+        let text = MINIMAL.replace("far = 20.0", "far = 20.0\n        pixels = \"adaptive:4\"");
+        let scene = parse(&text).expect("parses");
+        assert_eq!(scene.pixels, obscura::Pixels::Adaptive(4));
+        assert!(obscura::Scene::<f32, 4, 4, 8>::build(&scene.desc()).is_ok());
+        let sampled = text.replace("far = 20.0", "far = 20.0\n        samples = 4");
+        let error = obscura::Scene::<f32, 4, 4, 8>::build(&parse(&sampled).unwrap().desc())
+            .expect_err("adaptive pixels take one ray a pixel");
+        assert!(error.to_string().contains("samples = 1"), "{error}");
+        assert_eq!(placed(&sampled, error), "scene.toml:3:19");
+        let unknown = text.replace("adaptive:4", "adaptive:3");
+        let error = format!("{:#}", parse(&unknown).expect_err("no blocks of 3"));
+        assert!(
+            error.contains("`adaptive:3` is not a way to find pixels")
+                && error.contains("\"adaptive:8\""),
+            "{error}"
+        );
+    }
+
+    #[test]
     fn an_area_light_and_its_shadow_rays_are_read_and_refused_where_they_are_wrong() {
         let text = MINIMAL
             .replace(

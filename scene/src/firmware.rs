@@ -217,12 +217,12 @@ impl Configuration {
              pub const LOOPS: bool = {};\n",
             self.loops
         );
-        let adaptive = self.scenes.iter().any(|s| s.scene.adaptive_samples);
+        let descs: Vec<_> = self.scenes.iter().map(|s| s.scene.desc()).collect();
         let _ = writeln!(
             out,
-            "/// The corner rows of adaptive anti-aliasing a frame keeps (none if no scene takes \
-             adaptive samples).\npub const CORNER_ROWS: usize = {};\n",
-            corners_kept(adaptive, SIDE)
+            "/// The corner rows adaptive samples or pixels keep (none if no scene takes \
+             either).\npub const CORNER_ROWS: usize = {};\n",
+            corners_kept(&descs, SIDE)
         );
         // One tracer per format: of the parts its frames use between them.
         for &format in &self.formats {

@@ -6,7 +6,9 @@ use crate::animation::Animation;
 use crate::mesh_file::MeshFile;
 use crate::meshes::OwnedMeshes;
 use crate::object::{FileObject, FileShape};
-use obscura::{BackgroundDesc, CameraDesc, LightDesc, ObjectDesc, SceneDesc, ShapeDesc};
+use obscura::{
+    BackgroundDesc, CameraDesc, LightDesc, MethodName, ObjectDesc, Pixels, SceneDesc, ShapeDesc,
+};
 use serde::{Deserialize, Serialize};
 
 /// `$To { .. }` from `$from`: the settings an [`OwnedScene`] shares with the core's
@@ -24,6 +26,7 @@ macro_rules! with_shared_settings {
             adaptive_samples: $from.adaptive_samples,
             shadow_samples: $from.shadow_samples,
             adaptive_shadows: $from.adaptive_shadows,
+            pixels: $from.pixels,
             $($field: $value),*
         }
     };
@@ -68,6 +71,9 @@ pub struct OwnedScene<O = ObjectDesc> {
     /// See [`SceneDesc::adaptive_shadows`].
     #[serde(default)]
     pub adaptive_shadows: bool,
+    /// See [`SceneDesc::pixels`]: `"exact"`, or `"adaptive:N"` (N = 2, 4 or 8).
+    #[serde(default, with = "pixels_by_name")]
+    pub pixels: Pixels,
     /// A camera path, the `[animation]` table: without one, the scene is a still picture.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub animation: Option<Animation>,
@@ -105,6 +111,35 @@ fn ray_count<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<u16, D
             obscura::pattern::MAX_SAMPLES
         ))
     })
+}
+
+/// [`Pixels`] in a file by its name.
+mod pixels_by_name {
+    use super::{MethodName, Pixels};
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    pub(super) fn serialize<S: Serializer>(
+        pixels: &Pixels,
+        serializer: S,
+    ) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(pixels.name())
+    }
+
+    pub(super) fn deserialize<'de, D: Deserializer<'de>>(
+        deserializer: D,
+    ) -> Result<Pixels, D::Error> {
+        let name = String::deserialize(deserializer)?;
+        Pixels::from_name(&name).ok_or_else(|| {
+            let names: Vec<_> = Pixels::ALL
+                .iter()
+                .map(|(_, name)| format!("\"{name}\""))
+                .collect();
+            serde::de::Error::custom(format!(
+                "`{name}` is not a way to find pixels: give {}",
+                names.join(", ")
+            ))
+        })
+    }
 }
 
 impl<O> OwnedScene<O> {

@@ -16,8 +16,8 @@ use anyhow::{Result, anyhow};
 use obscura::methods::MethodName;
 use obscura::pattern::MAX_SAMPLES;
 use obscura::{
-    BiasMethod, Dither, Methods, Presentation, RayMethod, RootMethod, RowOrder, SphereMethod,
-    TriangleMethod,
+    BiasMethod, Dither, Methods, Pixels, Presentation, RayMethod, RootMethod, RowOrder,
+    SphereMethod, TriangleMethod,
 };
 use std::fmt;
 
@@ -76,7 +76,8 @@ spelled_by_name!(
     BiasMethod,
     RowOrder,
     Dither,
-    Variants
+    Variants,
+    Pixels
 );
 
 /// A setting read from its variable, or from its default: `text` by `parse`, or the error with
@@ -179,8 +180,8 @@ macro_rules! settings {
 
 settings! {
     /// How many rays a pixel and an area light take, over the scene's own `samples`,
-    /// `adaptive_samples`, `shadow_samples` and `adaptive_shadows` (the fields are the scene
-    /// file's keys too): a setting not given keeps the scene's own.
+    /// `adaptive_samples`, `shadow_samples`, `adaptive_shadows` and `pixels` (the fields are
+    /// the scene file's keys too): a setting not given keeps the scene's own.
     pub struct Sampling {
         list {}
         one {}
@@ -197,6 +198,10 @@ settings! {
             /// Whether a point takes an area light's first 4 shadow rays and the rest only
             /// where they disagree (`true`), or all of them (`false`).
             adaptive_shadows: bool, "OBSCURA_ADAPTIVE_SHADOWS", switch;
+            /// How a frame's pixels are found: `exact` (each by its own rays), or
+            /// `adaptive:N` (N = 2, 4 or 8: blocks of N×N filled from their corners where
+            /// the corners agree, split where they do not).
+            pixels: Pixels, "OBSCURA_PIXELS", choice::<Pixels>;
         }
     }
 }
@@ -209,11 +214,13 @@ impl Sampling {
             adaptive_samples,
             shadow_samples,
             adaptive_shadows,
+            pixels,
         } = *self;
         scene.samples = samples.unwrap_or(scene.samples);
         scene.adaptive_samples = adaptive_samples.unwrap_or(scene.adaptive_samples);
         scene.shadow_samples = shadow_samples.unwrap_or(scene.shadow_samples);
         scene.adaptive_shadows = adaptive_shadows.unwrap_or(scene.adaptive_shadows);
+        scene.pixels = pixels.unwrap_or(scene.pixels);
     }
 }
 
@@ -531,6 +538,7 @@ mod tests {
                 adaptive_samples: None,
                 shadow_samples: None,
                 adaptive_shadows: None,
+                pixels: None,
             }
         );
         assert_eq!(defaults.frames.scene, ["whitted"]);

@@ -124,6 +124,8 @@ pub(crate) struct Settings<S: Scalar> {
     pub(crate) adaptive_samples: bool,
     /// See [`SceneDesc::adaptive_shadows`].
     pub(crate) adaptive_shadows: bool,
+    /// The side of adaptive pixels' blocks ([`SceneDesc::pixels`]): 1 for exact pixels.
+    pub(crate) pixel_block: u8,
     pub(crate) methods: Methods,
     /// The balls a ray may be inside of (they let light through) with nothing else inside, a
     /// bit each (bit i for object i, below [`crate::cull::SHARED_BIT`]): every other object is
@@ -144,6 +146,7 @@ crate::words::words_of_struct!(Settings<S> {
     samples,
     adaptive_samples,
     adaptive_shadows,
+    pixel_block,
     methods,
     lone_balls
 });
@@ -236,6 +239,15 @@ impl<
     /// ```
     pub fn camera(&self, width: u32, height: u32) -> Result<Camera<S>, SceneError> {
         camera(&self.frame, &self.settings.methods, width, height)
+    }
+
+    /// How the frame's pixels are found ([`SceneDesc::pixels`]).
+    #[must_use]
+    pub const fn pixels(&self) -> crate::Pixels {
+        match self.settings.pixel_block {
+            0 | 1 => crate::Pixels::Exact,
+            block => crate::Pixels::Adaptive(block),
+        }
     }
 
     /// The objects, in the order of the description.
@@ -803,6 +815,7 @@ impl<S: Scalar> Converter<S> {
             samples: desc.samples,
             adaptive_samples: desc.adaptive_samples,
             adaptive_shadows: desc.adaptive_shadows,
+            pixel_block: desc.pixels.block(),
             methods: self.methods,
             lone_balls: self.lone_balls(desc, tolerance),
         })

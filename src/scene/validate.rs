@@ -5,6 +5,7 @@ crate::phase::declare_phase!(Some(crate::phase::Phase::Build));
 
 use super::error::{Item, SceneError};
 use super::range::{self, distance};
+use crate::blocks::Pixels;
 use crate::camera::Frame;
 use crate::desc::{
     BackgroundDesc, CameraDesc, LightDesc, MaterialDesc, MeshesDesc, SceneDesc, ShapeDesc,
@@ -51,6 +52,9 @@ pub(super) fn validate(desc: &SceneDesc<'_>) -> Result<Frame, SceneError> {
     let frame = camera(&desc.camera)?;
     if desc.adaptive_samples {
         adaptive(desc)?;
+    }
+    if desc.pixels != Pixels::Exact {
+        adaptive_pixels(desc)?;
     }
     inside_world(Item::Camera, frame.aperture, desc.far)?;
     let eye = Vec3::from_f32(desc.camera.eye);
@@ -115,6 +119,39 @@ fn adaptive(desc: &SceneDesc<'_>) -> Result<(), SceneError> {
             desc.camera.aperture,
             "0 with adaptive_samples (they spread over the pixel, not a lens: use samples \
              alone for depth of field)",
+        ));
+    }
+    Ok(())
+}
+
+/// Adaptive pixels come in blocks of 2, 4 or 8, and fill a pixel from the rays of others, so
+/// each takes one ray from the eye.
+fn adaptive_pixels(desc: &SceneDesc<'_>) -> Result<(), SceneError> {
+    let block = desc.pixels.block();
+    if !Pixels::BLOCKS.contains(&block) {
+        return Err(out_of_bounds(
+            Item::Scene,
+            "pixels",
+            f32::from(block),
+            "adaptive:2, adaptive:4 or adaptive:8 (blocks of 2, 4 or 8 pixels a side)",
+        ));
+    }
+    if desc.samples != 1 || desc.adaptive_samples {
+        return Err(out_of_bounds(
+            Item::Scene,
+            "samples",
+            f32::from(desc.samples),
+            "1 with adaptive pixels (a block fills its pixels from its corners' one ray each: \
+             set samples = 1 and adaptive_samples = false, or pixels = \"exact\")",
+        ));
+    }
+    if desc.camera.aperture != 0.0 {
+        return Err(out_of_bounds(
+            Item::Camera,
+            "aperture",
+            desc.camera.aperture,
+            "0 with adaptive pixels (a pixel through a lens takes its own lens point: use \
+             pixels = \"exact\" for depth of field)",
         ));
     }
     Ok(())

@@ -207,12 +207,22 @@ impl<S: Scalar> Plane<S> {
     #[must_use]
     pub fn pattern_colour(&self, point: Vec3<S>) -> Option<Rgb<S::Narrow>> {
         let checker = self.checker?;
+        let [u, v] = self.square(point)?;
+        (u.wrapping_add(v) & 1 == 1).then_some(checker.colour)
+    }
+
+    /// The checker's square a point falls on, as its whole coordinates along the checker's
+    /// two directions; `None` without a checker.
+    #[inline]
+    #[must_use]
+    pub(crate) fn square(&self, point: Vec3<S>) -> Option<[i32; 2]> {
+        let checker = self.checker?;
         let local = point - self.foot;
         let [start_u, start_v] = checker.start;
-        let squares = (local.dot(checker.u) + start_u)
-            .floor_int()
-            .wrapping_add((local.dot(checker.v) + start_v).floor_int());
-        (squares & 1 == 1).then_some(checker.colour)
+        Some([
+            (local.dot(checker.u) + start_u).floor_int(),
+            (local.dot(checker.v) + start_v).floor_int(),
+        ])
     }
 }
 

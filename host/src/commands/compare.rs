@@ -8,7 +8,7 @@ use crate::render::{AnyFormat, Request, all_cores, prepare, prepare_reference, r
 use crate::timing::interleaved_median_ms;
 use anyhow::{Context, Result};
 use obscura::methods::MethodName;
-use obscura::{Dither, Presentation};
+use obscura::{Dither, Pixels, Presentation};
 use obscura_scene::{Format, FormatChoice, NamedScene, OwnedScene};
 use serde::Serialize;
 use std::io;
@@ -111,10 +111,15 @@ fn compare(args: &CompareArgs, named: &NamedScene) -> Result<()> {
         .converged
         .map(|samples| converged(samples, &scene, &request, [&image, &truth], &objects))
         .transpose()?;
+    // Adaptive pixels named beside the scene: the reference's pixels are exact.
+    let scene_name = match scene.pixels {
+        Pixels::Exact => name,
+        pixels => format!("{name}, {}", pixels.name()),
+    };
     let report = Report {
         format: format.name(),
         reference: REFERENCE.name(),
-        scene: name,
+        scene: scene_name,
         width,
         height,
         psnr_db,

@@ -11,7 +11,7 @@ use crate::profile::{self, Counts, Profile};
 use crate::render::{Request, rgb565_image};
 use anyhow::{Context, Result, bail};
 use obscura::methods::MethodName;
-use obscura::{Methods, RowOrder};
+use obscura::{Methods, Pixels, RowOrder};
 use obscura_scene::firmware::{Configuration, SIDE, with_paths_as_frames};
 use obscura_scene::{FirmwareSettings, Format, FormatChoice, Variants};
 use serde::Serialize;
@@ -27,6 +27,8 @@ struct Report {
     scene: String,
     format: String,
     methods: String,
+    /// How the frame's pixels are found ([`obscura::Pixels`]).
+    pixels: &'static str,
     order: &'static str,
     dither: &'static str,
     width: u32,
@@ -43,7 +45,8 @@ struct Report {
     ram_bytes: u64,
     storage_bytes: u64,
     fixed_storage_bytes: u64,
-    /// The corner rows the image keeps for adaptive samples, on the stack (0 without).
+    /// The corner rows the image keeps for adaptive samples or pixels, on the stack (0
+    /// without).
     corner_rows_bytes: u64,
 }
 
@@ -220,15 +223,13 @@ fn compare(
     dir: &Path,
 ) -> Result<(Vec<Report>, Vec<String>)> {
     let presentation = configuration.presentation;
-    let corner_rows_bytes = if configuration
+    let descs: Vec<_> = configuration
         .scenes
         .iter()
-        .any(|s| s.scene.adaptive_samples)
-    {
-        (obscura::corner_rows(SIDE) * size_of::<obscura::Corner>()) as u64
-    } else {
-        0
-    };
+        .map(|s| s.scene.desc())
+        .collect();
+    let corner_rows_bytes =
+        (obscura_scene::build::corners_kept(&descs, SIDE) * size_of::<obscura::Corner>()) as u64;
     let mut reports = Vec::new();
     let mut mismatched = Vec::new();
     for planned in configuration.frames()?.iter().filter(|f| f.proven.is_ok()) {
@@ -284,6 +285,7 @@ fn compare(
             scene: frame.scene.clone(),
             format: frame.format.clone(),
             methods: methods.to_string(),
+            pixels: scene.scene.pixels.name(),
             order: presentation.order.name(),
             dither: presentation.dither.name(),
             width: frame.width,
@@ -651,8 +653,13 @@ fn print_table(target: Target, reports: &[Report]) -> io::Result<()> {
         )?;
     }
     if let Some(first) = reports.first() {
+        let pixels = if first.pixels == Pixels::Exact.name() {
+            String::new()
+        } else {
+            format!("; pixels {}", first.pixels)
+        };
         say!(
-            "methods: {}; rows {}; dither {}",
+            "methods: {}{pixels}; rows {}; dither {}",
             first.methods,
             first.order,
             first.dither
@@ -664,9 +671,9 @@ fn print_table(target: Target, reports: &[Report]) -> io::Result<()> {
         .filter(|&b| b > 0)
     {
         say!(
-            "adaptive samples keep two rows of {} corners, {bytes} bytes, on the stack (within \
+            "adaptive samples or pixels keep {} corners, {bytes} bytes, on the stack (within \
              the stack column)",
-            obscura::corner_rows(SIDE) / 2
+            bytes / size_of::<obscura::Corner>() as u64
         )?;
     }
     say!(

@@ -168,6 +168,7 @@ impl Generator {
             adaptive_samples: false,
             shadow_samples: 1,
             adaptive_shadows: false,
+            pixels: obscura::Pixels::Exact,
             animation: None,
         };
         let size = self.size();
