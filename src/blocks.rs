@@ -52,8 +52,9 @@ pub enum Pixels {
     /// Every pixel by its own ray (or its samples).
     #[default]
     Exact,
-    /// Blocks of N×N pixels (N = 2, 4 or 8) filled from their corners where the corners agree
-    /// ([`crate::blocks`]): about 1/N² of the rays where the image is flat.
+    /// Blocks of N×N pixels (N = 2, 4 or 8) filled from their corners where the corners
+    /// agree (the same objects met, the same checker square, close colours), split where they
+    /// do not: about 1/N² of the rays where the image is flat.
     Adaptive(u8),
 }
 

@@ -118,7 +118,8 @@ impl SceneDesc<'_> {
 
     /// The corner rows ([`crate::Corner`]s) a renderer of this scene passes for an image
     /// `width` pixels wide: adaptive samples' (two rows of `width + 1`), adaptive
-    /// pixels' ([`crate::blocks::node_rows`]), or none.
+    /// pixels' (N/2 + 1 rows of `width/2 + 1` corners of two `Corner`s each, for blocks of
+    /// N), or none.
     #[must_use]
     pub const fn corner_rows(&self, width: u32) -> usize {
         corners_kept(self.adaptive_samples, self.pixels.block(), width)
