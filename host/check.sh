@@ -83,6 +83,10 @@ RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --locked --quiet --document-priva
 RUSTDOCFLAGS="-D warnings" cargo doc -p obscura --no-deps --locked --quiet
 
 step "the core and the scene crate as crates.io would take them: cargo package"
+# Its verification unpacks the packaged crates into a local registry's sources (a directory
+# named by a hash of this checkout's path) and, where one of the same version is there already,
+# keeps the one unpacked before: remove them, so that it verifies these sources.
+rm -rf "${CARGO_HOME:-$HOME/.cargo}"/registry/src/-*/obscura-*
 cargo package -p obscura -p obscura-scene --locked --quiet
 
 step "the library's dependencies: none of the firmware's"
