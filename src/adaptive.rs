@@ -92,8 +92,16 @@ pub const CONTRAST: u16 = 0x1000;
 #[must_use]
 pub const fn corner_rows(width: u32) -> usize {
     let samples = sample_rows(width);
-    let blocks = crate::blocks::node_rows(width, 8);
+    let blocks = node_rows(width, 8);
     if samples > blocks { samples } else { blocks }
+}
+
+/// The corner rows ([`crate::Corner`]s) that adaptive pixels of blocks of `block` keep for an
+/// image `width` pixels wide: `block/2 + 1` rows of `width/2 + 1` corners of two
+/// [`crate::Corner`]s each (a colour, and what the corner's ray tree met).
+#[must_use]
+pub const fn node_rows(width: u32, block: u8) -> usize {
+    2 * (block as usize / 2 + 1) * (width as usize / 2 + 1)
 }
 
 /// The corners a renderer keeps for adaptive anti-aliasing of an image `width` pixels wide:

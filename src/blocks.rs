@@ -24,7 +24,7 @@
 //!
 //! No frame buffer: the corners of a band of N rows lie on its even rows, kept in the corner
 //! rows a renderer passes ([`crate::CornerRows`]), N/2 + 1 rows of `width/2 + 1` corners
-//! ([`node_rows`]), each traced only when a block asks for it; a band's bottom row is the next
+//! ([`crate::adaptive::node_rows`]), each traced only when a block asks for it; a band's bottom row is the next
 //! band's top. A pixel's colour is a function of its place alone, so every order of rows (two
 //! cores, a progressive frame) draws the same frame. A block the image's right or bottom edge
 //! cuts is traced pixel by pixel.
@@ -91,13 +91,6 @@ const MAX_BLOCK: u32 = 8;
 /// The rows of corners a band keeps: its even rows.
 const MAX_SLOTS: usize = MAX_BLOCK as usize / 2 + 1;
 
-/// The corner rows ([`crate::Corner`]s) that adaptive pixels of blocks of `block` keep for an
-/// image `width` pixels wide: `block/2 + 1` rows of `width/2 + 1` corners of two
-/// [`crate::Corner`]s each (a colour, and what the corner's ray tree met).
-#[must_use]
-pub const fn node_rows(width: u32, block: u8) -> usize {
-    2 * (block as usize / 2 + 1) * (width as usize / 2 + 1)
-}
 
 /// A traced corner of a block: its colour, and what its ray tree met.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -186,7 +179,7 @@ pub(crate) struct Blocks<'a> {
 }
 
 impl<'a> Blocks<'a> {
-    /// Adaptive pixels of blocks of `block` (2, 4 or 8) in `nodes` ([`node_rows`] of them).
+    /// Adaptive pixels of blocks of `block` (2, 4 or 8) in `nodes` ([`crate::adaptive::node_rows`] of them).
     pub(crate) fn new(nodes: &'a mut [Corner], block: u8) -> Self {
         Self {
             nodes,
@@ -279,7 +272,7 @@ impl<S: Scalar, C: DisplayColor> Shown<S> for Line<'_, C> {
 }
 
 /// The objects each pixel of row `y` shows by adaptive pixels of blocks of `block`, through
-/// `nodes` ([`node_rows`] of them): the object its block's corners met first, or its own
+/// `nodes` ([`crate::adaptive::node_rows`] of them): the object its block's corners met first, or its own
 /// ray's. What the harness holds against an exact frame's objects: an object that vanished
 /// between corners shows as a mismatch.
 pub fn shown_objects<

@@ -500,7 +500,7 @@ pub(crate) const fn corners_kept(adaptive_samples: bool, block: u8, width: u32) 
     if adaptive_samples {
         crate::adaptive::sample_rows(width)
     } else if block > 1 {
-        crate::blocks::node_rows(width, block)
+        crate::adaptive::node_rows(width, block)
     } else {
         0
     }
