@@ -274,6 +274,29 @@ pub(crate) fn contrast(corners: &[Corner; 4]) -> u16 {
         .unwrap_or(0)
 }
 
+impl crate::desc::SceneDesc<'_> {
+    /// The corner rows ([`crate::Corner`]s) a renderer of this scene passes for an image
+    /// `width` pixels wide: adaptive samples' (two rows of `width + 1`), adaptive
+    /// pixels' (N/2 + 1 rows of `width/2 + 1` corners of two `Corner`s each, for blocks of
+    /// N), or none.
+    #[must_use]
+    pub const fn corner_rows(&self, width: u32) -> usize {
+        corners_kept(self.adaptive_samples, self.pixels.block(), width)
+    }
+}
+
+/// The corner rows a scene keeps at `width` with adaptive samples or not and adaptive pixels'
+/// blocks of `block` (1: exact pixels).
+pub(crate) const fn corners_kept(adaptive_samples: bool, block: u8, width: u32) -> usize {
+    if adaptive_samples {
+        sample_rows(width)
+    } else if block > 1 {
+        node_rows(width, block)
+    } else {
+        0
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

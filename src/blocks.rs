@@ -1,4 +1,4 @@
-//! Adaptive image-space sampling ([`Pixels::Adaptive`]): fewer rays than pixels. The image is
+//! Adaptive image-space sampling ([`crate::Pixels::Adaptive`]): fewer rays than pixels. The image is
 //! cut into blocks of N×N pixels whose corners are pixel centres N apart, each traced as that
 //! pixel's own ray; where a block's four corners agree its pixels are filled between them,
 //! else it splits into four of half the size and traces their new corners, down to blocks of 2,
@@ -8,8 +8,9 @@
 //! Corners **agree** when their primary rays met the same object (on a checkered plane, the same
 //! square), their ray trees the same objects (every object a ray of the tree met or was shadowed
 //! by, [`Sample::met`], those from 15 on sharing a bit: the same reflections, refractions and
-//! shadows), and their colours are within [`CONTRAST`] in every channel. A filled pixel is the bilinear mean of its block's corners, in integers of 16-bit
-//! fractions, rounded once: the same bits on every machine.
+//! shadows), and their colours are within [`CONTRAST`] in every channel. A filled pixel is the
+//! bilinear mean of its block's corners, in integers of 16-bit fractions, rounded once: the
+//! same bits on every machine.
 //!
 //! **No object vanishes** between corners that agree: a block is filled only if every object
 //! that culling says a primary ray of the block's rows and columns may meet ([`crate::cull`],
@@ -24,10 +25,10 @@
 //!
 //! No frame buffer: the corners of a band of N rows lie on its even rows, kept in the corner
 //! rows a renderer passes ([`crate::CornerRows`]), N/2 + 1 rows of `width/2 + 1` corners
-//! ([`crate::adaptive::node_rows`]), each traced only when a block asks for it; a band's bottom row is the next
-//! band's top. A pixel's colour is a function of its place alone, so every order of rows (two
-//! cores, a progressive frame) draws the same frame. A block the image's right or bottom edge
-//! cuts is traced pixel by pixel.
+//! ([`crate::adaptive::node_rows`]), each traced only when a block asks for it; a band's
+//! bottom row is the next band's top. A pixel's colour is a function of its place alone, so
+//! every order of rows (two cores, a progressive frame) draws the same frame. A block the
+//! image's right or bottom edge cuts is traced pixel by pixel.
 
 crate::phase::declare_phase!(Some(crate::phase::Phase::Output));
 
@@ -45,41 +46,6 @@ use crate::shape::Shape;
 use crate::shape::mesh::Meshes;
 use crate::uses::Parts;
 use heapless::Vec;
-
-/// How a frame's pixels are found.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum Pixels {
-    /// Every pixel by its own ray (or its samples).
-    #[default]
-    Exact,
-    /// Blocks of N×N pixels (N = 2, 4 or 8) filled from their corners where the corners
-    /// agree (the same objects met, the same checker square, close colours), split where they
-    /// do not: about 1/N² of the rays where the image is flat.
-    Adaptive(u8),
-}
-
-impl crate::methods::MethodName for Pixels {
-    const ALL: &'static [(Self, &'static str)] = &[
-        (Self::Exact, "exact"),
-        (Self::Adaptive(2), "adaptive:2"),
-        (Self::Adaptive(4), "adaptive:4"),
-        (Self::Adaptive(8), "adaptive:8"),
-    ];
-}
-
-impl Pixels {
-    /// The side of a block: 1 for exact pixels.
-    #[must_use]
-    pub const fn block(self) -> u8 {
-        match self {
-            Self::Exact => 1,
-            Self::Adaptive(n) => n,
-        }
-    }
-
-    /// The sides a block can take.
-    pub const BLOCKS: [u8; 3] = [2, 4, 8];
-}
 
 /// How far apart a block's corners may be, in any channel, for its pixels to be filled: a
 /// thirty-second of full scale, some eight levels of an 8-bit channel.
@@ -179,7 +145,8 @@ pub(crate) struct Blocks<'a> {
 }
 
 impl<'a> Blocks<'a> {
-    /// Adaptive pixels of blocks of `block` (2, 4 or 8) in `nodes` ([`crate::adaptive::node_rows`] of them).
+    /// Adaptive pixels of blocks of `block` (2, 4 or 8) in `nodes`
+    /// ([`crate::adaptive::node_rows`] of them).
     pub(crate) fn new(nodes: &'a mut [Corner], block: u8) -> Self {
         Self {
             nodes,
@@ -272,9 +239,9 @@ impl<S: Scalar, C: DisplayColor> Shown<S> for Line<'_, C> {
 }
 
 /// The objects each pixel of row `y` shows by adaptive pixels of blocks of `block`, through
-/// `nodes` ([`crate::adaptive::node_rows`] of them): the object its block's corners met first, or its own
-/// ray's. What the harness holds against an exact frame's objects: an object that vanished
-/// between corners shows as a mismatch.
+/// `nodes` ([`crate::adaptive::node_rows`] of them): the object its block's corners met
+/// first, or its own ray's. What the harness holds against an exact frame's objects: an
+/// object that vanished between corners shows as a mismatch.
 pub fn shown_objects<
     S: Scalar,
     const OBJECTS: usize,

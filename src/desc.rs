@@ -4,7 +4,6 @@
 
 crate::phase::declare_phase!(Some(crate::phase::Phase::Build));
 
-use crate::blocks::Pixels;
 
 /// A scene as its author writes it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -95,6 +94,41 @@ impl SceneDesc<'static> {
     };
 }
 
+/// How a frame's pixels are found.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Pixels {
+    /// Every pixel by its own ray (or its samples).
+    #[default]
+    Exact,
+    /// Blocks of N×N pixels (N = 2, 4 or 8) filled from their corners where the corners
+    /// agree (the same objects met, the same checker square, close colours), split where they
+    /// do not: about 1/N² of the rays where the image is flat.
+    Adaptive(u8),
+}
+
+impl crate::methods::MethodName for Pixels {
+    const ALL: &'static [(Self, &'static str)] = &[
+        (Self::Exact, "exact"),
+        (Self::Adaptive(2), "adaptive:2"),
+        (Self::Adaptive(4), "adaptive:4"),
+        (Self::Adaptive(8), "adaptive:8"),
+    ];
+}
+
+impl Pixels {
+    /// The side of a block: 1 for exact pixels.
+    #[must_use]
+    pub const fn block(self) -> u8 {
+        match self {
+            Self::Exact => 1,
+            Self::Adaptive(n) => n,
+        }
+    }
+
+    /// The sides a block can take.
+    pub const BLOCKS: [u8; 3] = [2, 4, 8];
+}
+
 /// [`SceneDesc::DEFAULT`].
 impl Default for SceneDesc<'_> {
     fn default() -> Self {
@@ -114,15 +148,6 @@ impl SceneDesc<'_> {
             rest = others;
         }
         self.samples == 1 && !self.adaptive_samples && (point_lights || self.shadow_samples == 1)
-    }
-
-    /// The corner rows ([`crate::Corner`]s) a renderer of this scene passes for an image
-    /// `width` pixels wide: adaptive samples' (two rows of `width + 1`), adaptive
-    /// pixels' (N/2 + 1 rows of `width/2 + 1` corners of two `Corner`s each, for blocks of
-    /// N), or none.
-    #[must_use]
-    pub const fn corner_rows(&self, width: u32) -> usize {
-        corners_kept(self.adaptive_samples, self.pixels.block(), width)
     }
 
     /// Whether any object is a triangle or a mesh (the triangle methods matter only then).
@@ -494,14 +519,3 @@ fn y_up() -> [f32; 3] {
     Y_UP
 }
 
-/// The corner rows a scene keeps at `width` with adaptive samples or not and adaptive pixels'
-/// blocks of `block` (1: exact pixels).
-pub(crate) const fn corners_kept(adaptive_samples: bool, block: u8, width: u32) -> usize {
-    if adaptive_samples {
-        crate::adaptive::sample_rows(width)
-    } else if block > 1 {
-        crate::adaptive::node_rows(width, block)
-    } else {
-        0
-    }
-}

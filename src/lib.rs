@@ -144,9 +144,9 @@ const MODULE_PHASES: &[phase::Module] = &[
 mod test_util;
 
 pub use adaptive::{Corner, CornerRows, corner_rows};
-pub use blocks::Pixels;
 pub use camera::{Camera, MAX_IMAGE_SIDE};
 pub use color::{DisplayColor, Dither, Rgb};
+pub use desc::Pixels;
 pub use desc::{
     BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, MeshesDesc, NodeDesc,
     ObjectDesc, SceneDesc, ShapeDesc, Y_UP,

@@ -5,9 +5,8 @@
 
 crate::phase::declare_phase!(Some(crate::phase::Phase::Output));
 
-use crate::adaptive::{self, Corner, CornerRows, Pixel};
+use crate::adaptive::{self, Corner, CornerRows, Pixel, corners_kept};
 use crate::blocks::{self, Blocks};
-use crate::desc::corners_kept;
 use crate::camera::{Camera, Row};
 use crate::color::{DisplayColor, Dither, Rgb};
 use crate::cull::RowRanges;

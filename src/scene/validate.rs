@@ -5,7 +5,7 @@ crate::phase::declare_phase!(Some(crate::phase::Phase::Build));
 
 use super::error::{Item, SceneError};
 use super::range::{self, distance};
-use crate::blocks::Pixels;
+use crate::desc::Pixels;
 use crate::camera::Frame;
 use crate::desc::{
     BackgroundDesc, CameraDesc, LightDesc, MaterialDesc, MeshesDesc, SceneDesc, ShapeDesc,
