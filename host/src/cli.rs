@@ -314,7 +314,8 @@ pub struct PreviewArgs {
 /// `obscura chart`.
 #[derive(Debug, Args)]
 pub struct ChartArgs {
-    /// Where to write speed-accuracy.csv, .svg and .png, and samples-accuracy's.
+    /// Where to write speed-accuracy.csv, .svg and .png, and samples-accuracy's and
+    /// pixels-accuracy's.
     #[arg(long, default_value = "out/chart")]
     pub out_dir: PathBuf,
     /// Where to write the frames the firmware drew under QEMU, a directory a run.

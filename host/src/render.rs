@@ -260,13 +260,13 @@ impl<S: Scalar> Prepared<S> {
     }
 
     /// The index of the object each pixel's primary ray hits first, row by row, the rays made
-    /// as the renderer makes them ([`Self::primary_rays`]).
+    /// as the renderer makes them ([`Self::primary_rays`]). With adaptive pixels, the object
+    /// each pixel shows: its block's corners' where it is filled from them
+    /// ([`obscura::blocks::shown_objects`]), so that an object that vanished between corners is
+    /// a mismatch.
     ///
     /// # Errors
     /// As [`Self::render`].
-    /// With adaptive pixels, the object each pixel shows: its block's corners' where it is
-    /// filled from them ([`obscura::blocks::shown_objects`]), so that an object that vanished
-    /// between corners is a mismatch.
     pub fn object_map(&self) -> Result<Vec<Option<usize>>> {
         if let Pixels::Adaptive(block) = self.scene.pixels() {
             let width = self.camera.width();

@@ -224,6 +224,30 @@ mod tests {
         }
     }
 
+    /// Adaptive pixels lose a shadow, a reflection and a refracted checker that fall between a
+    /// block's corners (f32 in blocks of 8 20 dB and more below exact pixels at some size), and
+    /// hold a fine checker (above 60 dB against f64 at every size: each corner knows its
+    /// square); no case's object mismatch exceeds its bound (above).
+    #[test]
+    fn adaptive_pixels_lose_what_falls_between_corners_and_hold_the_checker() {
+        let f32_rows = |case, method| {
+            rows(case)
+                .iter()
+                .filter(move |r| r.format == "f32" && r.method == method)
+        };
+        for case in ["adaptive-shadow", "adaptive-reflection", "adaptive-glass"] {
+            let loss = f32_rows(case, "adaptive:8")
+                .zip(f32_rows(case, "exact"))
+                .filter_map(|(adaptive, exact)| Some(exact.y? - adaptive.y?))
+                .fold(f64::NEG_INFINITY, f64::max);
+            assert!(loss > 20.0, "{case}: {loss} dB");
+        }
+        let checker = f32_rows("adaptive-checker", "adaptive:8")
+            .filter_map(|r| r.y)
+            .fold(f64::INFINITY, f64::min);
+        assert!(checker > 60.0, "{checker} dB");
+    }
+
     #[test]
     fn what_a_format_cannot_hold_is_refused_with_the_reason() {
         // A sphere 10⁴ times smaller than its distance is below i16f16's resolution...

@@ -2,9 +2,10 @@
 //! sense, on both built-in scenes. Cost three ways (instructions per pixel on the Cortex-M4F and
 //! the Cortex-M0, counted under QEMU; host time per pixel, timed in one run), error two ways
 //! (PSNR and object mismatch against f64), and the Pareto front of each pairing. Then the
-//! samples axis ([`samples`]): rays per pixel, fixed and adaptive, against cost.
+//! sampling axes ([`sampling`]): rays per pixel, fixed and adaptive, and pixels, exact and
+//! adaptive, against cost.
 
-mod samples;
+mod sampling;
 
 use crate::analysis::TARGET_PSNR;
 use crate::cli::ChartArgs;
@@ -87,7 +88,8 @@ pub fn run(args: &ChartArgs) -> Result<()> {
         svg.display(),
         png.display()
     )?;
-    samples::run(args)
+    sampling::SAMPLES.run(args)?;
+    sampling::PIXELS.run(args)
 }
 
 /// Instructions per pixel of a variant on a microcontroller.

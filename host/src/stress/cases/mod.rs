@@ -1,6 +1,7 @@
 //! The stress cases, one file each, and the scene pieces they share.
 
 mod acne;
+mod adaptive;
 mod distant;
 mod floor;
 mod focal;
@@ -19,7 +20,7 @@ use anyhow::Context as _;
 use obscura::{BackgroundDesc, CameraDesc, MaterialDesc, Methods, Scalar, SceneDesc, SceneError};
 
 /// Every case, in the order they run.
-pub static CASES: [Case; 11] = [
+pub static CASES: [Case; 15] = [
     grazing::CASE,
     distant::CASE,
     floor::CASE,
@@ -31,6 +32,10 @@ pub static CASES: [Case; 11] = [
     scale::CASE,
     penumbra::CASE,
     focal::CASE,
+    adaptive::SHADOW,
+    adaptive::REFLECTION,
+    adaptive::CHECKER,
+    adaptive::GLASS,
 ];
 
 /// A camera at the origin looking along +z, for cases that shoot their own rays.
@@ -143,7 +148,12 @@ fn image_row<S: Scalar>(
 
 /// An image's PSNR, with identical images drawn at 100 dB.
 fn psnr(check: &ImageCheck) -> f64 {
-    check.psnr_db.min(100.0)
+    capped(check.psnr_db)
+}
+
+/// A PSNR drawn at 100 dB where it is infinite (identical images).
+fn capped(psnr_db: f64) -> f64 {
+    psnr_db.min(100.0)
 }
 
 /// An image's share of wrong pixels, in percent.
