@@ -5,8 +5,8 @@
 
 use obscura::scene::range;
 use obscura::{
-    BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, ObjectDesc, ShapeDesc, Vec3,
-    Y_UP,
+    BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, ObjectDesc, Pixels,
+    ShapeDesc, Vec3, Y_UP,
 };
 use obscura_scene::{OwnedMeshes, OwnedScene};
 use rand::{Rng, SeedableRng};
@@ -32,6 +32,10 @@ pub struct Generated {
     pub scene: OwnedScene,
     /// Width and height in pixels: at most [`MAX_PIXELS`], now and then one of them very long.
     pub size: (u32, u32),
+    /// For an eighth of the scenes of one ray a pixel through a pinhole, the scene with
+    /// adaptive pixels, half of them with a small ball added in view, to be held to its exact
+    /// pixels.
+    pub blocks: Option<OwnedScene>,
 }
 
 /// The most pixels a generated image has: enough to see edges, few enough to try many scenes.
@@ -168,7 +172,7 @@ impl Generator {
             adaptive_samples: false,
             shadow_samples: 1,
             adaptive_shadows: false,
-            pixels: obscura::Pixels::Exact,
+            pixels: Pixels::Exact,
             animation: None,
         };
         let size = self.size();
@@ -252,7 +256,54 @@ impl Generator {
                 };
             }
         }
-        Generated { scene, size }
+        // Drawn last, likewise: an eighth of the scenes of one ray a pixel through a pinhole
+        // again with adaptive pixels, in blocks of 2, 4 or 8, half of them with a ball one to
+        // three pixels across in view: what a block would lose that filled over it.
+        let mut blocks = None;
+        if scene.samples == 1 && scene.camera.aperture == 0.0 && self.chance(0.125) {
+            let mut adaptive = scene.clone();
+            adaptive.pixels = Pixels::Adaptive(Pixels::BLOCKS[self.below(Pixels::BLOCKS.len())]);
+            if self.chance(0.5) {
+                self.small_ball(&mut adaptive, size.1);
+            }
+            blocks = Some(adaptive);
+        }
+        Generated {
+            scene,
+            size,
+            blocks,
+        }
+    }
+
+    /// Adds a ball of any material, from one to three pixels wide at the centre of an image `height` pixels high, somewhere in `scene`'s view, nearer than any
+    /// other object.
+    fn small_ball(&mut self, scene: &mut OwnedScene, height: u32) {
+        let eye = f64s(scene.camera.eye);
+        let forward = sub(f64s(scene.camera.look_at), eye);
+        let forward = scale(forward, 1.0 / norm(forward).max(f64::MIN_POSITIVE));
+        let half = (f64::from(scene.camera.vfov_degrees) / 2.0)
+            .to_radians()
+            .tan();
+        let aside = scale(self.direction(), 0.7 * half);
+        let dir = add(forward, aside);
+        let dir = scale(dir, 1.0 / norm(dir).max(f64::MIN_POSITIVE));
+        let eye_at = Vec3::from_f32(scene.camera.eye);
+        let nearest = scene
+            .objects
+            .iter()
+            .map(|object| range::clearance(object, eye_at))
+            .fold(f64::from(scene.far), f64::min);
+        let distance = nearest * self.uniform(0.2, 0.9);
+        let pixel = 2.0 * half / f64::from(height.max(1));
+        let radius = distance * pixel * self.uniform(1.0, 3.0) / 2.0;
+        let material = self.material();
+        scene.objects.push(ObjectDesc {
+            shape: ShapeDesc::Sphere {
+                center: f32s(add(eye, scale(dir, distance))),
+                radius: radius as f32,
+            },
+            material,
+        });
     }
 
     /// Adds a clear glass ball just clear of one of `scene`'s spheres or planes, or just
@@ -795,6 +846,7 @@ mod tests {
         assert!(count(|s| s.lights.iter().any(|l| l.radius > 0.0)) > 75);
         assert!(count(|s| s.camera.aperture > 0.0) > 75);
         assert!(count(|s| s.camera.focus_distance.is_some()) > 30);
+        assert!(scenes.iter().filter(|g| g.blocks.is_some()).count() > 15);
         // A level camera over a matte floor: the row pass's case.
         let row_passed = count(|s| {
             s.camera.up == [0.0, 1.0, 0.0]

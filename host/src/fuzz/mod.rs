@@ -25,6 +25,12 @@
 //!   by an ulp changes only pixels an edge passes through; and f32's prediction for the world
 //!   doubled is the original's (a **metamorphic violation**).
 //!
+//! - adaptive pixels show every object exact pixels show: an eighth of the scenes of one ray a
+//!   pixel through a pinhole (half of them with a ball one to three pixels wide before the
+//!   rest) are drawn in blocks of 2, 4 or 8 too, in every format that builds
+//!   them, and the object each pixel shows is exact pixels' but in a thousandth of them (a
+//!   **metamorphic violation** of "adaptive pixels"; `try_blocks`).
+//!
 //! A sixth of the scenes put the world's edge at one of their objects ([`generate`]), where
 //! `far` cuts a small disc from a plane or a sphere reaches across the world.
 //!
@@ -43,7 +49,9 @@ use crate::render::{AnyFormat, Request, exact_roots, prepare, prepare_reference}
 use anyhow::{Context, Result};
 use image::RgbImage;
 use obscura::methods::MethodName;
-use obscura::{BiasMethod, Methods, RayMethod, RootMethod, SphereMethod, TriangleMethod};
+use obscura::{
+    BiasMethod, Methods, Pixels, RayMethod, RootMethod, SceneDesc, SphereMethod, TriangleMethod,
+};
 use obscura_scene::{Format, OwnedScene};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
@@ -325,34 +333,54 @@ pub fn try_scenes(
     })
 }
 
-/// Generates the scene of `seed` and tries it in every format by each of `method_sets`, writing
-/// a reproducer for each failure into `out_dir` (when given).
+/// Generates the scene of `seed` and tries it in every format by each of `method_sets` (and
+/// with adaptive pixels, where the generator gave it them), writing a reproducer for each
+/// failure into `out_dir` (when given).
 pub fn try_scene(seed: u64, method_sets: &[Methods], out_dir: Option<&Path>) -> Tally {
     let generated = generate::scene(seed);
+    let size = generated.size;
     let mut tally = Tally {
         scenes: 1,
         ..Tally::default()
     };
     for &methods in method_sets {
-        let outcome = checked::catch_any(|| {
-            try_methods(&generated.scene, methods, generated.size, &mut tally)
+        let scene = &generated.scene;
+        let trial = |tally: &mut Tally| try_methods(scene, methods, size, tally);
+        tally.add(caught(seed, methods, size, scene, out_dir, trial));
+    }
+    if let Some(blocks) = &generated.blocks {
+        let trial = |tally: &mut Tally| try_blocks(blocks, size, tally);
+        tally.add(caught(seed, Methods::LECTURE, size, blocks, out_dir, trial));
+    }
+    tally
+}
+
+/// What `trial` of `scene` (scene `seed`, by `methods` at `size`) found, a panic among it, each
+/// finding with a reproducer of `scene` written into `out_dir` (when given).
+fn caught(
+    seed: u64,
+    methods: Methods,
+    (width, height): (u32, u32),
+    scene: &OwnedScene,
+    out_dir: Option<&Path>,
+    trial: impl FnOnce(&mut Tally),
+) -> Tally {
+    let mut tally = Tally::default();
+    if let Err(message) = checked::catch_any(|| trial(&mut tally)) {
+        tally.record(Finding {
+            seed,
+            format: "f64",
+            methods,
+            width,
+            height,
+            failure: Failure::Panic { message },
+            file: None,
         });
-        if let Err(message) = outcome {
-            tally.record(Finding {
-                seed,
-                format: "f64",
-                methods,
-                width: generated.size.0,
-                height: generated.size.1,
-                failure: Failure::Panic { message },
-                file: None,
-            });
-        }
     }
     for finding in &mut tally.findings {
         finding.seed = seed;
         if let Some(dir) = out_dir {
-            finding.file = write_reproducer(dir, &generated.scene, finding).ok();
+            finding.file = write_reproducer(dir, scene, finding).ok();
         }
     }
     tally
@@ -495,6 +523,82 @@ fn try_methods(
                     measured_mismatch_pct: measured.object_mismatch_pct,
                 },
             ));
+        }
+    }
+}
+
+/// Tries `scene`, whose pixels are adaptive, in every format that builds it with exact pixels: the
+/// blocks build and draw without an overflow, and the objects their pixels show
+/// ([`obscura::blocks::shown_objects`]) are those exact pixels show but in at most a thousandth
+/// of the image, as the stress cases allow (no object vanishes between a block's corners: a
+/// **metamorphic violation** of the relation "adaptive pixels").
+fn try_blocks(scene: &OwnedScene, size: (u32, u32), tally: &mut Tally) {
+    const RELATION: &str = "adaptive pixels";
+    let pixels = scene.pixels;
+    let blocks_request = Request::new(scene.desc(), size, Methods::LECTURE);
+    let exact_desc = SceneDesc {
+        pixels: Pixels::Exact,
+        ..scene.desc()
+    };
+    let exact_request = blocks_request.with_desc(exact_desc);
+    let (width, height) = size;
+    for &format in FORMATS {
+        let finding = |failure| Finding {
+            seed: 0,
+            format: format.name(),
+            methods: Methods::LECTURE,
+            width,
+            height,
+            failure,
+            file: None,
+        };
+        let Ok(exact) = prepare(format, &exact_request) else {
+            continue;
+        };
+        let drawn = prepare(format, &blocks_request).and_then(|blocks| {
+            blocks.render(1, None)?;
+            Ok((blocks.object_map()?, exact.object_map()?))
+        });
+        let (shown, exact_objects) = match drawn {
+            Ok(maps) => maps,
+            Err(error) => {
+                let message = format!("{error:#}");
+                tally.record(finding(if message.contains("overflowed") {
+                    Failure::Overflow { message }
+                } else {
+                    Failure::Disagreement {
+                        message: format!(
+                            "builds with exact pixels, not with {}: {message}",
+                            pixels.name()
+                        ),
+                    }
+                }));
+                continue;
+            }
+        };
+        tally.check(RELATION);
+        let differing: Vec<usize> = (0..shown.len())
+            .filter(|&i| shown[i] != exact_objects[i])
+            .collect();
+        let allowed = f64::from(width * height) / 1000.0;
+        if let Some(&first) = differing
+            .first()
+            .filter(|_| differing.len() as f64 > allowed)
+        {
+            let at = |i: usize| (i as u32 % width, i as u32 / width);
+            let message = format!(
+                "{} show another object than exact pixels in {} pixels (more than {allowed:.0}), \
+                 the first at {:?}: {:?} where exact pixels show {:?}",
+                pixels.name(),
+                differing.len(),
+                at(first),
+                shown[first],
+                exact_objects[first]
+            );
+            tally.record(finding(Failure::Metamorphic {
+                relation: RELATION,
+                message,
+            }));
         }
     }
 }
