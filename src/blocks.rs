@@ -1,6 +1,6 @@
-//! Adaptive image-space sampling ([`crate::Pixels::Adaptive`]): fewer rays than pixels. The image is
-//! cut into blocks of N×N pixels whose corners are pixel centres N apart, each traced as that
-//! pixel's own ray; where a block's four corners agree its pixels are filled between them,
+//! Adaptive image-space sampling ([`crate::Pixels::Adaptive`]): fewer rays than pixels. The
+//! image is cut into blocks of N×N pixels whose corners are pixel centres N apart, each traced
+//! as that pixel's own ray; where a block's four corners agree its pixels are filled between them,
 //! else it splits into four of half the size and traces their new corners, down to blocks of 2,
 //! whose pixels are traced one by one (image-space subdivision, as old as Whitted's 1980 paper;
 //! the real-time tracers of small chips trace one pixel in several the same way).
@@ -56,7 +56,6 @@ const MAX_BLOCK: u32 = 8;
 
 /// The rows of corners a band keeps: its even rows.
 const MAX_SLOTS: usize = MAX_BLOCK as usize / 2 + 1;
-
 
 /// A traced corner of a block: its colour, and what its ray tree met.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -4,7 +4,6 @@
 
 crate::phase::declare_phase!(Some(crate::phase::Phase::Build));
 
-
 /// A scene as its author writes it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SceneDesc<'a> {

@@ -146,10 +146,9 @@ mod test_util;
 pub use adaptive::{Corner, CornerRows, corner_rows};
 pub use camera::{Camera, MAX_IMAGE_SIDE};
 pub use color::{DisplayColor, Dither, Rgb};
-pub use desc::Pixels;
 pub use desc::{
     BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, MeshesDesc, NodeDesc,
-    ObjectDesc, SceneDesc, ShapeDesc, Y_UP,
+    ObjectDesc, Pixels, SceneDesc, ShapeDesc, Y_UP,
 };
 /// The `fixed` crate, whose types give [`Fx`] its binary point: `Fx<fixed::types::I12F20>`.
 pub use fixed;

@@ -5,11 +5,10 @@ crate::phase::declare_phase!(Some(crate::phase::Phase::Build));
 
 use super::error::{Item, SceneError};
 use super::range::{self, distance};
-use crate::desc::Pixels;
 use crate::camera::Frame;
 use crate::desc::{
-    BackgroundDesc, CameraDesc, LightDesc, MaterialDesc, MeshesDesc, SceneDesc, ShapeDesc,
-    triangle_has_area,
+    BackgroundDesc, CameraDesc, LightDesc, MaterialDesc, MeshesDesc, Pixels, SceneDesc,
+    ShapeDesc, triangle_has_area,
 };
 use crate::pattern::MAX_SAMPLES;
 use crate::shape::mesh::MAX_DEPTH;

@@ -280,13 +280,13 @@ impl Generator {
     fn small_ball(&mut self, scene: &mut OwnedScene, height: u32) {
         let eye = f64s(scene.camera.eye);
         let forward = sub(f64s(scene.camera.look_at), eye);
-        let forward = scale(forward, 1.0 / norm(forward).max(f64::MIN_POSITIVE));
+        let forward = normalized(forward);
         let half = (f64::from(scene.camera.vfov_degrees) / 2.0)
             .to_radians()
             .tan();
         let aside = scale(self.direction(), 0.7 * half);
         let dir = add(forward, aside);
-        let dir = scale(dir, 1.0 / norm(dir).max(f64::MIN_POSITIVE));
+        let dir = normalized(dir);
         let eye_at = Vec3::from_f32(scene.camera.eye);
         let nearest = scene
             .objects
@@ -319,7 +319,7 @@ impl Generator {
                 }
                 ShapeDesc::Plane { point, normal, .. } => {
                     let n = f64s(normal);
-                    Some((f64s(point), scale(n, 1.0 / norm(n).max(1e-30)), 0.0))
+                    Some((f64s(point), normalized(n), 0.0))
                 }
                 _ => None,
             })
@@ -403,7 +403,7 @@ impl Generator {
         let axes = if self.chance(0.7) {
             let u = self.direction();
             let v = cross(u, self.direction());
-            [u, scale(v, 1.0 / norm(v).max(1e-30))]
+            [u, normalized(v)]
         } else {
             [self.direction(), self.direction()]
         };
@@ -693,7 +693,7 @@ impl Generator {
                 }
                 ShapeDesc::Plane { point, normal, .. } => {
                     let n = f64s(normal);
-                    let n = scale(n, 1.0 / norm(n).max(1e-30));
+                    let n = normalized(n);
                     let gap = unit * self.log_uniform(1e-7, 1.0);
                     let along = scale(self.direction(), unit * self.uniform(0.0, 2.0));
                     add(add(f64s(point), along), scale(n, gap))
@@ -703,7 +703,7 @@ impl Generator {
                     let (u, v) = (self.uniform(0.0, 0.5), self.uniform(0.0, 0.5));
                     let on = add(a, add(scale(sub(b, a), u), scale(sub(c, a), v)));
                     let n = cross(sub(b, a), sub(c, a));
-                    let n = scale(n, 1.0 / norm(n).max(1e-30));
+                    let n = normalized(n);
                     add(on, scale(n, unit * self.log_uniform(1e-7, 1.0)))
                 }
                 // Meshes are added after the lights.
@@ -751,6 +751,11 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
         a[2] * b[0] - a[0] * b[2],
         a[0] * b[1] - a[1] * b[0],
     ]
+}
+
+/// `a` made unit length (a vector of no length stays one).
+fn normalized(a: [f64; 3]) -> [f64; 3] {
+    scale(a, 1.0 / norm(a).max(1e-30))
 }
 
 fn norm(a: [f64; 3]) -> f64 {

@@ -24,7 +24,7 @@ use obscura_scene::Format;
 use obscura_scene::{FirmwareSettings, FormatChoice, FrameSettings, Variants};
 use std::collections::HashMap;
 use std::io;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 /// One variant: a scene in a format by some methods.
@@ -65,13 +65,10 @@ pub fn run(args: &ChartArgs) -> Result<()> {
     };
     let host = measure_on_host(args, &variants)?;
     let points = points(args, &host, &costs)?;
-    let csv = args.out_dir.join("speed-accuracy.csv");
-    write_csv(&points, &csv).with_context(|| format!("cannot write {}", csv.display()))?;
-    let (svg, png) = (
-        args.out_dir.join("speed-accuracy.svg"),
-        args.out_dir.join("speed-accuracy.png"),
-    );
-    plot::speed_accuracy(&points, &svg, &png)?;
+    let files = Files::in_dir(&args.out_dir, "speed-accuracy");
+    write_csv(&points, &files.csv)
+        .with_context(|| format!("cannot write {}", files.csv.display()))?;
+    plot::speed_accuracy(&points, &files.svg, &files.png)?;
     print_table(&points)?;
     for (v, reason) in &host.refused {
         say!(
@@ -82,14 +79,38 @@ pub fn run(args: &ChartArgs) -> Result<()> {
         )?;
     }
     print_recommendations(&host.measured, &points)?;
-    say!(
-        "wrote {}, {} and {}",
-        csv.display(),
-        svg.display(),
-        png.display()
-    )?;
+    files.say_written()?;
     sampling::SAMPLES.run(args)?;
     sampling::PIXELS.run(args)
+}
+
+/// A chart's files: its points as CSV, and its picture as SVG and PNG.
+struct Files {
+    csv: PathBuf,
+    svg: PathBuf,
+    png: PathBuf,
+}
+
+impl Files {
+    /// `STEM.csv`, `STEM.svg` and `STEM.png` in `dir`.
+    fn in_dir(dir: &Path, stem: &str) -> Self {
+        let file = |extension| dir.join(format!("{stem}.{extension}"));
+        Self {
+            csv: file("csv"),
+            svg: file("svg"),
+            png: file("png"),
+        }
+    }
+
+    /// Says they were written.
+    fn say_written(&self) -> io::Result<()> {
+        say!(
+            "wrote {}, {} and {}",
+            self.csv.display(),
+            self.svg.display(),
+            self.png.display()
+        )
+    }
 }
 
 /// Instructions per pixel of a variant on a microcontroller.

@@ -7,6 +7,7 @@
 //! `f32` on the M4F and the host (soft-float `f32` on the M0 costs its 3.5 times at every
 //! sampling, as the main chart shows).
 
+use super::Files;
 use crate::cli::ChartArgs;
 use crate::firmware::{self, Target};
 use crate::metrics::accuracy;
@@ -127,9 +128,9 @@ struct Point {
     m0_instructions_per_pixel: Option<f64>,
     host_ns_per_pixel: f64,
     psnr_db: f64,
-    /// Pixels showing another object than f64's, in percent; `None` against a converged
-    /// picture.
-    object_mismatch_pct: Option<f64>,
+    /// Pixels showing another object than f64's, in percent (0 where the axis measures no
+    /// objects, [`Axis::shows_objects`]).
+    object_mismatch_pct: f64,
 }
 
 /// `name` with `sampling` applied.
@@ -161,26 +162,15 @@ impl Axis {
         for &name in self.scenes {
             let reference = self.reference(name, args.size)?;
             let truth = reference.render(threads, Some("f64"))?;
-            let truth_objects = match self.converged {
-                Some(_) => None,
-                None => Some(reference.object_map()?),
-            };
+            let truth_objects = self.objects(&*reference, args.size)?;
             for (index, (sampling, ..)) in self.samplings.iter().enumerate() {
                 let owned = scene(name, sampling)?;
                 for format in HOST_FORMATS {
                     let request = Request::new(owned.desc(), args.size, Methods::LECTURE);
                     let contender = prepare(format, &request)?;
                     let image = contender.render(threads, None)?;
-                    let objects = match &truth_objects {
-                        Some(_) => contender.object_map()?,
-                        None => vec![None; (image.width() * image.height()) as usize],
-                    };
-                    let measured = accuracy(
-                        &image,
-                        &truth,
-                        &objects,
-                        truth_objects.as_deref().unwrap_or(&objects),
-                    );
+                    let objects = self.objects(&*contender, args.size)?;
+                    let measured = accuracy(&image, &truth, &objects, &truth_objects);
                     let cost = |target| {
                         costs
                             .iter()
@@ -200,9 +190,7 @@ impl Axis {
                         m0_instructions_per_pixel: cost(Target::M0),
                         host_ns_per_pixel: 0.0,
                         psnr_db: measured.psnr_db,
-                        object_mismatch_pct: truth_objects
-                            .as_ref()
-                            .map(|_| measured.object_mismatch_pct),
+                        object_mismatch_pct: measured.object_mismatch_pct,
                     });
                     prepared.push(contender);
                 }
@@ -213,23 +201,31 @@ impl Axis {
         for (point, ms) in points.iter_mut().zip(times) {
             point.host_ns_per_pixel = ms * 1e6 / pixels;
         }
-        let stem = format!("{}-accuracy", self.name);
-        let csv = args.out_dir.join(format!("{stem}.csv"));
-        self.write_csv(&points, &csv)
-            .with_context(|| format!("cannot write {}", csv.display()))?;
-        let (svg, png) = (
-            args.out_dir.join(format!("{stem}.svg")),
-            args.out_dir.join(format!("{stem}.png")),
-        );
-        plot::stability(self.title, &self.series(&points), &svg, &png)?;
+        let files = Files::in_dir(&args.out_dir, &format!("{}-accuracy", self.name));
+        self.write_csv(&points, &files.csv)
+            .with_context(|| format!("cannot write {}", files.csv.display()))?;
+        plot::stability(self.title, &self.series(&points), &files.svg, &files.png)?;
         self.print_table(&points)?;
-        say!(
-            "wrote {}, {} and {}",
-            csv.display(),
-            svg.display(),
-            png.display()
-        )?;
+        files.say_written()?;
         Ok(())
+    }
+
+    /// The object each pixel of `prepared` shows, where this axis measures objects; none
+    /// where it measures against a converged picture.
+    fn objects(
+        &self,
+        prepared: &dyn AnyFormat,
+        (width, height): (u32, u32),
+    ) -> Result<Vec<Option<usize>>> {
+        match self.converged {
+            Some(_) => Ok(vec![None; (width * height) as usize]),
+            None => prepared.object_map(),
+        }
+    }
+
+    /// Whether this axis shows the objects' mismatch: against f64 with exact pixels.
+    fn shows_objects(&self) -> bool {
+        self.converged.is_none()
     }
 
     /// The f64 render scene `name` is measured against.
@@ -390,8 +386,11 @@ impl Axis {
                 number(p.m0_instructions_per_pixel),
                 format!("{:.1}", p.host_ns_per_pixel),
                 format!("{:.2}", p.psnr_db),
-                p.object_mismatch_pct
-                    .map_or(String::new(), |x| format!("{x:.4}")),
+                if self.shows_objects() {
+                    format!("{:.4}", p.object_mismatch_pct)
+                } else {
+                    String::new()
+                },
             ])?;
         }
         writer.flush()?;
@@ -406,9 +405,10 @@ impl Axis {
             self.against()
         )?;
         let (cost_headings, cost_rule) = crate::cost::Machine::columns();
-        let (mismatch_heading, mismatch_rule) = match self.converged {
-            Some(_) => ("", ""),
-            None => (" object mismatch (%) |", "---:|"),
+        let (mismatch_heading, mismatch_rule) = if self.shows_objects() {
+            (" object mismatch (%) |", "---:|")
+        } else {
+            ("", "")
         };
         say!(
             "| scene | format | {} |{cost_headings} PSNR (dB) |{mismatch_heading}",
@@ -421,9 +421,11 @@ impl Axis {
                 p.m0_instructions_per_pixel,
                 p.host_ns_per_pixel,
             );
-            let mismatch = p
-                .object_mismatch_pct
-                .map_or(String::new(), |x| format!(" {x:.4} |"));
+            let mismatch = if self.shows_objects() {
+                format!(" {:.4} |", p.object_mismatch_pct)
+            } else {
+                String::new()
+            };
             say!(
                 "| {} | {} | {} |{costs} {:.2} |{mismatch}",
                 p.scene,

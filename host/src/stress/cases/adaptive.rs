@@ -196,22 +196,13 @@ fn checker(pixels: f64) -> Stage {
 
 /// The checkered floor of [`checker`] under a glass ball of radius 1 standing on it.
 fn glass(pixels: f64) -> Stage {
-    const GLASS: MaterialDesc = MaterialDesc {
-        colour: [1.0; 3],
-        diffuse: 0.0,
-        specular: 0.5,
-        shininess: 60,
-        reflection: 0.1,
-        transmission: 0.9,
-        ior: 1.5,
-    };
     let mut stage = checker(pixels);
     stage.objects.push(ObjectDesc {
         shape: ShapeDesc::Sphere {
             center: [0.0, 1.0, 0.0],
             radius: 1.0,
         },
-        material: GLASS,
+        material: super::glass::GLASS,
     });
     stage
 }

@@ -24,7 +24,8 @@ pub const CASE: Case = Case {
 
 const OFFSETS: [f64; 5] = [0.0, 0.3, 0.6, 0.9, 0.99];
 
-const GLASS: MaterialDesc = MaterialDesc {
+/// Clear glass, a little reflective.
+pub(super) const GLASS: MaterialDesc = MaterialDesc {
     colour: [1.0; 3],
     diffuse: 0.0,
     specular: 0.0,
