@@ -1,18 +1,22 @@
 //! What a format costs on each machine, read off the committed speed–accuracy chart
 //! (`docs/images/speed-accuracy.csv`, written by `obscura chart`): instructions per pixel on the
-//! Cortex-M4F and the Cortex-M0, nanoseconds per pixel on the host. `--format auto` picks the
-//! cheapest format by these measurements.
+//! Cortex-M4F and the Cortex-M0, nanoseconds per pixel on the host; and what adaptive pixels
+//! multiply them by (`docs/images/pixels-accuracy.csv`, the chart's pixels axis). `--format
+//! auto` picks the cheapest format and pixels by these measurements.
 
 use crate::firmware::Target;
 use clap::ValueEnum;
-use obscura::Methods;
 use obscura::scenes::{self, BuiltIn};
+use obscura::{MethodName, Methods, Pixels};
 use obscura_scene::Format;
 use std::fmt;
 use std::sync::OnceLock;
 
 /// The chart's measurements, as committed.
 const CHART: &str = include_str!("../../docs/images/speed-accuracy.csv");
+
+/// The chart's pixels axis, as committed: exact and adaptive pixels on `whitted` and `shapes`.
+const PIXELS_CHART: &str = include_str!("../../docs/images/pixels-accuracy.csv");
 
 /// Where the cost is paid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -94,7 +98,8 @@ impl From<Target> for Machine {
     }
 }
 
-/// One row of the chart: a format and methods on a scene, and its cost on each machine.
+/// One row of a chart: a format and methods (or pixels) on a scene, and its cost on each
+/// machine.
 #[derive(Debug)]
 struct Row {
     scene: String,
@@ -118,29 +123,34 @@ impl Row {
 
 fn rows() -> &'static [Row] {
     static ROWS: OnceLock<Vec<Row>> = OnceLock::new();
-    ROWS.get_or_init(|| parse(CHART))
+    ROWS.get_or_init(|| parse(CHART, "variant"))
 }
 
-/// The chart CSV's leading columns, which a [`Row`] is read from: the point, then its cost on
-/// each of [`Machine::ALL`] (an empty field where it was not measured).
-pub const COLUMNS: [&str; 6] = [
-    "scene",
-    "format",
-    "variant",
+fn pixel_rows() -> &'static [Row] {
+    static ROWS: OnceLock<Vec<Row>> = OnceLock::new();
+    ROWS.get_or_init(|| parse(PIXELS_CHART, "pixels"))
+}
+
+/// A chart CSV's cost columns: a point's cost on each of [`Machine::ALL`] (an empty field
+/// where it was not measured).
+pub const COST_COLUMNS: [&str; 3] = [
     "m4f_instructions_per_pixel",
     "m0_instructions_per_pixel",
     "host_ns_per_pixel",
 ];
 
-/// The rows of the chart's CSV, by the names of [`COLUMNS`]; further columns are ignored.
+/// The rows of a chart's CSV, read from its columns `scene`, `format`, `variant` (the one
+/// that names what else the point varies) and [`COST_COLUMNS`]; further columns are ignored.
 ///
 /// # Panics
-/// Where the CSV lacks a column or a cost does not parse: the chart is compiled in as
-/// committed, and a test reads it.
-fn parse(csv: &str) -> Vec<Row> {
+/// Where the CSV lacks a column or a cost does not parse: the charts are compiled in as
+/// committed, and a test reads them.
+fn parse(csv: &str, variant: &str) -> Vec<Row> {
     let mut reader = csv::Reader::from_reader(csv.as_bytes());
     let header = reader.headers().expect("the chart has a header").clone();
-    let at = COLUMNS.map(|name| {
+    let [m4f, m0, host] = COST_COLUMNS;
+    let columns = ["scene", "format", variant, m4f, m0, host];
+    let at = columns.map(|name| {
         header
             .iter()
             .position(|h| h == name)
@@ -156,7 +166,7 @@ fn parse(csv: &str) -> Vec<Row> {
                 (!field.is_empty()).then(|| {
                     field
                         .parse::<f64>()
-                        .unwrap_or_else(|_| panic!("{field:?} in {} is not a number", COLUMNS[i]))
+                        .unwrap_or_else(|_| panic!("{field:?} in {} is not a number", columns[i]))
                 })
             };
             Row {
@@ -217,6 +227,35 @@ pub fn cost(
             .then(|| price(&|name| shifts_alike(format, name)))
             .flatten()
     })
+}
+
+/// What `pixels` multiply `format`'s cost on `machine` by, in a scene with triangles or
+/// without, as the chart's pixels axis measured it on the built-in scene like it (`shapes`,
+/// `whitted`): their cost over exact pixels' in the charted format of `format`'s kind (`f32`
+/// for a float format, `i16f16` for a fixed one: blocks save the same rays in each). 1 for
+/// exact pixels; `None` where the chart did not measure it (a float format on the M0, f64).
+pub fn pixels_factor(
+    machine: Machine,
+    format: Format,
+    pixels: Pixels,
+    has_triangles: bool,
+) -> Option<f64> {
+    if pixels == Pixels::Exact {
+        return Some(1.0);
+    }
+    let kin = match format {
+        Format::F64 => return None,
+        fixed if fixed.is_fixed_point() => Format::I16f16,
+        _ => Format::F32,
+    };
+    let scene = if has_triangles { "shapes" } else { "whitted" };
+    let cost = |pixels: Pixels| {
+        pixel_rows()
+            .iter()
+            .find(|r| r.scene == scene && r.format == kin.name() && r.variant == pixels.name())
+            .and_then(|r| r.on(machine))
+    };
+    Some(cost(pixels)? / cost(Pixels::Exact)?)
 }
 
 /// The mean of `costs`, if there are any.
@@ -321,11 +360,42 @@ mod tests {
     }
 
     #[test]
+    fn adaptive_pixels_are_priced_by_the_pixels_axis_in_the_formats_kind() {
+        let charted = |machine, scene: &str, format: &str, pixels: &str| {
+            pixel_rows()
+                .iter()
+                .find(|r| r.scene == scene && r.format == format && r.variant == pixels)
+                .and_then(|r| r.on(machine))
+                .expect("charted")
+        };
+        let ratio = |machine, scene, format| {
+            charted(machine, scene, format, "adaptive:4") / charted(machine, scene, format, "exact")
+        };
+        let four = Pixels::Adaptive(4);
+        // A fixed format as i16f16 on the scene like it; a float format as f32.
+        assert_eq!(
+            pixels_factor(Machine::M0, Format::I18f14, four, false),
+            Some(ratio(Machine::M0, "whitted", "i16f16"))
+        );
+        assert_eq!(
+            pixels_factor(Machine::M4f, Format::F32Approx, four, true),
+            Some(ratio(Machine::M4f, "shapes", "f32"))
+        );
+        // Not measured: f32 on the M0; f64 anywhere. Exact pixels cost what the format does.
+        assert_eq!(pixels_factor(Machine::M0, Format::F32, four, false), None);
+        assert_eq!(pixels_factor(Machine::M4f, Format::F64, four, false), None);
+        assert_eq!(
+            pixels_factor(Machine::M0, Format::F32, Pixels::Exact, false),
+            Some(1.0)
+        );
+    }
+
+    #[test]
     fn a_quoted_variant_may_hold_commas() {
         let csv = "scene,format,variant,m4f_instructions_per_pixel,\
                    m0_instructions_per_pixel,host_ns_per_pixel,psnr_db\n\
                    whitted,i16f16,\"sphere=stable,bias=exclude\",1.5,2,3,40\n";
-        let rows = parse(csv);
+        let rows = parse(csv, "variant");
         assert_eq!(rows.len(), 1);
         assert_eq!(rows[0].variant, "sphere=stable,bias=exclude");
         assert_eq!(

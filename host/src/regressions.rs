@@ -4,7 +4,7 @@
 //! bound. Each scene is a file in `host/scenes/hostile/` whose header says what it broke; the
 //! fuzzer ([`crate::fuzz`]) tries the same promises on scenes nobody wrote.
 
-use crate::analysis::{Analysis, Choice, Fit, TARGET_PSNR, measure, pick};
+use crate::analysis::{Aim, Analysis, Choice, Fit, TARGET_PSNR, measure, pick};
 use crate::cost::Machine;
 use crate::fuzz::false_accept;
 use crate::metrics::accuracy;
@@ -221,19 +221,15 @@ fn a_checker_too_large_for_its_reciprocal_is_refused_or_predicted_so() {
         }
         // --format auto measures what it picks.
         let analysis = Analysis::of(&scene, Methods::LECTURE, 64, 64).expect("analyses");
-        let picked = pick(
-            &[(&scene, &analysis)],
-            Methods::LECTURE,
-            (64, 64),
-            Machine::M0,
-            TARGET_PSNR,
-            true,
-        )
-        .expect("renders");
-        if let Choice::Reaches(picked) = picked {
-            let scene = picked
-                .rescaled
-                .map_or_else(|| scene.clone(), |factor| scene.scaled(factor as f32));
+        let aim = Aim {
+            machine: Machine::M0,
+            target_psnr: TARGET_PSNR,
+            rescale: true,
+            choose_pixels: false,
+        };
+        let picked = pick(&[(&scene, &analysis)], Methods::LECTURE, (64, 64), aim);
+        if let Choice::Reaches(picked) = picked.expect("renders") {
+            let scene = picked.scene(&scene);
             let measured =
                 measure(picked.format, &scene, Methods::LECTURE, (64, 64)).expect("renders");
             assert!(measured >= 40.0, "{picked:?} measures {measured:.1} dB");

@@ -494,34 +494,47 @@ fn analyze_tables_the_bits_the_formats_and_the_cheapest() {
 }
 
 #[test]
-fn format_auto_rescales_a_scene_file_when_only_that_fits() {
+fn format_auto_rescales_a_scene_file_when_only_that_fits_and_picks_its_pixels() {
     let dir = scratch("auto");
     let marbles = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/marbles.toml");
-    let output = obscura(&[
-        "compare",
-        marbles,
-        "--format",
-        "auto",
-        "--cost-on",
-        "m0",
-        "--target-psnr",
-        "35",
-        "--size",
-        "64x64",
-        "--runs",
-        "1",
-        "--out-dir",
-        dir.to_str().unwrap(),
-    ]);
-    assert!(output.status.success(), "{}", stderr(&output));
-    let message = stderr(&output);
+    let compare = |pixels: &[&str]| {
+        let mut args = vec![
+            "compare",
+            marbles,
+            "--format",
+            "auto",
+            "--cost-on",
+            "m0",
+            "--target-psnr",
+            "35",
+            "--size",
+            "64x64",
+            "--runs",
+            "1",
+            "--out-dir",
+            dir.to_str().unwrap(),
+        ];
+        args.extend(pixels);
+        let output = obscura(&args);
+        assert!(output.status.success(), "{}", stderr(&output));
+        (stderr(&output), stdout(&output))
+    };
     // marbles is too large for every 32-bit split; the cheapest on the M0, i16f16, holds it
-    // rescaled.
+    // rescaled, and its adaptive pixels are cheaper there and reach 35 dB: auto takes them.
+    let (message, table) = compare(&[]);
     assert!(
-        message.contains("--format auto: i16f16") && message.contains("rescaled by 0.0625"),
+        message.contains("--format auto: i16f16 with adaptive:")
+            && message.contains("rescaled by 0.0625"),
         "{message}"
     );
-    assert!(stdout(&output).contains("| marbles | 64x64 | i16f16 |"));
+    assert!(table.contains("| marbles, adaptive:"), "{table}");
+    // Pixels given are kept.
+    let (message, table) = compare(&["--pixels", "exact"]);
+    assert!(
+        message.contains("--format auto: i16f16 is the cheapest"),
+        "{message}"
+    );
+    assert!(table.contains("| marbles | 64x64 | i16f16 |"), "{table}");
 }
 
 #[test]

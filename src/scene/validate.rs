@@ -52,9 +52,7 @@ pub(super) fn validate(desc: &SceneDesc<'_>) -> Result<Frame, SceneError> {
     if desc.adaptive_samples {
         adaptive(desc)?;
     }
-    if desc.pixels != Pixels::Exact {
-        adaptive_pixels(desc)?;
-    }
+    adaptive_pixels(desc)?;
     inside_world(Item::Camera, frame.aperture, desc.far)?;
     let eye = Vec3::from_f32(desc.camera.eye);
     for (i, object) in desc.objects.iter().enumerate() {
@@ -123,9 +121,23 @@ fn adaptive(desc: &SceneDesc<'_>) -> Result<(), SceneError> {
     Ok(())
 }
 
+impl SceneDesc<'_> {
+    /// Whether the scene can take `pixels`: adaptive pixels take one ray a pixel through a
+    /// pinhole, in blocks of 2, 4 or 8 (what building it with them checks).
+    ///
+    /// # Errors
+    /// What it must change to take them.
+    pub fn takes_pixels(&self, pixels: Pixels) -> Result<(), SceneError> {
+        adaptive_pixels(&SceneDesc { pixels, ..*self })
+    }
+}
+
 /// Adaptive pixels come in blocks of 2, 4 or 8, and fill a pixel from the rays of others, so
-/// each takes one ray from the eye.
+/// each takes one ray from the eye. Exact pixels take any scene.
 fn adaptive_pixels(desc: &SceneDesc<'_>) -> Result<(), SceneError> {
+    if desc.pixels == Pixels::Exact {
+        return Ok(());
+    }
     let block = desc.pixels.block();
     if !Pixels::BLOCKS.contains(&block) {
         return Err(out_of_bounds(

@@ -9,16 +9,19 @@ pub(crate) use predict::pixel_angle;
 pub use predict::{Prediction, Reference};
 
 use crate::checked::Checked;
-use crate::cost::{Machine, cost};
-use crate::metrics::psnr_db;
-use crate::render::{HostScene, Request, all_cores, exact_roots, prepare, prepare_reference};
+use crate::cost::{Machine, cost, pixels_factor};
+use crate::metrics::{Accuracy, accuracy, psnr_db};
+use crate::render::{
+    AnyFormat, HostScene, Request, all_cores, exact_roots, prepare, prepare_reference,
+};
 use anyhow::{Result, bail};
 use image::RgbImage;
 use obscura::methods::MethodName;
 use obscura::scalar::FormatInfo;
 use obscura::scene::range::{self, Feature, Magnitude};
 use obscura::{
-    Item, Methods, Scalar, SceneDesc, SceneError, ShapeDesc, SphereMethod, TriangleMethod, Vec3,
+    Item, Methods, Pixels, Scalar, SceneDesc, SceneError, ShapeDesc, SphereMethod, TriangleMethod,
+    Vec3,
 };
 use obscura_scene::firmware::SIDE;
 use obscura_scene::{Format, FormatJob, NamedScene, OwnedScene};
@@ -181,9 +184,17 @@ impl Analysis {
         split(&[self], rescaled)
     }
 
-    /// What `format` by `methods` costs per pixel on `machine` in this scene, by the chart.
-    pub fn cost(&self, machine: Machine, format: Format, methods: &Methods) -> Option<f64> {
-        cost(machine, format, methods, self.has_triangles)
+    /// What `format` by `methods` costs per pixel on `machine` in this scene with `pixels`, by
+    /// the charts ([`cost`] times [`pixels_factor`]).
+    pub fn cost(
+        &self,
+        machine: Machine,
+        format: Format,
+        methods: &Methods,
+        pixels: Pixels,
+    ) -> Option<f64> {
+        let factor = pixels_factor(machine, format, pixels, self.has_triangles)?;
+        Some(cost(machine, format, methods, self.has_triangles)? * factor)
     }
 }
 
@@ -214,6 +225,8 @@ fn split(analyses: &[&Analysis], rescaled: bool) -> Option<Format> {
 pub struct Pick {
     /// The format.
     pub format: Format,
+    /// The pixels: the scenes' own, or those `auto` chose ([`Aim::choose_pixels`]).
+    pub pixels: Pixels,
     /// The factor the scene is rescaled by about the eye, when the format holds it only so.
     pub rescaled: Option<f64>,
     /// Its PSNR against f64, measured on the host (which computes the firmware's bits), in dB:
@@ -222,6 +235,49 @@ pub struct Pick {
     /// The PSNR against f64 the model predicts it to reach at least, in dB: the lowest over the
     /// scenes (`None` where it predicts none).
     pub predicted_db: Option<f64>,
+}
+
+impl Pick {
+    /// `scene` as the pick renders it: rescaled about the eye where the format holds it only so,
+    /// with the pixels picked.
+    #[must_use]
+    pub fn scene(&self, scene: &OwnedScene) -> OwnedScene {
+        let mut scene = self
+            .rescaled
+            .map_or_else(|| scene.clone(), |factor| scene.scaled(factor as f32));
+        scene.pixels = self.pixels;
+        scene
+    }
+
+    /// The format, and the pixels where they are adaptive ([`with_pixels`]).
+    #[must_use]
+    pub fn named(&self) -> String {
+        with_pixels(self.format, self.pixels)
+    }
+}
+
+/// `format`, and `pixels` where they are adaptive: `i16f16 with adaptive:4 pixels`.
+#[must_use]
+pub fn with_pixels(format: Format, pixels: Pixels) -> String {
+    match pixels {
+        Pixels::Exact => format.to_string(),
+        pixels => format!("{format} with {} pixels", pixels.name()),
+    }
+}
+
+/// What `--format auto` aims at.
+#[derive(Clone, Copy, Debug)]
+pub struct Aim {
+    /// The machine whose cost it minimises, as the charts measured it.
+    pub machine: Machine,
+    /// The PSNR against f64, in dB, it must reach on every scene.
+    pub target_psnr: f64,
+    /// Whether a format that holds a scene only rescaled about the eye may render it so (a
+    /// firmware, whose scenes are built in, cannot).
+    pub rescale: bool,
+    /// Whether it may pick adaptive pixels (`adaptive:2`, `4`, `8`, where every scene takes
+    /// them), priced by the chart's pixels axis; otherwise each scene keeps its own.
+    pub choose_pixels: bool,
 }
 
 /// What `--format auto` found.
@@ -260,19 +316,20 @@ impl Choice {
                 Some(format!(
                     "no format reaches {target_psnr} dB; the closest is {}{how}, {predicted}\
                      measured at {:.2} dB: --target-psnr {accepting:.1} accepts it",
-                    pick.format, pick.psnr_db
+                    pick.named(),
+                    pick.psnr_db
                 ))
             }
         }
     }
 }
 
-/// The cheapest format on `machine` (by the committed chart) that holds every one of `scenes`
-/// (each with its analysis at `size` by `methods`) and, rendered on the host, reaches
-/// `target_psnr` against f64 on each: the formats are measured cheapest first, and the first
-/// that reaches it is taken. With `rescale`, a format that holds a scene only rescaled about
-/// the eye renders it so (a firmware, whose scenes are built in, cannot). Where none reaches
-/// it, every candidate has been measured, and the one measured closest is said.
+/// The cheapest format on `aim`'s machine (by the committed charts) that holds every one of
+/// `scenes` (each with its analysis at `size` by `methods`) and, rendered on the host, reaches
+/// the target PSNR against f64 on each: the formats, and where `aim` chooses pixels each with
+/// exact and adaptive pixels, are measured cheapest first, and the first that reaches it is
+/// taken. Where none reaches it, every candidate has been measured, and the one measured
+/// closest is said.
 ///
 /// # Errors
 /// When a render fails.
@@ -280,66 +337,90 @@ pub fn pick(
     scenes: &[(&OwnedScene, &Analysis)],
     methods: Methods,
     size: (u32, u32),
-    machine: Machine,
-    target_psnr: f64,
-    rescale: bool,
+    aim: Aim,
 ) -> Result<Choice> {
-    let analyses: Vec<&Analysis> = scenes.iter().map(|&(_, analysis)| analysis).collect();
+    let own = scenes
+        .first()
+        .map_or(Pixels::Exact, |(scene, _)| scene.pixels);
+    let pixels: Vec<Pixels> = if aim.choose_pixels {
+        Pixels::ALL
+            .iter()
+            .map(|&(pixels, _)| pixels)
+            .filter(|&pixels| {
+                scenes
+                    .iter()
+                    .all(|(scene, _)| scene.desc().takes_pixels(pixels).is_ok())
+            })
+            .collect()
+    } else {
+        vec![own]
+    };
     // Every format is priced by what it costs itself: the 32-bit splits run the same code but
     // for their shifts, which a machine folds into its products for one split and not for
     // another (the M0's partial products, for i16f16). Where the chart prices two alike, the
-    // more precise, earlier in `Format::ALL`, stays first.
-    let mut candidates: Vec<(f64, Format)> = Format::ALL
+    // more precise, earlier in `Format::ALL`, stays first; of a format's pixels, exact.
+    let mut candidates: Vec<(f64, Format, Pixels)> = Format::ALL
         .iter()
-        .copied()
-        .filter_map(|format| {
-            let costs = analyses
+        .flat_map(|&format| pixels.iter().map(move |&pixels| (format, pixels)))
+        .filter_map(|(format, pixels)| {
+            let costs = scenes
                 .iter()
-                .map(|analysis| {
+                .map(|(_, analysis)| {
                     let verdict = analysis.verdicts.iter().find(|v| v.format == format)?;
                     let usable = match verdict.fit {
                         Fit::Holds => true,
-                        Fit::Rescaled(_) => rescale,
+                        Fit::Rescaled(_) => aim.rescale,
                         Fit::Refused(_) => false,
                     };
+                    // Pixels kept as the scenes have them leave the formats' order as it is.
+                    let priced = if aim.choose_pixels {
+                        pixels
+                    } else {
+                        Pixels::Exact
+                    };
                     usable
-                        .then(|| analysis.cost(machine, format, &methods))
+                        .then(|| analysis.cost(aim.machine, format, &methods, priced))
                         .flatten()
                 })
                 .collect::<Option<Vec<f64>>>()?;
-            Some((costs.iter().sum(), format))
+            Some((costs.iter().sum(), format, pixels))
         })
         .collect();
     candidates.sort_by(|a, b| a.0.total_cmp(&b.0));
     let mut closest: Option<Pick> = None;
-    for (_, format) in candidates {
-        let mut worst = f64::INFINITY;
-        let mut predicted: Option<f64> = None;
-        let mut rescaled = None;
-        for &(scene, analysis) in scenes {
-            let verdict = analysis.verdicts.iter().find(|v| v.format == format);
-            if let Some(p) = verdict.and_then(|v| v.prediction) {
-                predicted = Some(predicted.map_or(p.psnr_db, |db| db.min(p.psnr_db)));
-            }
-            let scene = match verdict.map(|v| &v.fit) {
-                Some(Fit::Rescaled(factor)) => {
-                    rescaled = Some(*factor);
-                    scene.scaled(*factor as f32)
-                }
-                _ => scene.clone(),
-            };
-            worst = worst.min(measure(format, &scene, methods, size)?);
-        }
-        let measured = Pick {
+    for (_, format, pixels) in candidates {
+        let mut measured = Pick {
             format,
-            rescaled,
-            psnr_db: worst,
-            predicted_db: predicted,
+            pixels,
+            rescaled: None,
+            psnr_db: f64::INFINITY,
+            predicted_db: None,
         };
-        if worst >= target_psnr {
+        for &(_, analysis) in scenes {
+            let verdict = analysis.verdicts.iter().find(|v| v.format == format);
+            // The model bounds a format's rounding, not what blocks fill in.
+            let prediction = verdict.and_then(|v| v.prediction);
+            if let Some(p) = prediction.filter(|_| pixels == Pixels::Exact) {
+                let db = measured
+                    .predicted_db
+                    .map_or(p.psnr_db, |db| db.min(p.psnr_db));
+                measured.predicted_db = Some(db);
+            }
+            if let Some(Fit::Rescaled(factor)) = verdict.map(|v| &v.fit) {
+                measured.rescaled = Some(*factor);
+            }
+        }
+        for &(scene, _) in scenes {
+            let db = measure(format, &measured.scene(scene), methods, size)?;
+            measured.psnr_db = measured.psnr_db.min(db);
+        }
+        if measured.psnr_db >= aim.target_psnr {
             return Ok(Choice::Reaches(measured));
         }
-        if closest.as_ref().is_none_or(|c| worst > c.psnr_db) {
+        if closest
+            .as_ref()
+            .is_none_or(|c| measured.psnr_db > c.psnr_db)
+        {
             closest = Some(measured);
         }
     }
@@ -354,20 +435,22 @@ pub fn pick(
 
 /// The lowest PSNR the model predicts for `pick`'s format over `scenes` at `size` by `methods`
 /// (each rescaled as the pick renders it), for analyses made without predictions; `None` where
-/// it predicts none.
+/// it predicts none, or the pick's pixels are adaptive (the model bounds a format's rounding,
+/// not what blocks fill in).
 fn predicted_worst(
     pick: &Pick,
     scenes: &[(&OwnedScene, &Analysis)],
     methods: Methods,
     size: (u32, u32),
 ) -> Option<f64> {
+    if pick.pixels != Pixels::Exact {
+        return None;
+    }
     scenes
         .iter()
         .map(|&(scene, _)| {
             let reference = reference(&scene.desc(), methods, size).ok()?;
-            let scene = pick
-                .rescaled
-                .map_or_else(|| scene.clone(), |f| scene.scaled(f as f32));
+            let scene = pick.scene(scene);
             let prediction = predict::predict(pick.format, &scene.desc(), methods, &reference);
             prediction.ok().map(|p| p.psnr_db)
         })
@@ -462,18 +545,14 @@ fn one_change(methods: Methods) -> Vec<Methods> {
         .collect()
 }
 
-/// `--format auto` for a firmware: the cheapest format on `machine` that holds every scene as
-/// it is (a firmware's scenes are built in: it cannot rescale them) and reaches `target_psnr`
-/// on each at the display's size, measured on the host, whose frames are the firmware's.
+/// `--format auto` for a firmware: the cheapest format (and pixels, where `aim` chooses them)
+/// on `aim`'s machine that holds every scene as it is (a firmware's scenes are built in: it
+/// cannot rescale them) and reaches the target on each at the display's size, measured on the
+/// host, whose frames are the firmware's.
 ///
 /// # Errors
 /// When no format does, or a render fails.
-pub fn firmware_format(
-    scenes: &[NamedScene],
-    methods: Methods,
-    machine: Machine,
-    target_psnr: f64,
-) -> Result<Format> {
+pub fn firmware_format(scenes: &[NamedScene], methods: Methods, aim: Aim) -> Result<Pick> {
     let analyses = scenes
         .iter()
         .map(|named| {
@@ -481,11 +560,15 @@ pub fn firmware_format(
         })
         .collect::<Result<Vec<_>>>()?;
     let pairs: Vec<_> = scenes.iter().map(|s| &s.scene).zip(&analyses).collect();
-    match pick(&pairs, methods, (SIDE, SIDE), machine, target_psnr, false)? {
-        Choice::Reaches(Pick { format, .. }) => Ok(format),
+    let aim = Aim {
+        rescale: false,
+        ..aim
+    };
+    match pick(&pairs, methods, (SIDE, SIDE), aim)? {
+        Choice::Reaches(pick) => Ok(pick),
         choice => bail!(
             "for a firmware: {}",
-            choice.shortfall(target_psnr).unwrap_or_default()
+            choice.shortfall(aim.target_psnr).unwrap_or_default()
         ),
     }
 }
@@ -500,14 +583,44 @@ pub fn measure(
     methods: Methods,
     size: (u32, u32),
 ) -> Result<f64> {
-    let request = Request::new(scene.desc(), size, methods);
+    let [contender, reference] = prepare_both(format, scene, methods, size)?;
     let threads = all_cores();
-    let contender = prepare(format, &request)?;
-    let reference = prepare_reference(&request)?;
     Ok(psnr_db(
         &contender.render(threads, None)?,
         &reference.render(threads, None)?,
     ))
+}
+
+/// [`measure`], with the object mismatch and the other errors beside the PSNR.
+///
+/// # Errors
+/// When either cannot build the scene, or a render fails.
+pub fn measure_accuracy(
+    format: Format,
+    scene: &OwnedScene,
+    methods: Methods,
+    size: (u32, u32),
+) -> Result<Accuracy> {
+    let [contender, reference] = prepare_both(format, scene, methods, size)?;
+    let threads = all_cores();
+    Ok(accuracy(
+        &contender.render(threads, None)?,
+        &reference.render(threads, None)?,
+        &contender.object_map()?,
+        &reference.object_map()?,
+    ))
+}
+
+/// `scene` at `size` by `methods` prepared in `format` and in f64, the reference: what
+/// [`measure`] and [`measure_accuracy`] draw.
+fn prepare_both(
+    format: Format,
+    scene: &OwnedScene,
+    methods: Methods,
+    size: (u32, u32),
+) -> Result<[Box<dyn AnyFormat>; 2]> {
+    let request = Request::new(scene.desc(), size, methods);
+    Ok([prepare(format, &request)?, prepare_reference(&request)?])
 }
 
 /// The f64 reference of `desc` at `size` by `methods` (exact roots).
@@ -713,11 +826,36 @@ mod tests {
     #[test]
     fn a_firmwares_auto_format_is_priced_for_its_machine() {
         let whitted = [obscura_scene::load("whitted").unwrap()];
-        let pick =
-            |machine| firmware_format(&whitted, Methods::default(), machine, TARGET_PSNR).unwrap();
-        assert_eq!(pick(Machine::M4f), Format::F32);
-        // i16f16, whose shift by 16 the M0 gets free, is the cheapest there that reaches 40 dB.
-        assert_eq!(pick(Machine::M0), Format::I16f16);
+        let picked = |machine, target_psnr, choose_pixels| {
+            let aim = Aim {
+                machine,
+                target_psnr,
+                rescale: false,
+                choose_pixels,
+            };
+            let pick = firmware_format(&whitted, Methods::default(), aim).unwrap();
+            (pick.format, pick.pixels)
+        };
+        // On the M4F adaptive pixels cost more in f32 (the chart's pixels axis): f32 exact.
+        assert_eq!(
+            picked(Machine::M4f, TARGET_PSNR, true),
+            (Format::F32, Pixels::Exact)
+        );
+        // i16f16, whose shift by 16 the M0 gets free, is the cheapest there that reaches 40 dB;
+        // its adaptive pixels are cheaper still but reach only 38.7 dB.
+        assert_eq!(
+            picked(Machine::M0, TARGET_PSNR, true),
+            (Format::I16f16, Pixels::Exact)
+        );
+        // At 35 dB they are taken (blocks of 8, 6 % cheaper on the chart), where auto may.
+        assert_eq!(
+            picked(Machine::M0, 35.0, true),
+            (Format::I16f16, Pixels::Adaptive(8))
+        );
+        assert_eq!(
+            picked(Machine::M0, 35.0, false),
+            (Format::I16f16, Pixels::Exact)
+        );
     }
 
     #[test]
@@ -730,16 +868,14 @@ mod tests {
         .scene;
         let size = (48, 48);
         let analysis = Analysis::of(&scene, Methods::LECTURE, size.0, size.1).unwrap();
-        let choose = |target| {
-            pick(
-                &[(&scene, &analysis)],
-                Methods::LECTURE,
-                size,
-                Machine::M4f,
-                target,
-                true,
-            )
-            .unwrap()
+        let choose = |target_psnr| {
+            let aim = Aim {
+                machine: Machine::M4f,
+                target_psnr,
+                rescale: true,
+                choose_pixels: false,
+            };
+            pick(&[(&scene, &analysis)], Methods::LECTURE, size, aim).unwrap()
         };
         // Every format's checker edges differ from f64's somewhere: none reaches 90 dB.
         let short = choose(90.0);

@@ -1,10 +1,13 @@
 //! `obscura analyze`: a scene's range analysis, in tables (see [`crate::analysis`]).
 
-use crate::analysis::{Analysis, Bits, Choice, Extents, Fit, Pick, measure, pick};
+use crate::analysis::{
+    Aim, Analysis, Bits, Choice, Extents, Fit, Pick, measure, measure_accuracy, pick,
+};
 use crate::cli::AnalyzeArgs;
 use crate::cost::Machine;
 use crate::output::say;
 use anyhow::Result;
+use obscura::{MethodName, Pixels};
 use obscura_scene::{Format, NamedScene, OwnedScene};
 use std::io;
 
@@ -38,7 +41,11 @@ fn analyze(args: &AnalyzeArgs, named: &NamedScene) -> Result<()> {
     print_split(analysis)?;
     print_formats(args, frame, analysis)?;
     let pairs: Vec<_> = frames.iter().map(|f| &f.scene).zip(&analyses).collect();
-    print_pick(args, &pairs)
+    let choice = pick_for(args, &pairs)?;
+    if let Choice::Reaches(pick) | Choice::Closest(pick) = &choice {
+        print_pixels(args, frame, analysis, pick)?;
+    }
+    print_pick(args, &choice)
 }
 
 /// Of a camera path's frames' `analyses`, the one whose 32-bit split has the fewest fraction
@@ -121,7 +128,8 @@ fn print_formats(args: &AnalyzeArgs, named: &NamedScene, analysis: &Analysis) ->
             Fit::Refused(reason) => format!("no: {reason}"),
         };
         let p = verdict.prediction;
-        let costs = Machine::cells(|m| number(analysis.cost(m, verdict.format, &methods)));
+        let costs =
+            Machine::cells(|m| number(analysis.cost(m, verdict.format, &methods, Pixels::Exact)));
         say!(
             "| {} | {} | {fit} | {} | {} | {} | {} |{costs}",
             verdict.format,
@@ -135,22 +143,77 @@ fn print_formats(args: &AnalyzeArgs, named: &NamedScene, analysis: &Analysis) ->
     Ok(())
 }
 
-/// The cheapest format that reaches the target on every one of `frames` (what `--format auto`
-/// takes), or why none does; a camera path's frames are not rescaled.
-fn print_pick(args: &AnalyzeArgs, frames: &[(&OwnedScene, &Analysis)]) -> Result<()> {
+/// The cheapest format (and pixels, where the scene leaves them to it) that reaches the target
+/// on every one of `frames`, what `--format auto` takes; a camera path's frames are not
+/// rescaled.
+fn pick_for(args: &AnalyzeArgs, frames: &[(&OwnedScene, &Analysis)]) -> Result<Choice> {
+    let aim = Aim {
+        machine: args.auto.cost_on,
+        target_psnr: args.auto.target_psnr,
+        rescale: frames.len() == 1,
+        choose_pixels: super::chooses_pixels(&args.sampling, frames.iter().map(|(s, _)| *s)),
+    };
+    pick(frames, args.methods.methods(), args.size, aim)
+}
+
+/// The pixels axis in the format `pick` took: each way of finding pixels the scene takes, its
+/// PSNR and object mismatch against f64 with exact pixels, measured, and its cost on each
+/// machine by the charts (the format's, times what the pixels axis measured adaptive pixels
+/// to cost in its kind).
+fn print_pixels(
+    args: &AnalyzeArgs,
+    named: &NamedScene,
+    analysis: &Analysis,
+    pick: &Pick,
+) -> Result<()> {
+    let (format, methods) = (pick.format, args.methods.methods());
+    let (width, height) = args.size;
+    say!(
+        "\n## Pixels, in {format} at {width}x{height}\n\nExact pixels trace every pixel; \
+         adaptive:N traces the corners of N×N blocks and fills a block whose corners agree \
+         (docs/several-rays.md). Measured against f64 with exact pixels; the cost is the \
+         format's times what adaptive pixels cost in its kind on the chart's pixels axis \
+         (docs/images/pixels-accuracy.csv; – where it was not measured).\n"
+    )?;
+    let desc = named.scene.desc();
+    if let Err(why) = desc.takes_pixels(Pixels::Adaptive(2)) {
+        say!("The scene takes exact pixels only: {why}.")?;
+        return Ok(());
+    }
+    let (cost_headings, cost_rule) = Machine::columns();
+    say!("| pixels | measured PSNR (dB) | object mismatch |{cost_headings}")?;
+    say!("|---|---:|---:|{cost_rule}")?;
+    for &(pixels, name) in Pixels::ALL {
+        let scene = Pick {
+            pixels,
+            ..pick.clone()
+        }
+        .scene(&named.scene);
+        let measured = measure_accuracy(format, &scene, methods, args.size)?;
+        let costs = Machine::cells(|m| {
+            let cost = analysis.cost(m, format, &methods, pixels);
+            cost.map_or("–".to_owned(), |x| format!("{x:.0}"))
+        });
+        say!(
+            "| {name} | {} | {:.4} % |{costs}",
+            decibels(measured.psnr_db),
+            measured.object_mismatch_pct
+        )?;
+    }
+    Ok(())
+}
+
+/// What `--format auto` takes by `choice`, or why it takes nothing.
+fn print_pick(args: &AnalyzeArgs, choice: &Choice) -> Result<()> {
     let (target, machine) = (args.auto.target_psnr, args.auto.cost_on);
-    let methods = args.methods.methods();
-    let rescale = frames.len() == 1;
-    match pick(frames, methods, args.size, machine, target, rescale)? {
-        Choice::Reaches(Pick {
-            format, rescaled, ..
-        }) => {
-            let how = rescaled.map_or(String::new(), |factor| {
+    match choice {
+        Choice::Reaches(pick) => {
+            let how = pick.rescaled.map_or(String::new(), |factor| {
                 format!(", rescaled ×{factor} about the eye")
             });
             say!(
-                "\nthe cheapest on {machine} that reaches {target} dB: {format}{how} (--format \
-                 auto)"
+                "\nthe cheapest on {machine} that reaches {target} dB: {}{how} (--format auto)",
+                pick.named()
             )?;
         }
         choice => say!("\n{}", choice.shortfall(target).unwrap_or_default())?,

@@ -2,7 +2,7 @@
 //! rendered in a format and in f64 and measured, and written as an animated GIF at the path's
 //! pace.
 
-use crate::analysis::{Analysis, Choice, Pick, pick};
+use crate::analysis::{Aim, Analysis, Choice, pick};
 use crate::cli::AnimateArgs;
 use crate::metrics::{Accuracy, accuracy};
 use crate::output::{self, say};
@@ -10,7 +10,7 @@ use crate::render::{Request, prepare, prepare_reference};
 use anyhow::{Context, Result, bail};
 use image::RgbImage;
 use indicatif::{ProgressBar, ProgressStyle};
-use obscura::Methods;
+use obscura::{Methods, Pixels};
 use obscura_scene::{Format, FormatChoice, NamedScene};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -51,9 +51,12 @@ fn animate(args: &AnimateArgs, named: &NamedScene) -> Result<()> {
             named.name
         );
     };
-    let frames = named.frames();
+    let mut frames = named.frames();
     let methods = args.scene.methods.methods();
-    let format = format_of_every_frame(args, &frames, methods)?;
+    let (format, pixels) = format_of_every_frame(args, &frames, methods)?;
+    for frame in &mut frames {
+        frame.scene.pixels = pixels;
+    }
     let (width, height) = args.scene.size;
     let bar = progress(&named.name, format, frames.len());
     let rendered = (0..animation.frames)
@@ -98,13 +101,14 @@ fn animate(args: &AnimateArgs, named: &NamedScene) -> Result<()> {
     Ok(())
 }
 
-/// The format every frame is drawn in: the one given, or with `auto` the cheapest that holds
-/// every frame and reaches the target on the worst.
+/// The format every frame is drawn in, and its pixels: the format given with the frames' own
+/// pixels, or with `auto` the cheapest format (and pixels, where the frames leave them to it)
+/// that holds every frame and reaches the target on the worst.
 fn format_of_every_frame(
     args: &AnimateArgs,
     frames: &[NamedScene],
     methods: Methods,
-) -> Result<Format> {
+) -> Result<(Format, Pixels)> {
     let FormatChoice::Given(format) = args.scene.format else {
         let size = args.scene.size;
         let analyses = frames
@@ -113,22 +117,32 @@ fn format_of_every_frame(
             .collect::<Result<Vec<_>>>()?;
         let pairs: Vec<_> = frames.iter().map(|f| &f.scene).zip(&analyses).collect();
         let auto = &args.scene.auto;
-        let picked = pick(&pairs, methods, size, auto.cost_on, auto.target_psnr, false)?;
-        let Choice::Reaches(Pick {
-            format, psnr_db, ..
-        }) = &picked
-        else {
+        let aim = Aim {
+            machine: auto.cost_on,
+            target_psnr: auto.target_psnr,
+            rescale: false,
+            choose_pixels: super::chooses_pixels(
+                &args.scene.sampling,
+                frames.iter().map(|f| &f.scene),
+            ),
+        };
+        let picked = pick(&pairs, methods, size, aim)?;
+        let Choice::Reaches(pick) = &picked else {
             let why = picked.shortfall(auto.target_psnr).unwrap_or_default();
             bail!("for every frame of the path: {why}");
         };
         eprintln!(
-            "--format auto: {format} is the cheapest on {} that reaches {} dB on every frame \
-             (its worst: {psnr_db:.1} dB)",
-            auto.cost_on, auto.target_psnr
+            "--format auto: {} is the cheapest on {} that reaches {} dB on every frame (its \
+             worst: {:.1} dB)",
+            pick.named(),
+            auto.cost_on,
+            auto.target_psnr,
+            pick.psnr_db
         );
-        return Ok(*format);
+        return Ok((pick.format, pick.pixels));
     };
-    Ok(format)
+    let own = frames.first().map_or(Pixels::Exact, |f| f.scene.pixels);
+    Ok((format, own))
 }
 
 /// Frame `k`, built and proven for its own camera, drawn in `format` and in f64, and how far

@@ -78,11 +78,21 @@ fn configure(args: &FirmwareArgs) -> Result<(FirmwareSettings, Configuration)> {
             None => Ok(named.name.clone()),
         })
         .collect::<Result<_>>()?;
-    let (scenes, loops) = with_paths_as_frames(scenes);
+    let (mut scenes, loops) = with_paths_as_frames(scenes);
+    // One image finds its pixels one way: `auto` chooses them only as the image's one format.
+    let choose_pixels = settings.frames.format == [FormatChoice::Auto]
+        && super::chooses_pixels(&settings.sampling, scenes.iter().map(|s| &s.scene));
     let mut formats = Vec::new();
     for &choice in &settings.frames.format {
-        let machine = Machine::from(args.target);
-        let format = super::firmware_format(choice, &scenes, methods, machine, args.target_psnr)?;
+        let aim = (Machine::from(args.target), args.target_psnr);
+        let (format, pixels) =
+            super::firmware_format(choice, &scenes, methods, aim, choose_pixels)?;
+        if choose_pixels && pixels != Pixels::Exact {
+            settings.sampling.pixels = Some(pixels);
+            for named in &mut scenes {
+                named.scene.pixels = pixels;
+            }
+        }
         if choice == FormatChoice::Given(format) {
             for named in &scenes {
                 super::refuse_useless_unseen(

@@ -12,15 +12,15 @@ mod preview;
 mod render;
 mod stress;
 
-use crate::analysis::{self, Analysis, Choice, Pick, pick};
-use crate::cli::{AutoArgs, Command, RefusalArgs, SceneArgs};
+use crate::analysis::{self, Aim, Analysis, Choice, pick};
+use crate::cli::{Command, RefusalArgs, SceneArgs};
 use crate::cost::Machine;
 use crate::output::say;
 use crate::render::{Request, all_cores, prepare, prepare_reference};
 use anyhow::{Context, Result, bail};
 use image::RgbImage;
-use obscura::Methods;
 use obscura::scenes;
+use obscura::{Methods, Pixels};
 use obscura_scene::{Format, FormatChoice, NamedScene, OwnedScene, Sampling};
 
 /// Runs a subcommand.
@@ -91,31 +91,50 @@ pub fn on_scene(
     command(&named).map_err(|error| named.locate(error))
 }
 
-/// The format a firmware computes in by `choice`: the format given (f64 refused: it stays on the
-/// host), or with `auto` the cheapest on `machine` that holds every scene as it is and reaches
-/// `target_psnr` on each ([`analysis::firmware_format`]), said aloud on standard error.
+/// The format a firmware computes in by `choice`, and the pixels it finds: the format given
+/// (f64 refused: it stays on the host) with the scenes' own pixels, or with `auto` the cheapest
+/// on `machine` that holds every scene as it is and reaches `target_psnr` on each
+/// ([`analysis::firmware_format`]), with adaptive pixels where they are cheaper there, reach it
+/// and `choose_pixels` ([`chooses_pixels`]); said aloud on standard error.
 pub fn firmware_format(
     choice: FormatChoice,
     scenes: &[NamedScene],
     methods: Methods,
-    machine: Machine,
-    target_psnr: f64,
-) -> Result<Format> {
+    (machine, target_psnr): (Machine, f64),
+    choose_pixels: bool,
+) -> Result<(Format, Pixels)> {
+    let own = scenes.first().map_or(Pixels::Exact, |s| s.scene.pixels);
     match choice {
         FormatChoice::Given(Format::F64) => bail!(
             "a firmware computes in {}, not f64 (which stays on the host)",
             Format::firmware_names()
         ),
-        FormatChoice::Given(format) => Ok(format),
+        FormatChoice::Given(format) => Ok((format, own)),
         FormatChoice::Auto => {
-            let format = analysis::firmware_format(scenes, methods, machine, target_psnr)?;
+            let aim = Aim {
+                machine,
+                target_psnr,
+                rescale: false,
+                choose_pixels,
+            };
+            let pick = analysis::firmware_format(scenes, methods, aim)?;
             eprintln!(
-                "--format auto: {format} is the cheapest on {machine} that reaches {target_psnr} \
-                 dB on every scene (measured on the host, whose frames are the firmware's)"
+                "--format auto: {} is the cheapest on {machine} that reaches {target_psnr} dB on \
+                 every scene (measured on the host, whose frames are the firmware's)",
+                pick.named()
             );
-            Ok(format)
+            Ok((pick.format, pick.pixels))
         }
     }
+}
+
+/// Whether `--format auto` may choose the pixels of `scenes`: where `--pixels` is not given
+/// and every scene's are exact (a scene file that asks for adaptive pixels keeps them).
+pub fn chooses_pixels<'a>(
+    sampling: &Sampling,
+    mut scenes: impl Iterator<Item = &'a OwnedScene>,
+) -> bool {
+    sampling.pixels.is_none() && scenes.all(|scene| scene.pixels == Pixels::Exact)
 }
 
 /// Picks the format for `named` by `args`: the format given, or with `auto` the cheapest that
@@ -123,7 +142,7 @@ pub fn firmware_format(
 /// that fits), said aloud on standard error.
 pub fn resolve(named: &NamedScene, args: &SceneArgs) -> Result<Resolved> {
     let methods = args.methods.methods();
-    let (format, scene) = pick_format(args.format, named, methods, args.size, &args.auto)?;
+    let (format, scene) = pick_format(named, args)?;
     Ok(Resolved {
         name: named.name.clone(),
         format,
@@ -190,32 +209,19 @@ pub fn refuse_useless_unseen(
     refuse_useless(refusal, format, scene, methods, &drawn, None)
 }
 
-/// The format to render `named` in at `size` by `methods`, and the scene to render.
-fn pick_format(
-    choice: FormatChoice,
-    named: &NamedScene,
-    methods: Methods,
-    (width, height): (u32, u32),
-    auto: &AutoArgs,
-) -> Result<(Format, OwnedScene)> {
-    let FormatChoice::Given(format) = choice else {
+/// The format to render `named` in as `args` ask, and the scene to render.
+fn pick_format(named: &NamedScene, args: &SceneArgs) -> Result<(Format, OwnedScene)> {
+    let (methods, (width, height), auto) = (args.methods.methods(), args.size, &args.auto);
+    let FormatChoice::Given(format) = args.format else {
         let analysis = Analysis::fits(&named.scene, methods, width, height)?;
-        let size = (width, height);
-        let picked = pick(
-            &[(&named.scene, &analysis)],
-            methods,
-            size,
-            auto.cost_on,
-            auto.target_psnr,
-            true,
-        )?;
-        let Choice::Reaches(Pick {
-            format,
-            rescaled,
-            psnr_db,
-            ..
-        }) = picked
-        else {
+        let aim = Aim {
+            machine: auto.cost_on,
+            target_psnr: auto.target_psnr,
+            rescale: true,
+            choose_pixels: chooses_pixels(&args.sampling, std::iter::once(&named.scene)),
+        };
+        let picked = pick(&[(&named.scene, &analysis)], methods, (width, height), aim)?;
+        let Choice::Reaches(pick) = picked else {
             bail!(
                 "{} at {width}x{height}: {} (`obscura analyze {}` says more)",
                 named.name,
@@ -224,22 +230,21 @@ fn pick_format(
             );
         };
         eprintln!(
-            "--format auto: {format} is the cheapest on {} that reaches {} dB ({psnr_db:.1} dB \
-             measured on the host)",
-            auto.cost_on, auto.target_psnr
+            "--format auto: {} is the cheapest on {} that reaches {} dB ({:.1} dB measured on \
+             the host)",
+            pick.named(),
+            auto.cost_on,
+            auto.target_psnr,
+            pick.psnr_db
         );
-        let scene = match rescaled {
-            Some(factor) => {
-                eprintln!(
-                    "--format auto: {format} holds {} only rescaled by {factor} about the eye \
-                     (the image is the same); rendering it so",
-                    named.name
-                );
-                named.scene.scaled(factor as f32)
-            }
-            None => named.scene.clone(),
-        };
-        return Ok((format, scene));
+        if let Some(factor) = pick.rescaled {
+            eprintln!(
+                "--format auto: {} holds {} only rescaled by {factor} about the eye (the image \
+                 is the same); rendering it so",
+                pick.format, named.name
+            );
+        }
+        return Ok((pick.format, pick.scene(&named.scene)));
     };
     Ok((format, named.scene.clone()))
 }

@@ -29,25 +29,28 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
     }
     let methods = args.methods.methods();
     let machine = Machine::from(args.target);
-    let format = super::firmware_format(
+    let (format, pixels) = super::firmware_format(
         args.format,
         std::slice::from_ref(named),
         methods,
-        machine,
-        args.target_psnr,
+        (machine, args.target_psnr),
+        super::chooses_pixels(&args.sampling, std::iter::once(&named.scene)),
     )?;
     if let FormatChoice::Given(format) = args.format {
         super::refuse_useless_unseen(&args.refusal, format, &named.scene, methods, (SIDE, SIDE))?;
     }
-    let request = Request::new(named.scene.desc(), (SIDE, SIDE), methods);
+    let mut scene = named.scene.clone();
+    scene.pixels = pixels;
+    let request = Request::new(scene.desc(), (SIDE, SIDE), methods);
     let prepared = prepare(format, &request)?;
     let presentation = args.presentation.presentation();
     // An estimate that cannot be made (its pricing scene's files gone from an installed
     // harness's workspace) leaves the frame unpaced, not undrawn.
     let estimate = estimate::frame(args.target, format, &request.desc, methods);
     say!(
-        "{} in {format} on the {}, rows {}, dither {}: {}",
+        "{} in {} on the {}, rows {}, dither {}: {}",
         named.name,
+        crate::analysis::with_pixels(format, pixels),
         args.target.board().name,
         presentation.order.name(),
         presentation.dither.name(),
@@ -94,14 +97,22 @@ fn preview_path(args: &PreviewArgs, named: &NamedScene, animation: &Animation) -
     let methods = args.methods.methods();
     let frames = named.frames();
     let machine = Machine::from(args.target);
-    let format = super::firmware_format(args.format, &frames, methods, machine, args.target_psnr)?;
+    let (format, found) = super::firmware_format(
+        args.format,
+        &frames,
+        methods,
+        (machine, args.target_psnr),
+        super::chooses_pixels(&args.sampling, frames.iter().map(|f| &f.scene)),
+    )?;
     let presentation = args.presentation.presentation();
     let draw = |frame: &NamedScene| -> Result<(Vec<u16>, Option<Duration>)> {
         if let FormatChoice::Given(format) = args.format {
             let size = (SIDE, SIDE);
             super::refuse_useless_unseen(&args.refusal, format, &frame.scene, methods, size)?;
         }
-        let request = Request::new(frame.scene.desc(), (SIDE, SIDE), methods);
+        let mut scene = frame.scene.clone();
+        scene.pixels = found;
+        let request = Request::new(scene.desc(), (SIDE, SIDE), methods);
         let pixels = prepare(format, &request)?.rgb565_frame(presentation, &mut |_, _| {})?;
         let paced = estimate::frame(args.target, format, &request.desc, methods)
             .ok()
@@ -119,9 +130,10 @@ fn preview_path(args: &PreviewArgs, named: &NamedScene, animation: &Animation) -
         .collect::<Result<Vec<_>>>()?;
     let loop_seconds: Option<f64> = drawn.iter().map(|(_, t)| t.map(|t| t.as_secs_f64())).sum();
     say!(
-        "{}'s {} frames in {format} on the {}, rows {}, dither {}: {}",
+        "{}'s {} frames in {} on the {}, rows {}, dither {}: {}",
         named.name,
         frames.len(),
+        crate::analysis::with_pixels(format, found),
         args.target.board().name,
         presentation.order.name(),
         presentation.dither.name(),

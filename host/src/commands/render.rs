@@ -37,7 +37,8 @@ fn render(args: &RenderArgs, named: &NamedScene) -> Result<()> {
     super::save(&image, &args.output)?;
     let time = crate::timing::or_omitted(|| format!(" on {} threads in {ms:.1} ms", args.threads));
     say!(
-        "{name} {width}x{height} in {format}{time}: wrote {}",
+        "{name} {width}x{height} in {}{time}: wrote {}",
+        crate::analysis::with_pixels(format, scene.pixels),
         args.output.display()
     )?;
     if args.count {

@@ -6,7 +6,7 @@
 //! `--format auto`'s pick for each scene builds.
 
 use super::{Tally, generate, pool, try_scenes};
-use crate::analysis::{Analysis, Choice, pick};
+use crate::analysis::{Aim, Analysis, Choice, pick};
 use crate::cost::Machine;
 use crate::render::{Request, prepare};
 use obscura::Methods;
@@ -50,22 +50,22 @@ fn auto_picks_a_format_the_build_accepts() {
             continue; // f64 refuses it: so does every format, and auto says so
         };
         for machine in Machine::ALL {
+            let aim = Aim {
+                machine,
+                target_psnr: 30.0,
+                rescale: true,
+                choose_pixels: true,
+            };
             let choice = pick(
                 &[(&generated.scene, &analysis)],
                 methods,
                 generated.size,
-                machine,
-                30.0,
-                true,
-            )
-            .unwrap();
-            let Choice::Reaches(choice) = choice else {
+                aim,
+            );
+            let Choice::Reaches(choice) = choice.unwrap() else {
                 continue;
             };
-            let scene = match choice.rescaled {
-                Some(factor) => generated.scene.scaled(factor as f32),
-                None => generated.scene.clone(),
-            };
+            let scene = choice.scene(&generated.scene);
             let request = Request::new(scene.desc(), generated.size, methods);
             assert!(
                 prepare(choice.format, &request).is_ok(),

@@ -316,7 +316,11 @@ fn fronts(points: &[SpeedPoint], cost: fn(&SpeedPoint) -> Option<f64>, psnr: boo
 /// fronts (1 or 0).
 fn write_csv(points: &[SpeedPoint], path: &Path) -> Result<()> {
     let mut all_fronts = Vec::new();
-    let mut header: Vec<String> = cost::COLUMNS.iter().map(|c| (*c).to_owned()).collect();
+    let mut header: Vec<String> = ["scene", "format", "variant"]
+        .into_iter()
+        .chain(cost::COST_COLUMNS)
+        .map(str::to_owned)
+        .collect();
     header.extend(["psnr_db", "object_mismatch_pct", "narrow"].map(str::to_owned));
     for (name, cost) in COSTS {
         for (metric, psnr) in [("psnr", true), ("mismatch", false)] {

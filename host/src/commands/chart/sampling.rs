@@ -9,6 +9,7 @@
 
 use super::Files;
 use crate::cli::ChartArgs;
+use crate::cost;
 use crate::firmware::{self, Target};
 use crate::metrics::accuracy;
 use crate::output::say;
@@ -366,13 +367,14 @@ impl Axis {
     /// Writes the points as CSV to `path`.
     fn write_csv(&self, points: &[Point], path: &Path) -> Result<()> {
         let mut writer = csv::Writer::from_path(path)?;
+        let [m4f, m0, host] = cost::COST_COLUMNS;
         writer.write_record([
             "scene",
             "format",
             self.name,
-            "m4f_instructions_per_pixel",
-            "m0_instructions_per_pixel",
-            "host_ns_per_pixel",
+            m4f,
+            m0,
+            host,
             "psnr_db",
             "object_mismatch_pct",
         ])?;
@@ -404,7 +406,7 @@ impl Axis {
             self.name,
             self.against()
         )?;
-        let (cost_headings, cost_rule) = crate::cost::Machine::columns();
+        let (cost_headings, cost_rule) = cost::Machine::columns();
         let (mismatch_heading, mismatch_rule) = if self.shows_objects() {
             (" object mismatch (%) |", "---:|")
         } else {
