@@ -133,6 +133,7 @@ impl Target {
         match self {
             Self::M4f => Board {
                 name: "Black Pill (STM32F411, Cortex-M4F)",
+                package: "obscura-black-pill",
                 core_hz: 100_000_000,
                 cores: 1,
                 // SPI1 from the 100 MHz APB2 clock, divided by 2 (`boards/black-pill`).
@@ -140,18 +141,21 @@ impl Target {
             },
             Self::M0 => Board {
                 name: "Raspberry Pi Pico (RP2040, Cortex-M0+)",
+                package: "obscura-pico",
                 core_hz: 125_000_000,
                 cores: 2,
                 spi_hz: rp_spi_hz(125_000_000, ST7789_SPI_HZ),
             },
             Self::M33 => Board {
                 name: "Raspberry Pi Pico 2 (RP2350, Cortex-M33)",
+                package: "obscura-pico2",
                 core_hz: 150_000_000,
                 cores: 2,
                 spi_hz: rp_spi_hz(150_000_000, ST7789_SPI_HZ),
             },
             Self::Rv32 => Board {
                 name: "Raspberry Pi Pico 2 (RP2350, Hazard3 RISC-V)",
+                package: "obscura-pico2",
                 core_hz: 150_000_000,
                 cores: 2,
                 spi_hz: rp_spi_hz(150_000_000, ST7789_SPI_HZ),
@@ -171,6 +175,8 @@ impl Target {
 pub struct Board {
     /// What it is called.
     pub name: &'static str,
+    /// The workspace's crate that builds its firmware (`boards/`).
+    pub package: &'static str,
     /// The core clock the board's firmware sets.
     pub core_hz: u64,
     /// The cores that trace rows.

@@ -162,6 +162,9 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
         print_path_flash(args, &settings, &dir, size.flash, &reports)?;
     }
     let over = print_budget(args.target, &reports, size)?;
+    if args.settings.frames.format.contains(&FormatChoice::Auto) {
+        print_board_build(args, &settings)?;
+    }
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&reports)?;
         std::fs::write(path, text + "\n")
@@ -422,6 +425,52 @@ fn print_path_flash(
         added / frames.max(1)
     )?;
     Ok(())
+}
+
+/// The command that builds what `auto` picked for the target's board: the settings given, with
+/// the formats (and pixels) `auto` took, each variable that differs from its default (and the
+/// scenes and formats always).
+fn print_board_build(args: &FirmwareArgs, picked: &FirmwareSettings) -> Result<()> {
+    say!(
+        "to build it for the {}: {}",
+        args.target.board().name,
+        board_build(args.target, &args.settings, picked)
+    )?;
+    Ok(())
+}
+
+/// [`print_board_build`]'s command, for `target`'s board, from the settings `given` and those
+/// `picked`.
+fn board_build(target: Target, given: &FirmwareSettings, picked: &FirmwareSettings) -> String {
+    let mut given = given.clone();
+    given.frames.format.clone_from(&picked.frames.format);
+    given.sampling.pixels = picked.sampling.pixels;
+    let defaults = FirmwareSettings::default().environment();
+    let variables: Vec<String> = given
+        .environment()
+        .into_iter()
+        .filter(|(name, value)| {
+            ["OBSCURA_SCENES", "OBSCURA_FORMATS"].contains(name)
+                || !defaults.contains(&(*name, value.clone()))
+        })
+        .filter_map(|(name, value)| value.map(|value| format!("{name}={}", quoted(&value))))
+        .collect();
+    format!(
+        "{} cargo build --release -p {} --target {}",
+        variables.join(" "),
+        target.board().package,
+        target.triple()
+    )
+}
+
+/// `value` as a shell word: as it is where it holds nothing a shell reads, else in single quotes.
+fn quoted(value: &str) -> String {
+    let plain = |c: char| c.is_ascii_alphanumeric() || "_./,:=+-".contains(c);
+    if !value.is_empty() && value.chars().all(plain) {
+        value.to_owned()
+    } else {
+        format!("'{}'", value.replace('\'', r"'\''"))
+    }
 }
 
 /// Says whether the image fits the target's budget with the most stack a frame took; what is
@@ -716,4 +765,32 @@ fn print_table(target: Target, reports: &[Report]) -> io::Result<()> {
         )?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_board_build_names_what_auto_picked_and_what_differs_from_the_defaults() {
+        let mut given = FirmwareSettings::default();
+        given.frames.scene = vec!["host/scenes/pyramid.toml".to_owned()];
+        given.frames.format = vec![FormatChoice::Auto];
+        given.presentation.dither = obscura::Dither::Ordered;
+        let mut picked = given.clone();
+        picked.frames.format = vec![FormatChoice::Given(Format::I16f16)];
+        picked.sampling.pixels = Some(Pixels::Adaptive(4));
+        assert_eq!(
+            board_build(Target::M0, &given, &picked),
+            "OBSCURA_SCENES=host/scenes/pyramid.toml OBSCURA_FORMATS=i16f16 \
+             OBSCURA_PIXELS=adaptive:4 OBSCURA_DITHER=ordered cargo build --release -p \
+             obscura-pico --target thumbv6m-none-eabi"
+        );
+        // A scene file's path with a space in it stays one word.
+        given.frames.scene = vec!["my scenes/it's.toml".to_owned()];
+        assert!(
+            board_build(Target::M33, &given, &picked)
+                .starts_with(r"OBSCURA_SCENES='my scenes/it'\''s.toml' OBSCURA_FORMATS=i16f16")
+        );
+    }
 }
