@@ -44,6 +44,26 @@ for qemu in qemu-system-arm:qemu-system-arm qemu-system-riscv32:qemu-system-misc
     "$binary" --version | head -n 1
 done
 
+step "Node.js and the RP2040 emulator (rp2040js, pinned by host/rp2040/package-lock.json)"
+if ! command -v npm >/dev/null; then
+    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
+        apt-get update -qq
+        DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends nodejs npm
+    else
+        echo "Node.js is missing; install it with: sudo apt-get install nodejs npm" >&2
+        exit 1
+    fi
+fi
+node --version
+npm ci --prefix host/rp2040 --no-audit --no-fund --silent
+# The ROM stand-in is built from its source where an assembler is at hand.
+if command -v llvm-mc >/dev/null && command -v llvm-objcopy >/dev/null; then
+    rom=$(mktemp -d)
+    llvm-mc -triple=thumbv6m-none-eabi -filetype=obj host/rp2040/rom.s -o "$rom/rom.o"
+    llvm-objcopy -O binary -j .text "$rom/rom.o" "$rom/rom.bin"
+    cmp "$rom/rom.bin" host/rp2040/rom.bin
+fi
+
 step "SDL2, for obscura preview's window"
 if ! dpkg -s libsdl2-dev >/dev/null 2>&1; then
     if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
@@ -117,8 +137,11 @@ template=$(mktemp -d)/my-pico
 cp -r templates/pico "$template"
 rm -rf "$template/target"
 sed -i "s|path = \"\.\./\.\.|path = \"$PWD|" "$template/Cargo.toml"
-(cd "$template" && cargo build --release --locked --quiet)
-read -r text data _ < <(size "$template/target/$M0/release/my-obscura-pico" | tail -n 1)
+# Its own manifest and lock file, outside the workspace; the workspace's build cache (the same
+# dependencies, built once).
+shared="$PWD/target"
+(cd "$template" && CARGO_TARGET_DIR="$shared" cargo build --release --locked --quiet)
+read -r text data _ < <(size "target/$M0/release/my-obscura-pico" | tail -n 1)
 echo "templates/pico: $((text + data)) bytes of flash"
 if [ $((text + data)) -gt $((48 * 1024)) ]; then
     echo "the template's image is over 48 KiB of flash" >&2
@@ -140,6 +163,9 @@ for target in m4f m0; do
     "${OBSCURA[@]}" firmware --target "$target" \
         --scene host/scenes/pyramid.toml --format auto --budget --profile
 done
+
+step "the Pico's own image in an RP2040 emulator (one core): what reaches its ST7789, bit for bit against the host"
+"${OBSCURA[@]}" emulate whitted --format i16f16
 
 step "firmware under QEMU (m33 and rv32, the Pico 2's cores), bit for bit against the host, within its budget"
 "${OBSCURA[@]}" firmware --target m33 \

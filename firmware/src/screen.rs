@@ -1,7 +1,7 @@
 //! A real display as the firmware's back-end: each frame drawn on it in turn, and each report
 //! written across its bottom rows of text (the frame's time from SysTick, which counts real
 //! core cycles on a board; its stack; its scene's storage; the display's SPI clock where the
-//! board's HAL says it), or why a frame could not be drawn.
+//! board's HAL says it; what the board notes of itself), or why a frame could not be drawn.
 
 use crate::frames::{Backend, Job, Report};
 use core::fmt;
@@ -20,6 +20,9 @@ pub struct Screen<D> {
     /// The display's SPI clock in kHz, as the board's HAL set it (`None` where the HAL does
     /// not say).
     pub spi_khz: Option<u32>,
+    /// What the board says of itself under each report (`None`: nothing), such as that it
+    /// traces on one core where it has two.
+    pub note: Option<&'static str>,
 }
 
 impl<D: DrawTarget<Color = Rgb565, Error: fmt::Debug>> Backend for Screen<D> {
@@ -44,6 +47,9 @@ impl<D: DrawTarget<Color = Rgb565, Error: fmt::Debug>> Backend for Screen<D> {
         );
         if let Some(khz) = self.spi_khz {
             self.caption(2, format_args!("display SPI at {khz} kHz"), white);
+        }
+        if let Some(note) = self.note {
+            self.caption(3, format_args!("{note}"), white);
         }
     }
 

@@ -47,6 +47,10 @@ pub enum Command {
     /// Run the firmware's render loop on the desktop: the display's size, RGB565, its row order
     /// and dither, live in a window (or, with --headless, the final frame as a PNG).
     Preview(PreviewArgs),
+    /// Build the Raspberry Pi Pico's own image, run it in an RP2040 emulator (rp2040js), decode
+    /// what its SPI sends the ST7789 and check the panel's picture against the host's, bit for
+    /// bit; report the SPI clock, the bytes sent and the frame's cycles.
+    Emulate(EmulateArgs),
     /// Chart speed against accuracy for every format and method variant, on both scenes.
     Chart(ChartArgs),
     /// Run the stress cases where methods fail, each ending in a verdict.
@@ -279,16 +283,12 @@ pub struct FirmwareArgs {
     pub profile: bool,
 }
 
-/// `obscura preview`.
+/// A board's frame, as `preview` and `emulate` draw it: the format, the methods, the sampling and
+/// the presentation.
 #[derive(Debug, Args)]
-pub struct PreviewArgs {
-    /// A built-in scene or a scene file.
-    pub scene: String,
-    /// The microcontroller whose firmware is previewed: its pace, and `auto`'s pick.
-    #[arg(long, value_enum, default_value = "m4f")]
-    pub target: Target,
+pub struct BoardFrameArgs {
     /// The format (the same default as every command's and the firmware's); `auto` is the
-    /// cheapest on the target that holds the scene and reaches --target-psnr, as `obscura
+    /// cheapest on the board's core that holds the scene and reaches --target-psnr, as `obscura
     /// firmware --format auto` picks it.
     #[arg(long, value_enum, default_value = "i16f16")]
     pub format: FormatChoice,
@@ -301,6 +301,18 @@ pub struct PreviewArgs {
     pub sampling: Sampling,
     #[command(flatten)]
     pub presentation: PresentationSettings,
+}
+
+/// `obscura preview`.
+#[derive(Debug, Args)]
+pub struct PreviewArgs {
+    /// A built-in scene or a scene file.
+    pub scene: String,
+    /// The microcontroller whose firmware is previewed: its pace, and `auto`'s pick.
+    #[arg(long, value_enum, default_value = "m4f")]
+    pub target: Target,
+    #[command(flatten)]
+    pub frame: BoardFrameArgs,
     #[command(flatten)]
     pub refusal: RefusalArgs,
     /// No window: write the final frame as a PNG and exit (for CI, where there is no display).
@@ -309,6 +321,21 @@ pub struct PreviewArgs {
     /// Where the final frame is written (always with --headless; in a window, when it closes).
     #[arg(short, long, default_value = "out/preview.png")]
     pub output: PathBuf,
+}
+
+/// `obscura emulate`: the Raspberry Pi Pico's image, whose core `auto` prices as the M0.
+#[derive(Debug, Args)]
+pub struct EmulateArgs {
+    /// A built-in scene or a scene file (a still scene: a camera path's frame 0).
+    pub scene: String,
+    #[command(flatten)]
+    pub frame: BoardFrameArgs,
+    /// Where the panel's picture is written (panel.raw, panel.png).
+    #[arg(long, default_value = "out/emulate")]
+    pub out_dir: PathBuf,
+    /// Seconds the emulator may run.
+    #[arg(long, default_value_t = 600)]
+    pub timeout: u64,
 }
 
 /// `obscura chart`.

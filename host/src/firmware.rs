@@ -272,13 +272,19 @@ pub fn check_prerequisites(target: Target) -> Result<()> {
 /// `auto`), and returns the path of its ELF image. Its build script proves every scene in
 /// every format (by the core's own scene build, as the host does) and writes them as words.
 pub fn build(target: Target, settings: &FirmwareSettings) -> Result<PathBuf> {
+    build_package("obscura-qemu", target.triple(), settings)
+}
+
+/// Builds the workspace's firmware crate `package` for `triple` to draw what `settings` say,
+/// and returns the path of its ELF image (named as the crate).
+pub fn build_package(package: &str, triple: &str, settings: &FirmwareSettings) -> Result<PathBuf> {
     let workspace = workspace();
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
     let mut command = Command::new(cargo);
     command
         .current_dir(&workspace)
-        .args(["build", "--release", "-p", "obscura-qemu"])
-        .args(["--target", target.triple()]);
+        .args(["build", "--release", "-p", package])
+        .args(["--target", triple]);
     for (name, value) in settings.environment() {
         match value {
             Some(value) => command.env(name, value),
@@ -287,15 +293,13 @@ pub fn build(target: Target, settings: &FirmwareSettings) -> Result<PathBuf> {
     }
     let status = command.status().context("cannot run cargo")?;
     if !status.success() {
-        bail!(
-            "building the firmware for {} failed (see cargo's messages above)",
-            target.triple()
-        );
+        bail!("building {package} for {triple} failed (see cargo's messages above)");
     }
     Ok(workspace
         .join("target")
-        .join(target.triple())
-        .join("release/obscura-qemu"))
+        .join(triple)
+        .join("release")
+        .join(package))
 }
 
 /// One frame as the firmware reported it.

@@ -29,6 +29,7 @@ mod quantized;
 #[cfg(test)]
 mod regressions;
 mod render;
+mod rp2040;
 mod stress;
 pub mod teapot;
 mod timing;

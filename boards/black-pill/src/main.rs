@@ -79,6 +79,7 @@ fn main() -> ! {
         core_mhz: SYSCLK_MHZ,
         // stm32f4xx-hal does not say which divider it took.
         spi_khz: None,
+        note: None,
     };
     frames::show(&mut screen, &clock);
     halt();

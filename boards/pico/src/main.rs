@@ -10,9 +10,10 @@
 //! | RST (reset) | GP12 |
 //! | BL (backlight) | GP13 |
 //!
-//! Both cores trace, sharing each frame's rows ([`obscura_firmware::two_cores`]); each
-//! configured frame is drawn in turn, its time and stack written across its bottom rows; a
-//! camera path's frames again and again, for good.
+//! Both cores trace, sharing each frame's rows ([`obscura_firmware::two_cores`]); where core 1's
+//! mailboxes are missing (an emulator without core 1), core 0 traces every row and says so under
+//! each frame. Each configured frame is drawn in turn, its time and stack written across its
+//! bottom rows; a camera path's frames again and again, for good.
 #![no_std]
 #![no_main]
 #![allow(
@@ -111,6 +112,19 @@ fn main() -> ! {
     };
     timer.delay_ms(10);
 
+    let clock = Clock::start(core.SYST);
+    let mut screen = Screen {
+        display: panel,
+        core_mhz,
+        spi_khz: Some(spi_khz),
+        note: None,
+    };
+    if !has_core1_fifo(&sio.fifo) {
+        // Core 0 traces every row; the frame says so.
+        screen.note = Some("one core: core 1's FIFO is missing");
+        frames::show(&mut screen, &clock);
+        halt();
+    }
     let mut multicore = Multicore::new(&mut pac.PSM, &mut pac.PPB, &mut sio.fifo);
     let Some(stack) = CORE1_STACK.take() else {
         halt();
@@ -121,17 +135,19 @@ fn main() -> ! {
     if core1.spawn(stack, core1_traces_rows).is_err() {
         halt();
     }
-    let clock = Clock::start(core.SYST);
     let mut board = TwoCores {
-        screen: Screen {
-            display: panel,
-            core_mhz,
-            spi_khz: Some(spi_khz),
-        },
+        screen,
         mailbox: Fifo(sio.fifo),
     };
     frames::show(&mut board, &clock);
     halt();
+}
+
+/// Whether the SIO's mailboxes to core 1 are there: their status has four bits, and the rest
+/// read 0 on silicon. An emulator without a core 1 (rp2040js) reads all ones, where starting
+/// core 1 would wait for its answer for good.
+fn has_core1_fifo(fifo: &SioFifo) -> bool {
+    fifo.status() != u32::MAX
 }
 
 /// Core 1: traces the rows core 0 hands it, for good.

@@ -133,6 +133,7 @@ fn main() -> ! {
             display: panel,
             core_mhz,
             spi_khz: Some(spi_khz),
+            note: None,
         },
         mailbox: Fifo(sio.fifo),
     };

@@ -6,6 +6,7 @@ mod bench;
 mod book;
 mod chart;
 mod compare;
+mod emulate;
 mod firmware;
 mod fuzz;
 mod preview;
@@ -47,6 +48,7 @@ pub fn run(command: Command) -> Result<()> {
         Command::Book(args) => book::run(&args),
         Command::Firmware(args) => firmware::run(&args),
         Command::Preview(args) => preview::run(&args),
+        Command::Emulate(args) => emulate::run(&args),
         Command::Chart(args) => chart::run(&args),
         Command::Stress(args) => stress::run(&args),
         Command::Fuzz(args) => fuzz::run(&args),

@@ -20,30 +20,32 @@ use std::time::Duration;
 
 pub fn run(args: &PreviewArgs) -> Result<()> {
     crate::output::check_file(&args.output)?;
-    super::on_scene(&args.scene, &args.sampling, |named| preview(args, named))
+    super::on_scene(&args.scene, &args.frame.sampling, |named| {
+        preview(args, named)
+    })
 }
 
 fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
     if let Some(animation) = &named.scene.animation {
         return preview_path(args, named, animation);
     }
-    let methods = args.methods.methods();
+    let methods = args.frame.methods.methods();
     let machine = Machine::from(args.target);
     let (format, pixels) = super::firmware_format(
-        args.format,
+        args.frame.format,
         std::slice::from_ref(named),
         methods,
-        (machine, args.target_psnr),
-        super::chooses_pixels(&args.sampling, std::iter::once(&named.scene)),
+        (machine, args.frame.target_psnr),
+        super::chooses_pixels(&args.frame.sampling, std::iter::once(&named.scene)),
     )?;
-    if let FormatChoice::Given(format) = args.format {
+    if let FormatChoice::Given(format) = args.frame.format {
         super::refuse_useless_unseen(&args.refusal, format, &named.scene, methods, (SIDE, SIDE))?;
     }
     let mut scene = named.scene.clone();
     scene.pixels = pixels;
     let request = Request::new(scene.desc(), (SIDE, SIDE), methods);
     let prepared = prepare(format, &request)?;
-    let presentation = args.presentation.presentation();
+    let presentation = args.frame.presentation.presentation();
     // An estimate that cannot be made (its pricing scene's files gone from an installed
     // harness's workspace) leaves the frame unpaced, not undrawn.
     let estimate = estimate::frame(args.target, format, &request.desc, methods);
@@ -94,19 +96,19 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
 /// estimated pace, looping until the window closes; the frames written as a GIF at the path's
 /// own pace (to `--output` with the extension `.gif`).
 fn preview_path(args: &PreviewArgs, named: &NamedScene, animation: &Animation) -> Result<()> {
-    let methods = args.methods.methods();
+    let methods = args.frame.methods.methods();
     let frames = named.frames();
     let machine = Machine::from(args.target);
     let (format, found) = super::firmware_format(
-        args.format,
+        args.frame.format,
         &frames,
         methods,
-        (machine, args.target_psnr),
-        super::chooses_pixels(&args.sampling, frames.iter().map(|f| &f.scene)),
+        (machine, args.frame.target_psnr),
+        super::chooses_pixels(&args.frame.sampling, frames.iter().map(|f| &f.scene)),
     )?;
-    let presentation = args.presentation.presentation();
+    let presentation = args.frame.presentation.presentation();
     let draw = |frame: &NamedScene| -> Result<(Vec<u16>, Option<Duration>)> {
-        if let FormatChoice::Given(format) = args.format {
+        if let FormatChoice::Given(format) = args.frame.format {
             let size = (SIDE, SIDE);
             super::refuse_useless_unseen(&args.refusal, format, &frame.scene, methods, size)?;
         }
