@@ -130,6 +130,7 @@ OBSCURA_SCENES=host/scenes/pyramid.toml OBSCURA_FORMATS=i16f16 cargo build --rel
 OBSCURA_SCENES=host/scenes/pyramid.toml OBSCURA_SAMPLES=16 OBSCURA_ADAPTIVE_SAMPLES=true \
     cargo build --release -p obscura-pico --target "$M0" --locked
 OBSCURA_SCENES=host/scenes/pyramid.toml OBSCURA_FORMATS=f32 cargo build --release -p obscura-pico2 --target "$M33" --locked
+OBSCURA_SCENES=host/scenes/orbit.toml OBSCURA_FORMATS=f32 cargo build --release -p obscura-pico2 --target "$M33" --locked
 OBSCURA_SCENES=host/scenes/pyramid.toml OBSCURA_FORMATS=i16f16 cargo build --release -p obscura-pico2 --target "$RV32" --locked
 
 step "the firmware template, copied outside the workspace as a stranger would, builds within 48 KiB of flash"
