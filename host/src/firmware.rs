@@ -239,6 +239,23 @@ pub fn workspace() -> PathBuf {
 
 /// Fails with the command that installs it unless the Rust target and QEMU are there.
 pub fn check_prerequisites(target: Target) -> Result<()> {
+    check_rust_target(target)?;
+    let (qemu, package) = target.qemu();
+    let found = Command::new(qemu)
+        .arg("--version")
+        .stdout(Stdio::null())
+        .status();
+    if !found.is_ok_and(|status| status.success()) {
+        bail!(
+            "{qemu} is not installed; install it with: sudo apt-get install {package} (Debian, \
+             Ubuntu), or see https://www.qemu.org/download/"
+        );
+    }
+    Ok(())
+}
+
+/// Fails with the command that installs it unless the Rust target of `target` is there.
+pub fn check_rust_target(target: Target) -> Result<()> {
     let sysroot = Command::new("rustc")
         .args(["--print", "sysroot"])
         .output()
@@ -252,17 +269,6 @@ pub fn check_prerequisites(target: Target) -> Result<()> {
         bail!(
             "the Rust target {triple} is not installed; install it with: rustup target add {triple}",
             triple = target.triple()
-        );
-    }
-    let (qemu, package) = target.qemu();
-    let found = Command::new(qemu)
-        .arg("--version")
-        .stdout(Stdio::null())
-        .status();
-    if !found.is_ok_and(|status| status.success()) {
-        bail!(
-            "{qemu} is not installed; install it with: sudo apt-get install {package} (Debian, \
-             Ubuntu), or see https://www.qemu.org/download/"
         );
     }
     Ok(())

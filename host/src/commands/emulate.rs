@@ -27,15 +27,8 @@ pub fn run(args: &EmulateArgs) -> Result<()> {
 fn emulate(args: &EmulateArgs, named: &NamedScene) -> Result<()> {
     let methods = args.frame.methods.methods();
     let still = named.at_frame(0);
-    let (format, pixels) = super::firmware_format(
-        args.frame.format,
-        std::slice::from_ref(&still),
-        methods,
-        (Machine::from(TARGET), args.frame.target_psnr),
-        super::chooses_pixels(&args.frame.sampling, std::iter::once(&still.scene)),
-    )?;
-    let mut scene = still.scene.clone();
-    scene.pixels = pixels;
+    let (format, scene) = super::board_scene(&args.frame, &still, Machine::from(TARGET))?;
+    let pixels = scene.pixels;
     let presentation = args.frame.presentation.presentation();
     let mut sampling = args.frame.sampling;
     sampling.pixels = Some(pixels);
@@ -52,7 +45,8 @@ fn emulate(args: &EmulateArgs, named: &NamedScene) -> Result<()> {
         sampling,
         presentation: args.frame.presentation,
     };
-    firmware::check_prerequisites(TARGET)?;
+    // The Pico's image needs its Rust target, not QEMU.
+    firmware::check_rust_target(TARGET)?;
     rp2040::prepare()?;
     let board = TARGET.board();
     let elf = firmware::build_package(board.package, TARGET.triple(), &settings)?;

@@ -14,7 +14,7 @@ mod render;
 mod stress;
 
 use crate::analysis::{self, Aim, Analysis, Choice, pick};
-use crate::cli::{Command, RefusalArgs, SceneArgs};
+use crate::cli::{BoardFrameArgs, Command, RefusalArgs, SceneArgs};
 use crate::cost::Machine;
 use crate::output::say;
 use crate::render::{Request, all_cores, prepare, prepare_reference};
@@ -128,6 +128,25 @@ pub fn firmware_format(
             Ok((pick.format, pick.pixels))
         }
     }
+}
+
+/// The format a board draws the still scene `named` in by `frame`'s arguments on `machine`
+/// ([`firmware_format`]), and the scene with the pixels that format takes.
+pub fn board_scene(
+    frame: &BoardFrameArgs,
+    named: &NamedScene,
+    machine: Machine,
+) -> Result<(Format, OwnedScene)> {
+    let (format, pixels) = firmware_format(
+        frame.format,
+        std::slice::from_ref(named),
+        frame.methods.methods(),
+        (machine, frame.target_psnr),
+        chooses_pixels(&frame.sampling, std::iter::once(&named.scene)),
+    )?;
+    let mut scene = named.scene.clone();
+    scene.pixels = pixels;
+    Ok((format, scene))
 }
 
 /// Whether `--format auto` may choose the pixels of `scenes`: where `--pixels` is not given

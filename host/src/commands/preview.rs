@@ -31,18 +31,10 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
     }
     let methods = args.frame.methods.methods();
     let machine = Machine::from(args.target);
-    let (format, pixels) = super::firmware_format(
-        args.frame.format,
-        std::slice::from_ref(named),
-        methods,
-        (machine, args.frame.target_psnr),
-        super::chooses_pixels(&args.frame.sampling, std::iter::once(&named.scene)),
-    )?;
+    let (format, scene) = super::board_scene(&args.frame, named, machine)?;
     if let FormatChoice::Given(format) = args.frame.format {
         super::refuse_useless_unseen(&args.refusal, format, &named.scene, methods, (SIDE, SIDE))?;
     }
-    let mut scene = named.scene.clone();
-    scene.pixels = pixels;
     let request = Request::new(scene.desc(), (SIDE, SIDE), methods);
     let prepared = prepare(format, &request)?;
     let presentation = args.frame.presentation.presentation();
@@ -52,7 +44,7 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
     say!(
         "{} in {} on the {}, rows {}, dither {}: {}",
         named.name,
-        crate::analysis::with_pixels(format, pixels),
+        crate::analysis::with_pixels(format, scene.pixels),
         args.target.board().name,
         presentation.order.name(),
         presentation.dither.name(),
