@@ -5,10 +5,11 @@
 //!
 //! Its binary `qemu` streams the frames to the host over semihosting; the boards' crates
 //! (`boards/`) draw them on a real display ([`screen::Screen`]), those with two cores tracing
-//! on both ([`two_cores`]).
+//! on both ([`two_cores`]), the Pico boards feeding it by DMA ([`dma_display`]).
 #![no_std]
 
 pub mod clock;
+pub mod dma_display;
 pub mod frames;
 pub mod screen;
 pub mod stack;

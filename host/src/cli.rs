@@ -207,13 +207,19 @@ pub struct CompareArgs {
 pub struct AnimateArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// The animated GIF to write, looping at the path's `fps`.
+    /// The animated GIF to write, looping at the path's `fps` (or `--pace-of` a board's).
     #[arg(short, long, default_value = "out/animation.gif")]
     pub output: PathBuf,
     /// Also write one row per frame (its PSNR against f64 and the other figures `compare
     /// --json` gives of accuracy) as JSON to this file.
     #[arg(long)]
     pub json: Option<PathBuf>,
+    /// Play the path as this microcontroller's board would draw it (m0: the Pico, m4f: the
+    /// Black Pill, m33 or rv32: the Pico 2): each frame's time estimated there for a 240×240
+    /// frame in the format drawn (tracing and sending, overlapped where the board sends by
+    /// DMA), printed, and the GIF's frames held that long.
+    #[arg(long, value_enum)]
+    pub pace_of: Option<Target>,
 }
 
 /// `obscura bench`.

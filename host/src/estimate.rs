@@ -15,7 +15,7 @@
 //! is priced by another split's run ([`Alike::run`]), a format it lacks by `whitted`'s.
 //! `obscura firmware` measures what this estimates.
 
-use crate::firmware::{self, Board, Target};
+use crate::firmware::{self, Board, FrameTime, Target};
 use crate::operations;
 use crate::render::Request;
 use anyhow::Result;
@@ -191,17 +191,10 @@ pub struct Estimate {
 }
 
 impl Estimate {
-    /// The seconds the display's SPI takes to send the frame drawn in `order`
-    /// ([`Board::sending_seconds`]).
-    pub fn sending(&self, order: RowOrder) -> f64 {
-        self.board.sending_seconds(order, SIDE, SIDE)
-    }
-
-    /// The seconds a frame drawn in `order` takes as the boards draw it: tracing, then
-    /// sending, one after the other (core 0 sends both cores' rows of each pair once traced,
-    /// and core 1 waits for its next row meanwhile).
-    pub fn seconds(&self, order: RowOrder) -> f64 {
-        self.tracing + self.sending(order)
+    /// The frame drawn in `order` as the board draws it: tracing, sending, and both
+    /// ([`Board::frame_time`]).
+    pub fn time(&self, order: RowOrder) -> FrameTime {
+        self.board.frame_time(self.tracing, order, SIDE, SIDE)
     }
 }
 

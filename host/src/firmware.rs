@@ -138,6 +138,7 @@ impl Target {
                 cores: 1,
                 // SPI1 from the 100 MHz APB2 clock, divided by 2 (`boards/black-pill`).
                 spi_hz: 50_000_000,
+                sends_by_dma: false,
             },
             Self::M0 => Board {
                 name: "Raspberry Pi Pico (RP2040, Cortex-M0+)",
@@ -145,6 +146,7 @@ impl Target {
                 core_hz: 125_000_000,
                 cores: 2,
                 spi_hz: rp_spi_hz(125_000_000, ST7789_SPI_HZ),
+                sends_by_dma: true,
             },
             Self::M33 => Board {
                 name: "Raspberry Pi Pico 2 (RP2350, Cortex-M33)",
@@ -152,6 +154,7 @@ impl Target {
                 core_hz: 150_000_000,
                 cores: 2,
                 spi_hz: rp_spi_hz(150_000_000, ST7789_SPI_HZ),
+                sends_by_dma: true,
             },
             Self::Rv32 => Board {
                 name: "Raspberry Pi Pico 2 (RP2350, Hazard3 RISC-V)",
@@ -159,6 +162,7 @@ impl Target {
                 core_hz: 150_000_000,
                 cores: 2,
                 spi_hz: rp_spi_hz(150_000_000, ST7789_SPI_HZ),
+                sends_by_dma: true,
             },
         }
     }
@@ -183,6 +187,51 @@ pub struct Board {
     pub cores: u32,
     /// The display's SPI clock, as the board's HAL sets it from what the board asks.
     pub spi_hz: u32,
+    /// Whether its display is fed by DMA while the cores trace the next rows, rows that follow
+    /// one another in one address window (`obscura_firmware::dma_display`); else each row is
+    /// sent, its window first, before the next is traced.
+    pub sends_by_dma: bool,
+}
+
+/// A frame's seconds on a board: tracing it, sending it to the display, and the frame as the
+/// board draws it ([`Board::frame_time`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrameTime {
+    /// Tracing, the rows shared between the cores.
+    pub tracing: f64,
+    /// Sending, the SPI's wire time.
+    pub sending: f64,
+    /// The frame: the two overlapped where the board sends by DMA, else one after the other.
+    pub frame: f64,
+}
+
+impl FrameTime {
+    /// Frames a second.
+    pub fn per_second(self) -> f64 {
+        1.0 / self.frame
+    }
+}
+
+impl Board {
+    /// `time` in words: tracing, sending at the board's SPI clock, how the two combine, the
+    /// frame and frames a second.
+    pub fn describe(self, time: FrameTime) -> String {
+        format!(
+            "{:.2} s tracing {} {:.1} ms sending at {:.2} MHz SPI{}: {:.2} s a frame, {:.2} frames \
+             a second",
+            time.tracing,
+            if self.sends_by_dma { "and" } else { "then" },
+            1e3 * time.sending,
+            f64::from(self.spi_hz) / 1e6,
+            if self.sends_by_dma {
+                ", overlapped by DMA"
+            } else {
+                ""
+            },
+            time.frame,
+            time.per_second()
+        )
+    }
 }
 
 /// The SPI clock the Pico boards ask for the ST7789 (`boards/pico`, `boards/pico2`,
@@ -218,15 +267,40 @@ impl Board {
     }
 
     /// The seconds the display's SPI takes to send a frame `width` pixels wide drawn in
-    /// `order` (`height` rows): each row (or progressive block) one rectangle, its address
-    /// window and two bytes a pixel, at the SPI clock. The wire's time alone, without the
-    /// CPU's between the bytes: a bound below the transfer.
+    /// `order` (`height` rows): two bytes a pixel, and an address window for each row (or
+    /// progressive block), or where the board sends by DMA for each that does not follow the
+    /// one before, at the SPI clock. The wire's time alone, without the CPU's between the
+    /// bytes: a bound below the transfer.
     pub fn sending_seconds(self, order: RowOrder, width: u32, height: u32) -> f64 {
-        let bytes: u64 = order
-            .rows(height)
-            .map(|(_, rows)| u64::from(WINDOW_BYTES) + 2 * u64::from(width) * u64::from(rows))
-            .sum();
+        let mut bytes = 0;
+        let mut next = None;
+        for (y, rows) in order.rows(height) {
+            if !(self.sends_by_dma && next == Some(y)) {
+                bytes += u64::from(WINDOW_BYTES);
+            }
+            bytes += 2 * u64::from(width) * u64::from(rows);
+            next = Some(y + rows);
+        }
         (8 * bytes) as f64 / f64::from(self.spi_hz)
+    }
+
+    /// The time of a frame `width`×`height` drawn in `order` whose tracing takes `tracing`
+    /// seconds: where the board sends by DMA, a row is sent while the next is traced, so the
+    /// frame takes the larger of tracing and sending and one row's share of the smaller (the
+    /// first row's tracing, or the last's sending); else their sum.
+    pub fn frame_time(self, tracing: f64, order: RowOrder, width: u32, height: u32) -> FrameTime {
+        let sending = self.sending_seconds(order, width, height);
+        let frame = if self.sends_by_dma {
+            let rows = order.rows(height).count().max(1) as f64;
+            tracing.max(sending) + tracing.min(sending) / rows
+        } else {
+            tracing + sending
+        };
+        FrameTime {
+            tracing,
+            sending,
+            frame,
+        }
     }
 }
 
@@ -641,18 +715,44 @@ mod tests {
 
     #[test]
     fn a_frame_is_sent_as_its_rows_windows_and_pixels_at_the_spi_clock() {
-        let pico = Target::M0.board();
-        // 240 rows of an address window (11 bytes) and 480 bytes of pixels, at 62.5 MHz.
-        let top_down = pico.sending_seconds(RowOrder::TopDown, 240, 240);
+        let black_pill = Target::M4f.board();
+        // 240 rows of an address window (11 bytes) and 480 bytes of pixels, at 50 MHz.
+        let top_down = black_pill.sending_seconds(RowOrder::TopDown, 240, 240);
         assert!(
-            (top_down - 8.0 * 240.0 * 491.0 / 62.5e6).abs() < 1e-12,
+            (top_down - 8.0 * 240.0 * 491.0 / 50e6).abs() < 1e-12,
             "{top_down}"
         );
         // A progressive frame sends each row once and each pass's blocks besides: 600 rows of
         // pixels in all.
-        let progressive = pico.sending_seconds(RowOrder::Progressive, 240, 240);
-        let expected = 8.0 * (240.0 * 11.0 + 600.0 * 480.0) / 62.5e6;
+        let progressive = black_pill.sending_seconds(RowOrder::Progressive, 240, 240);
+        let expected = 8.0 * (240.0 * 11.0 + 600.0 * 480.0) / 50e6;
         assert!((progressive - expected).abs() < 1e-12, "{progressive}");
+        // The Pico streams rows that follow one another through one window: one a frame top
+        // down; progressively, one for the first pass's blocks of 8, which follow one another,
+        // and one for each block of the others (30 of 4, 60 of 2, 120 rows).
+        let pico = Target::M0.board();
+        let top_down = pico.sending_seconds(RowOrder::TopDown, 240, 240);
+        assert!((top_down - 8.0 * (11.0 + 240.0 * 480.0) / 62.5e6).abs() < 1e-12);
+        let progressive = pico.sending_seconds(RowOrder::Progressive, 240, 240);
+        let expected = 8.0 * (211.0 * 11.0 + 600.0 * 480.0) / 62.5e6;
+        assert!((progressive - expected).abs() < 1e-12, "{progressive}");
+    }
+
+    #[test]
+    fn a_board_that_sends_by_dma_overlaps_sending_with_tracing() {
+        let (pico, black_pill) = (Target::M0.board(), Target::M4f.board());
+        let sending = pico.sending_seconds(RowOrder::TopDown, 240, 240);
+        // Tracing longer than sending: tracing, and the last row's sending.
+        let slow = pico.frame_time(1.0, RowOrder::TopDown, 240, 240);
+        assert_eq!((slow.tracing, slow.sending), (1.0, sending));
+        assert!((slow.frame - (1.0 + sending / 240.0)).abs() < 1e-12);
+        assert!((slow.per_second() - 1.0 / slow.frame).abs() < 1e-12);
+        // Tracing shorter: sending, and the first row's tracing.
+        let fast = pico.frame_time(0.001, RowOrder::TopDown, 240, 240);
+        assert!((fast.frame - (sending + 0.001 / 240.0)).abs() < 1e-12);
+        // Without DMA, one after the other.
+        let blocking = black_pill.frame_time(1.0, RowOrder::TopDown, 240, 240);
+        assert!((blocking.frame - (1.0 + blocking.sending)).abs() < 1e-12);
     }
 
     #[test]

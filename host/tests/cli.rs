@@ -890,6 +890,51 @@ fn animate_writes_a_looping_gif_and_a_row_per_frame_the_worst_last() {
         "{}",
         stderr(&coarse)
     );
+    // At a board's pace: each frame held as long as the Pico takes to draw it, the loop printed.
+    let paced = obscura(&[
+        "animate",
+        orbit,
+        "--format",
+        "i16f16",
+        "--size",
+        "48x48",
+        "--pace-of",
+        "m0",
+        "-o",
+        gif.to_str().unwrap(),
+    ]);
+    assert!(paced.status.success(), "{}", stderr(&paced));
+    let text = stdout(&paced);
+    let prefix = "on the Raspberry Pi Pico (RP2040, Cortex-M0+) (estimated, 240x240): ";
+    let line = text.lines().find(|l| l.starts_with(prefix)).expect(&text);
+    let loop_seconds: f64 = line[prefix.len()..]
+        .split(" s a loop")
+        .next()
+        .and_then(|s| s.parse().ok())
+        .expect(line);
+    let held: f64 = gif_delays(&gif).iter().sum();
+    assert!(
+        (held - loop_seconds).abs() < 0.01 * 16.0,
+        "{held} s held, {line}"
+    );
+    assert!(loop_seconds > 16.0 * 0.5, "{line}");
+}
+
+/// Each frame's delay in the GIF at `path`, in seconds.
+fn gif_delays(path: &Path) -> Vec<f64> {
+    let decoder = image::codecs::gif::GifDecoder::new(std::io::BufReader::new(
+        std::fs::File::open(path).unwrap(),
+    ))
+    .unwrap();
+    image::AnimationDecoder::into_frames(decoder)
+        .collect_frames()
+        .unwrap()
+        .iter()
+        .map(|f| {
+            let (numer, denom) = f.delay().numer_denom_ms();
+            f64::from(numer) / f64::from(denom) / 1000.0
+        })
+        .collect()
 }
 
 #[test]
@@ -921,6 +966,9 @@ fn preview_plays_a_camera_path_headless_into_a_gif() {
         .unwrap();
     assert_eq!(frames.len(), 16);
     assert_eq!(frames[0].buffer().dimensions(), (240, 240));
+    // At the board's pace, over a second a frame in i16f16 on the Pico, not the path's own.
+    let delays = gif_delays(&dir.join("orbit.gif"));
+    assert!(delays.iter().all(|&d| d > 1.0), "{delays:?}");
 }
 
 #[test]

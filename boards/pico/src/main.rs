@@ -10,7 +10,8 @@
 //! | RST (reset) | GP12 |
 //! | BL (backlight) | GP13 |
 //!
-//! Both cores trace, sharing each frame's rows ([`obscura_firmware::two_cores`]); where core 1's
+//! Both cores trace, sharing each frame's rows ([`obscura_firmware::two_cores`]), while DMA
+//! sends the rows traced to the display ([`obscura_firmware::dma_display`]); where core 1's
 //! mailboxes are missing (an emulator without core 1), core 0 traces every row and says so under
 //! each frame. Each configured frame is drawn in turn, its time and stack written across its
 //! bottom rows; a camera path's frames again and again, for good.
@@ -23,14 +24,14 @@
 
 use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::OutputPin;
-use embedded_hal_bus::spi::ExclusiveDevice;
-use mipidsi::interface::SpiInterface;
 use mipidsi::models::ST7789;
 use mipidsi::options::ColorInversion;
 use obscura_firmware::clock::Clock;
+use obscura_firmware::dma_display::DmaInterface;
 use obscura_firmware::frames;
 use obscura_firmware::screen::Screen;
 use obscura_firmware::two_cores::{self, Mailbox, TwoCores};
+use rp2040_hal::dma::DMAExt;
 use rp2040_hal::fugit::RateExtU32;
 use rp2040_hal::gpio::{FunctionSpi, Pins};
 use rp2040_hal::multicore::{Multicore, Stack};
@@ -47,6 +48,14 @@ static BOOT2: [u8; 256] = rp2040_boot2::BOOT_LOADER_W25Q080;
 /// what is asked: 62 MHz would give 31.25).
 const XTAL_HZ: u32 = 12_000_000;
 const SPI_HZ: u32 = 62_500_000;
+
+/// A row of the display's pixels, two bytes each: one DMA transfer.
+const ROW_BYTES: usize = 2 * obscura_firmware::SIDE as usize;
+
+/// The panel's last row as mipidsi addresses it: 240 rows, no offset.
+const LAST_ROW: u16 = obscura_firmware::SIDE as u16 - 1;
+
+obscura_firmware::rp_spi_dma!(rp2040_hal);
 
 /// Core 1's stack: the tracer's ray stack and its frames (the scene itself is core 0's).
 static CORE1_STACK: Stack<4096> = Stack::new();
@@ -81,7 +90,7 @@ fn main() -> ! {
     let mut backlight = pins.gpio13.into_push_pull_output();
     let _ = backlight.set_high();
     let data_command = pins.gpio8.into_push_pull_output();
-    let chip_select = pins.gpio9.into_push_pull_output();
+    let mut chip_select = pins.gpio9.into_push_pull_output();
     let sck = pins.gpio10.into_function::<FunctionSpi>();
     let tx = pins.gpio11.into_function::<FunctionSpi>();
     let reset = pins.gpio12.into_push_pull_output();
@@ -95,13 +104,22 @@ fn main() -> ! {
     let spi_khz = bus
         .set_baudrate(clocks.peripheral_clock.freq(), SPI_HZ.Hz())
         .to_kHz();
-    let Ok(device) = ExclusiveDevice::new(bus, chip_select, timer);
-    // mipidsi batches pixels through this buffer; it must outlive the display, which is never
-    // dropped, so it lives in a static taken once.
-    let Some(buffer) = cortex_m::singleton!(: [u8; 512] = [0; 512]) else {
+    // The display is the only device on its SPI: selected for good.
+    let _ = chip_select.set_low();
+    let dma = pac.DMA.split(&mut pac.RESETS);
+    // Two buffers of a row each, filled and sent by DMA in turn.
+    let (Some(first), Some(second)) = (
+        cortex_m::singleton!(: [u8; ROW_BYTES] = [0; ROW_BYTES]),
+        cortex_m::singleton!(: [u8; ROW_BYTES] = [0; ROW_BYTES]),
+    ) else {
         halt();
     };
-    let interface = SpiInterface::new(device, data_command, buffer);
+    let interface = DmaInterface::new(
+        SpiDma::new(dma.ch0, bus),
+        data_command,
+        [first, second],
+        LAST_ROW,
+    );
     let Ok(panel) = mipidsi::Builder::new(ST7789, interface)
         .display_size(240, 240)
         .invert_colors(ColorInversion::Inverted)

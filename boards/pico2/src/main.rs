@@ -14,7 +14,8 @@
 //! One source for both architectures, which the build target picks (`thumbv8m.main-none-eabihf`
 //! or `riscv32imac-unknown-none-elf`), as rp235x-hal's own examples do: the boot ROM reads which
 //! from the image's IMAGE_DEF block. Both cores trace, sharing each frame's rows
-//! ([`obscura_firmware::two_cores`]); rp235x-hal starts core 1 on the Cortex-M33, and on Hazard3,
+//! ([`obscura_firmware::two_cores`]), while DMA sends the rows traced to the display
+//! ([`obscura_firmware::dma_display`]); rp235x-hal starts core 1 on the Cortex-M33, and on Hazard3,
 //! where its multicore module does not build, [`core1`] starts it by the boot ROM's protocol
 //! (the RP2350 datasheet, section 5.3). Each configured frame is drawn in turn, its time (in
 //! core cycles: SysTick on the M33, `mcycle` on Hazard3) and stack written across its bottom
@@ -28,16 +29,16 @@
 
 use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::OutputPin;
-use embedded_hal_bus::spi::ExclusiveDevice;
 use hal::clocks::Clock as _;
+use hal::dma::DMAExt;
 use hal::fugit::RateExtU32;
 use hal::gpio::{FunctionSpi, Pins};
 use hal::sio::{Sio, SioFifo};
 use hal::{Timer, Watchdog, clocks, pac, spi};
-use mipidsi::interface::SpiInterface;
 use mipidsi::models::ST7789;
 use mipidsi::options::ColorInversion;
 use obscura_firmware::clock::Clock;
+use obscura_firmware::dma_display::DmaInterface;
 use obscura_firmware::frames;
 use obscura_firmware::screen::Screen;
 use obscura_firmware::two_cores::{self, Mailbox, TwoCores};
@@ -56,6 +57,14 @@ static IMAGE_DEF: hal::block::ImageDef = hal::block::ImageDef::secure_exe();
 /// asked).
 const XTAL_HZ: u32 = 12_000_000;
 const SPI_HZ: u32 = 62_500_000;
+
+/// A row of the display's pixels, two bytes each: one DMA transfer.
+const ROW_BYTES: usize = 2 * obscura_firmware::SIDE as usize;
+
+/// The panel's last row as mipidsi addresses it: 240 rows, no offset.
+const LAST_ROW: u16 = obscura_firmware::SIDE as u16 - 1;
+
+obscura_firmware::rp_spi_dma!(rp235x_hal);
 
 /// Sets up the clocks, the display and core 1, then draws every configured frame.
 #[hal::entry]
@@ -87,7 +96,7 @@ fn main() -> ! {
     let mut backlight = pins.gpio13.into_push_pull_output();
     let _ = backlight.set_high();
     let data_command = pins.gpio8.into_push_pull_output();
-    let chip_select = pins.gpio9.into_push_pull_output();
+    let mut chip_select = pins.gpio9.into_push_pull_output();
     let sck = pins.gpio10.into_function::<FunctionSpi>();
     let tx = pins.gpio11.into_function::<FunctionSpi>();
     let reset = pins.gpio12.into_push_pull_output();
@@ -101,11 +110,22 @@ fn main() -> ! {
     let spi_khz = bus
         .set_baudrate(clocks.peripheral_clock.freq(), SPI_HZ.Hz())
         .to_kHz();
-    let Ok(device) = ExclusiveDevice::new(bus, chip_select, timer);
-    // mipidsi batches pixels through this buffer; `main` never returns, so it outlives the
-    // display.
-    let mut buffer = [0_u8; 512];
-    let interface = SpiInterface::new(device, data_command, &mut buffer);
+    // The display is the only device on its SPI: selected for good.
+    let _ = chip_select.set_low();
+    let dma = pac.DMA.split(&mut pac.RESETS);
+    // Two buffers of a row each, filled and sent by DMA in turn.
+    let (Some(first), Some(second)) = (
+        hal::singleton!(: [u8; ROW_BYTES] = [0; ROW_BYTES]),
+        hal::singleton!(: [u8; ROW_BYTES] = [0; ROW_BYTES]),
+    ) else {
+        halt();
+    };
+    let interface = DmaInterface::new(
+        SpiDma::new(dma.ch0, bus),
+        data_command,
+        [first, second],
+        LAST_ROW,
+    );
     let Ok(panel) = mipidsi::Builder::new(ST7789, interface)
         .display_size(240, 240)
         .invert_colors(ColorInversion::Inverted)

@@ -1,20 +1,23 @@
 //! `obscura animate`: a scene's camera path, every frame built and proven for its own camera,
 //! rendered in a format and in f64 and measured, and written as an animated GIF at the path's
-//! pace.
+//! pace, or at a board's (`--pace-of`).
 
 use crate::analysis::{Aim, Analysis, Choice, pick};
 use crate::cli::AnimateArgs;
+use crate::estimate;
+use crate::firmware::{FrameTime, Target};
 use crate::metrics::{Accuracy, accuracy};
 use crate::output::{self, say};
 use crate::render::{Request, prepare, prepare_reference};
 use anyhow::{Context, Result, bail};
 use image::RgbImage;
 use indicatif::{ProgressBar, ProgressStyle};
-use obscura::{Methods, Pixels};
+use obscura::{Methods, Pixels, RowOrder};
 use obscura_scene::{Format, FormatChoice, NamedScene};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::io::IsTerminal;
+use std::time::Duration;
 
 /// One frame's figures, as printed and written to JSON: `compare --json`'s accuracy columns.
 #[derive(Debug, Serialize)]
@@ -72,8 +75,21 @@ fn animate(args: &AnimateArgs, named: &NamedScene) -> Result<()> {
         .into_iter()
         .collect::<Result<Vec<_>>>()?;
     bar.finish_and_clear();
+    let paced = args
+        .pace_of
+        .map(|target| board_times(target, &frames, format, methods))
+        .transpose()?;
+    let held = paced.as_ref().map_or_else(
+        || vec![super::frame_time(animation.fps); frames.len()],
+        |times| {
+            times
+                .iter()
+                .map(|t| Duration::from_secs_f64(t.frame))
+                .collect()
+        },
+    );
     let images = rendered.iter().map(|(image, _)| image);
-    super::save_gif(images, animation.fps, &args.output)?;
+    super::save_gif(images.zip(held), &args.output)?;
     let reports: Vec<FrameReport> = rendered
         .into_iter()
         .zip(0_u16..)
@@ -91,7 +107,19 @@ fn animate(args: &AnimateArgs, named: &NamedScene) -> Result<()> {
             object_mismatch_pct: accuracy.object_mismatch_pct,
         })
         .collect();
-    print_reports(&reports, animation.fps, &args.output)?;
+    let pace = args.pace_of.map_or_else(
+        || format!("at {} a second", animation.fps),
+        |target| {
+            format!(
+                "each held as long as the {} takes to draw it",
+                target.board().name
+            )
+        },
+    );
+    print_reports(&reports, &pace, &args.output)?;
+    if let (Some(target), Some(times)) = (args.pace_of, &paced) {
+        print_pace(target, times)?;
+    }
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&reports)?;
         std::fs::write(path, text + "\n")
@@ -173,6 +201,49 @@ fn render_frame(
     Ok((image, measured))
 }
 
+/// Each frame's time on `target`'s board, a 240×240 frame in `format` drawn top-down (the
+/// firmware's estimate, as `obscura preview` paces it).
+fn board_times(
+    target: Target,
+    frames: &[NamedScene],
+    format: Format,
+    methods: Methods,
+) -> Result<Vec<FrameTime>> {
+    frames
+        .iter()
+        .zip(0_u16..)
+        .map(|(frame, k)| {
+            estimate::frame(target, format, &frame.scene.desc(), methods)?
+                .map(|e| e.time(RowOrder::TopDown))
+                .with_context(|| {
+                    format!(
+                        "no firmware runs {format}: the {} cannot pace frame {k}",
+                        target.board().name
+                    )
+                })
+        })
+        .collect()
+}
+
+/// The loop on `target`'s board: each frame's time, the loop's and frames a second.
+fn print_pace(target: Target, times: &[FrameTime]) -> Result<()> {
+    let board = target.board();
+    let seconds: f64 = times.iter().map(|t| t.frame).sum();
+    let slowest = times.iter().map(|t| t.frame).fold(0.0, f64::max);
+    say!(
+        "on the {} (estimated, 240x240): {seconds:.2} s a loop, {:.2} frames a second, the \
+         slowest frame {slowest:.2} s ({})",
+        board.name,
+        times.len() as f64 / seconds,
+        if board.sends_by_dma {
+            "each frame's sending overlapped with its tracing by DMA"
+        } else {
+            "each frame traced, then sent"
+        }
+    )?;
+    Ok(())
+}
+
 /// A bar of `frames` frames on standard error when it is a terminal.
 fn progress(name: &str, format: Format, frames: usize) -> ProgressBar {
     if !std::io::stderr().is_terminal() {
@@ -187,7 +258,7 @@ fn progress(name: &str, format: Format, frames: usize) -> ProgressBar {
 }
 
 /// One line per frame, then the worst.
-fn print_reports(reports: &[FrameReport], fps: u16, gif: &std::path::Path) -> Result<()> {
+fn print_reports(reports: &[FrameReport], pace: &str, gif: &std::path::Path) -> Result<()> {
     say!(
         "| frame | PSNR against f64 (dB) | mean abs error | max abs error | differing pixels | object mismatch |"
     )?;
@@ -203,11 +274,7 @@ fn print_reports(reports: &[FrameReport], fps: u16, gif: &std::path::Path) -> Re
             r.object_mismatch_pct
         )?;
     }
-    say!(
-        "wrote {} ({} frames at {fps} a second)",
-        gif.display(),
-        reports.len()
-    )?;
+    say!("wrote {} ({} frames {pace})", gif.display(), reports.len())?;
     if let Some(worst) = reports
         .iter()
         .min_by(|a, b| a.psnr_db.total_cmp(&b.psnr_db))

@@ -108,10 +108,10 @@ fn emulate(args: &EmulateArgs, named: &NamedScene) -> Result<()> {
     if let Some(e) = estimate {
         say!(
             "the harness's estimate for the Pico: {:.0} cycles a pixel on each of its {} cores \
-             (the frame's rows shared), {:.2} s a frame with sending",
+             (the frame's rows shared), {}",
             e.per_pixel.cycles,
             e.board.cores,
-            e.seconds(presentation.order)
+            e.board.describe(e.time(presentation.order))
         )?;
     }
     if !run.unknown_commands.is_empty() || !run.warnings.is_empty() {

@@ -351,36 +351,39 @@ fn frame_cycles(
     Ok(estimate)
 }
 
-/// Each camera path's loop on the board: its frames' cycles added up, at the board's clock,
-/// and each frame sent to the display after it is traced.
+/// Each camera path's loop on the board: its frames' times added up, each traced at the board's
+/// clock and sent to the display ([`firmware::Board::frame_time`]).
 fn print_paths(target: Target, reports: &[Report]) -> Result<()> {
     let board = target.board();
-    // Each path and format: its frames' cycles, and their seconds on the display's SPI.
-    let mut paths: Vec<(&str, &str, u64, f64, u32)> = Vec::new();
+    // Each path and format: its frames' seconds, and how many.
+    let mut paths: Vec<(&str, &str, f64, u32)> = Vec::new();
     for r in reports {
         let Some((path, _)) = obscura_scene::path_frame(&r.scene) else {
             continue;
         };
         let order = RowOrder::from_name(r.order).unwrap_or_default();
-        let sending = board.sending_seconds(order, r.width, r.height);
+        let time = board.frame_time(board.seconds(r.cycles_per_frame), order, r.width, r.height);
         match paths
             .iter_mut()
             .find(|(p, f, ..)| *p == path && *f == r.format)
         {
             Some(entry) => {
-                entry.2 += r.cycles_per_frame;
-                entry.3 += sending;
-                entry.4 += 1;
+                entry.2 += time.frame;
+                entry.3 += 1;
             }
-            None => paths.push((path, &r.format, r.cycles_per_frame, sending, 1)),
+            None => paths.push((path, &r.format, time.frame, 1)),
         }
     }
-    for (path, format, cycles, sending, frames) in paths {
-        let seconds = board.seconds(cycles) + sending;
+    for (path, format, seconds, frames) in paths {
         say!(
             "{path}'s loop of {frames} frames in {format} on a {}, estimated in cycles and the \
-             display's SPI: {seconds:.1} s a loop, {:.2} frames a second",
+             display's SPI{}: {seconds:.1} s a loop, {:.2} frames a second",
             board.name,
+            if board.sends_by_dma {
+                " (each frame's sending overlapped by DMA)"
+            } else {
+                ""
+            },
             f64::from(frames) / seconds
         )?;
     }
@@ -745,11 +748,10 @@ fn print_table(target: Target, reports: &[Report]) -> io::Result<()> {
         let frame_pixels = u64::from(r.width) * u64::from(r.height);
         let tracing = board.seconds(r.cycles_per_frame);
         let order = RowOrder::from_name(r.order).unwrap_or_default();
-        let sending = board.sending_seconds(order, r.width, r.height);
+        let time = board.frame_time(tracing, order, r.width, r.height);
         say!(
-            "{} in {} on a {}, {} core{} at {} MHz, estimated in cycles: {tracing:.2} s tracing a \
-             {}x{} frame, then {:.1} ms sending it at {} MHz SPI: {:.2} frames a second; {:.1} s \
-             tracing 512x512",
+            "{} in {} on a {}, {} core{} at {} MHz, estimated in cycles for a {}x{} frame: {}; \
+             {:.1} s tracing 512x512",
             r.scene,
             r.format,
             board.name,
@@ -758,9 +760,7 @@ fn print_table(target: Target, reports: &[Report]) -> io::Result<()> {
             board.core_hz / 1_000_000,
             r.width,
             r.height,
-            1e3 * sending,
-            f64::from(board.spi_hz) / 1e6,
-            1.0 / (tracing + sending),
+            board.describe(time),
             tracing * (512 * 512) as f64 / frame_pixels.max(1) as f64
         )?;
     }

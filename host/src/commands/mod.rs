@@ -278,10 +278,10 @@ pub fn save(image: &RgbImage, path: &std::path::Path) -> Result<()> {
         .with_context(|| format!("cannot write {}", path.display()))
 }
 
-/// Writes `frames` as a GIF to `path` that loops for ever at `fps` frames a second.
+/// Writes `frames` as a GIF to `path` that loops for ever, each frame held for its duration
+/// (to the GIF's hundredth of a second).
 pub fn save_gif<'a>(
-    frames: impl IntoIterator<Item = &'a RgbImage>,
-    fps: u16,
+    frames: impl IntoIterator<Item = (&'a RgbImage, std::time::Duration)>,
     path: &std::path::Path,
 ) -> Result<()> {
     use anyhow::Context;
@@ -290,12 +290,17 @@ pub fn save_gif<'a>(
     let file = std::fs::File::create(path).with_context(cannot)?;
     let mut encoder = GifEncoder::new_with_speed(std::io::BufWriter::new(file), 10);
     encoder.set_repeat(Repeat::Infinite).with_context(cannot)?;
-    let delay = image::Delay::from_numer_denom_ms(1000, u32::from(fps.max(1)));
-    for frame in frames {
+    for (frame, held) in frames {
         let rgba = image::DynamicImage::ImageRgb8(frame.clone()).into_rgba8();
+        let delay = image::Delay::from_saturating_duration(held);
         encoder
             .encode_frame(image::Frame::from_parts(rgba, 0, 0, delay))
             .with_context(cannot)?;
     }
     Ok(())
+}
+
+/// A frame's time at `fps` frames a second.
+pub fn frame_time(fps: u16) -> std::time::Duration {
+    std::time::Duration::from_secs(1) / u32::from(fps.max(1))
 }

@@ -50,18 +50,15 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
         presentation.dither.name(),
         match &estimate {
             Ok(Some(e)) => format!(
-                "about {:.1} s a frame ({:.0} instructions, {:.0} cycles a pixel, {} core{} at \
-                 {} MHz; then {:.1} ms sending it at {} MHz SPI), estimated by the instructions \
-                 and cycles an operation takes in `{}` in {} under QEMU (`obscura firmware` \
-                 measures it)",
-                e.seconds(presentation.order),
+                "about {} ({:.0} instructions, {:.0} cycles a pixel, {} core{} at {} MHz), \
+                 estimated by the instructions and cycles an operation takes in `{}` in {} under \
+                 QEMU (`obscura firmware` measures it)",
+                e.board.describe(e.time(presentation.order)),
                 e.per_pixel.instructions,
                 e.per_pixel.cycles,
                 e.board.cores,
                 if e.board.cores == 1 { "" } else { "s" },
                 e.board.core_hz / 1_000_000,
-                1e3 * e.sending(presentation.order),
-                f64::from(e.board.spi_hz) / 1e6,
                 e.priced_by,
                 e.priced_in,
             ),
@@ -72,7 +69,7 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
     let frame_time = estimate
         .ok()
         .flatten()
-        .map(|e| Duration::from_secs_f64(e.seconds(presentation.order)));
+        .map(|e| Duration::from_secs_f64(e.time(presentation.order).frame));
     let pixels = if args.headless {
         prepared.rgb565_frame(presentation, &mut |_, _| {})?
     } else {
@@ -85,8 +82,9 @@ fn preview(args: &PreviewArgs, named: &NamedScene) -> Result<()> {
 
 /// A camera path as the board shows it: every frame drawn in the format the board takes for the
 /// worst, in RGB565, its row order and dither; in the window, frame after frame at the board's
-/// estimated pace, looping until the window closes; the frames written as a GIF at the path's
-/// own pace (to `--output` with the extension `.gif`).
+/// estimated pace, looping until the window closes; the frames written as a GIF at the same
+/// pace (at the path's own where a frame has no estimate), to `--output` with the extension
+/// `.gif`.
 fn preview_path(args: &PreviewArgs, named: &NamedScene, animation: &Animation) -> Result<()> {
     let methods = args.frame.methods.methods();
     let frames = named.frames();
@@ -111,7 +109,7 @@ fn preview_path(args: &PreviewArgs, named: &NamedScene, animation: &Animation) -
         let paced = estimate::frame(args.target, format, &request.desc, methods)
             .ok()
             .flatten()
-            .map(|e| Duration::from_secs_f64(e.seconds(presentation.order)));
+            .map(|e| Duration::from_secs_f64(e.time(presentation.order).frame));
         Ok((pixels, paced))
     };
     let drawn = frames
@@ -143,17 +141,23 @@ fn preview_path(args: &PreviewArgs, named: &NamedScene, animation: &Animation) -
         let shown: Vec<(Vec<u16>, Option<Duration>)> = drawn.clone();
         window::play(&named.name, &shown)?;
     }
+    // At the board's pace where every frame has an estimate, else at the path's own.
+    let paced: Option<Vec<Duration>> = drawn.iter().map(|(_, t)| *t).collect();
+    let held = paced.unwrap_or_else(|| vec![super::frame_time(animation.fps); drawn.len()]);
     let images: Vec<_> = drawn
         .iter()
         .map(|(pixels, _)| rgb565_image(pixels, SIDE))
         .collect();
     let gif = args.output.with_extension("gif");
-    super::save_gif(&images, animation.fps, &gif)?;
+    super::save_gif(images.iter().zip(held), &gif)?;
     say!(
-        "wrote {} ({} frames at {} a second)",
+        "wrote {} ({} frames, {})",
         gif.display(),
         images.len(),
-        animation.fps
+        loop_seconds.map_or_else(
+            || format!("at the path's {} a second", animation.fps),
+            |_| "each held as long as the board takes to draw it".to_owned()
+        )
     )?;
     Ok(())
 }
