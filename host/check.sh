@@ -158,15 +158,22 @@ fi
 grep -F "low-light.toml:14:1: the scene cannot be built in i16f16" target/refused.log
 
 for target in m4f m0; do
-    step "firmware under QEMU ($target), bit for bit against the host, within its budget"
-    "${OBSCURA[@]}" firmware --target "$target" \
-        --scene whitted,shapes --format i16f16 --budget
-    "${OBSCURA[@]}" firmware --target "$target" \
+    step "firmware under QEMU ($target), bit for bit against the host, within its budget: two runs at once, each its own image"
+    "${OBSCURA[@]}" firmware --target "$target" --out-dir "target/at-once/$target-a" \
+        --scene whitted,shapes --format i16f16 --budget &
+    first=$!
+    "${OBSCURA[@]}" firmware --target "$target" --out-dir "target/at-once/$target-b" \
         --scene host/scenes/pyramid.toml --format auto --budget --profile
+    wait "$first"
 done
 
-step "the Pico's own image in an RP2040 emulator (one core): what reaches its ST7789, bit for bit against the host"
+step "the Pico's own image and the template's in an RP2040 emulator (one core): what reaches the ST7789, bit for bit against the host"
 "${OBSCURA[@]}" emulate whitted --format i16f16
+# A core 1 that never answers: the image still draws the whole frame, on core 0.
+"${OBSCURA[@]}" emulate host/scenes/ball.toml --format i16f16 --core1 silent --out-dir target/emulate-silent
+# The template's image, as the stranger's copy above built it.
+"${OBSCURA[@]}" emulate "$template/scene.toml" --format i16f16 \
+    --image "target/$M0/release/my-obscura-pico" --out-dir target/emulate-template
 
 step "firmware under QEMU (m33 and rv32, the Pico 2's cores), bit for bit against the host, within its budget"
 "${OBSCURA[@]}" firmware --target m33 \

@@ -5,8 +5,9 @@
 //! chips): core 0 hands core 1 the frame's row tracer, then each row to trace, and core 1
 //! answers when the row is in its line.
 //!
-//! A board starts core 1 in [`core1_traces_rows`] and gives its display and its side of the
-//! mailboxes to [`TwoCores`], the back-end that shares each frame.
+//! A board asks whether core 1 answers ([`core1_answers`]), starts it in [`core1_traces_rows`]
+//! and gives its display and its side of the mailboxes to [`TwoCores`], the back-end that
+//! shares each frame; where core 1 does not answer, core 0 traces every row.
 #![allow(
     unsafe_code,
     reason = "the line and the row tracer the two cores share through the mailboxes"
@@ -31,6 +32,41 @@ pub trait Mailbox {
     fn send(&mut self, word: u32);
     /// The next word from the other core.
     fn receive(&mut self) -> u32;
+}
+
+/// Core 0's side of the SIO's mailboxes as it asks whether core 1 is there, each call returning
+/// at once.
+pub trait Probe {
+    /// Empties the mailbox from core 1.
+    fn drain(&mut self);
+    /// Wakes core 1 from its wait for an event.
+    fn wake(&mut self);
+    /// Sends `word` to core 1 if there is room.
+    fn try_send(&mut self, word: u32) -> bool;
+    /// The next word from core 1, if one is there.
+    fn try_receive(&mut self) -> Option<u32>;
+}
+
+/// Whether core 1, just reset and waiting in the boot ROM, answers the first word of the ROM's
+/// start sequence (a 0, which it echoes; the RP2040 datasheet, section 2.8.2, and the RP2350's,
+/// 5.3) while `waiting` says to wait. Starting a core 1 that does not answer (faulted, or
+/// missing from an emulator) would wait for its answer for good: the board traces on core 0.
+pub fn core1_answers(mailbox: &mut impl Probe, mut waiting: impl FnMut() -> bool) -> bool {
+    mailbox.drain();
+    mailbox.wake();
+    while !mailbox.try_send(0) {
+        if !waiting() {
+            return false;
+        }
+    }
+    loop {
+        if let Some(echo) = mailbox.try_receive() {
+            return echo == 0;
+        }
+        if !waiting() {
+            return false;
+        }
+    }
 }
 
 /// Core 1's line buffer: written by core 1 between a row's word and its answer, read by core 0
@@ -179,4 +215,51 @@ impl<D: DrawTarget<Color = Rgb565, Error: fmt::Debug>, M: Mailbox> Backend for T
     fn refused(&mut self, job: &Job<'_>, why: &dyn fmt::Display) {
         self.screen.refused(job, why);
     }
+}
+
+/// Defines the board's sides of the SIO's mailboxes for the HAL `$hal` (`rp2040_hal` or
+/// `rp235x_hal`, whose `SioFifo`s agree), `$sev` waking the other core: `Fifo`, a core's side
+/// ([`Mailbox`]), and `Asking`, core 0's as it asks whether core 1 answers ([`Probe`]).
+#[macro_export]
+macro_rules! rp_mailboxes {
+    ($hal:ident, $sev:path) => {
+        /// A core's side of the SIO's mailboxes (`obscura_firmware::rp_mailboxes`).
+        struct Fifo($hal::sio::SioFifo);
+
+        impl $crate::two_cores::Mailbox for Fifo {
+            fn send(&mut self, word: u32) {
+                self.0.write_blocking(word);
+            }
+
+            fn receive(&mut self) -> u32 {
+                self.0.read_blocking()
+            }
+        }
+
+        /// Core 0's side of the SIO's mailboxes, asking whether core 1 answers
+        /// (`obscura_firmware::rp_mailboxes`).
+        struct Asking<'a>(&'a mut $hal::sio::SioFifo);
+
+        impl $crate::two_cores::Probe for Asking<'_> {
+            fn drain(&mut self) {
+                self.0.drain();
+            }
+
+            fn wake(&mut self) {
+                $sev();
+            }
+
+            fn try_send(&mut self, word: u32) -> bool {
+                let ready = self.0.is_write_ready();
+                if ready {
+                    self.0.write(word);
+                }
+                ready
+            }
+
+            fn try_receive(&mut self) -> Option<u32> {
+                self.0.read()
+            }
+        }
+    };
 }

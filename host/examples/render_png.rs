@@ -33,10 +33,10 @@ impl DrawTarget for Canvas {
         pixels: I,
     ) -> Result<(), Infallible> {
         for Pixel(point, colour) in pixels {
-            if let (Ok(x), Ok(y)) = (u32::try_from(point.x), u32::try_from(point.y)) {
-                if let Some(pixel) = self.0.get_pixel_mut_checked(x, y) {
-                    *pixel = image::Rgb([colour.r(), colour.g(), colour.b()]);
-                }
+            if let (Ok(x), Ok(y)) = (u32::try_from(point.x), u32::try_from(point.y))
+                && let Some(pixel) = self.0.get_pixel_mut_checked(x, y)
+            {
+                *pixel = image::Rgb([colour.r(), colour.g(), colour.b()]);
             }
         }
         Ok(())

@@ -1,5 +1,5 @@
 // Runs a Raspberry Pi Pico image in rp2040js and decodes what its SPI sends an ST7789, as the
-// panel would: `node run.mjs IMAGE.elf OUT_DIR PIXEL_WRITES TIMEOUT_SECONDS`.
+// panel would: `node run.mjs IMAGE.elf OUT_DIR PIXEL_WRITES TIMEOUT_SECONDS [CORE1]`.
 //
 // The image is loaded as a board's flash holds it (its ELF's loadable segments), with
 // `rom.bin`, obscura's stand-in for the RP2040's boot ROM (rom.s), and started at its vector
@@ -9,13 +9,17 @@
 // clock the firmware set. Once PIXEL_WRITES pixels have been written (a frame, in its row
 // order), the panel's first 240×240 pixels go to OUT_DIR/panel.raw (RGB565, little-endian
 // 16-bit words) and a report of what was sent to standard output as JSON.
+//
+// rp2040js emulates no core 1. CORE1 says what the image finds of it in the SIO's mailboxes:
+// `absent` (the default), a status that reads all ones, as rp2040js reads them; `silent`,
+// mailboxes that take words and never answer, as from a core 1 that faulted.
 import { Simulator } from 'rp2040js';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 
-const [elfPath, outDir, writesArg, timeoutArg] = process.argv.slice(2);
-if (!elfPath || !outDir || !writesArg) {
-  console.error('usage: node run.mjs IMAGE.elf OUT_DIR PIXEL_WRITES [TIMEOUT_SECONDS]');
+const [elfPath, outDir, writesArg, timeoutArg, core1 = 'absent'] = process.argv.slice(2);
+if (!elfPath || !outDir || !writesArg || !['absent', 'silent'].includes(core1)) {
+  console.error('usage: node run.mjs IMAGE.elf OUT_DIR PIXEL_WRITES [TIMEOUT_SECONDS [absent|silent]]');
   process.exit(2);
 }
 const wanted = Number(writesArg);
@@ -40,6 +44,20 @@ mcu.logger = {
   info() {},
   warn: (component, message) => warnings.length < 10 && warnings.push(`${component}: ${message}`),
   error: (component, message) => warnings.length < 10 && warnings.push(`${component}: ${message}`),
+};
+
+// Core 1's mailboxes (SIO FIFO_ST, FIFO_WR, FIFO_RD).
+const [FIFO_ST, FIFO_WR, FIFO_RD] = [0x50, 0x54, 0x58];
+const FIFO_ROOM = 0x2;
+const sioRead = mcu.sio.readUint32.bind(mcu.sio);
+const sioWrite = mcu.sio.writeUint32.bind(mcu.sio);
+mcu.sio.readUint32 = (offset) => {
+  if (offset === FIFO_ST) return core1 === 'silent' ? FIFO_ROOM : 0xffffffff;
+  if (offset === FIFO_RD) return core1 === 'silent' ? 0 : 0xffffffff;
+  return sioRead(offset);
+};
+mcu.sio.writeUint32 = (offset, value) => {
+  if (offset !== FIFO_WR) sioWrite(offset, value);
 };
 
 // The ROM first: loading it resets the chip, which erases the flash.
@@ -193,6 +211,7 @@ const report = {
   first_windows: windows,
   unknown_commands: [...unknown],
   warnings,
+  core1,
   wall_seconds: (Date.now() - start) / 1000,
 };
 console.log(JSON.stringify(report));

@@ -13,11 +13,12 @@ pub struct Canvas<'a>(pub &'a mut RgbImage);
 
 impl Canvas<'_> {
     fn put(&mut self, point: Point, colour: Rgb888) {
-        if let (Ok(x), Ok(y)) = (u32::try_from(point.x), u32::try_from(point.y)) {
-            if x < self.0.width() && y < self.0.height() {
-                self.0
-                    .put_pixel(x, y, image::Rgb([colour.r(), colour.g(), colour.b()]));
-            }
+        if let (Ok(x), Ok(y)) = (u32::try_from(point.x), u32::try_from(point.y))
+            && x < self.0.width()
+            && y < self.0.height()
+        {
+            self.0
+                .put_pixel(x, y, image::Rgb([colour.r(), colour.g(), colour.b()]));
         }
     }
 }

@@ -342,6 +342,18 @@ pub struct EmulateArgs {
     /// Seconds the emulator may run.
     #[arg(long, default_value_t = 600)]
     pub timeout: u64,
+    /// What the image finds of core 1, which rp2040js does not emulate: `absent` (mailboxes
+    /// whose status reads all ones, as rp2040js reads them) or `silent` (mailboxes that take
+    /// words and never answer, as from a core 1 that faulted). Either way the board traces on
+    /// core 0 alone.
+    #[arg(long, value_enum, default_value = "absent")]
+    pub core1: crate::rp2040::Core1,
+    /// Check this Pico image instead of building `boards/pico`: your copy of `templates/pico`
+    /// (`target/thumbv6m-none-eabi/release/NAME`), or any image that draws the scene on the
+    /// Waveshare Pico-LCD-1.3's ST7789 (SPI1, data/command GP8, chip select GP9) in the
+    /// format, pixels, row order and dither given.
+    #[arg(long)]
+    pub image: Option<PathBuf>,
 }
 
 /// `obscura chart`.

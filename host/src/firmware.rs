@@ -349,16 +349,41 @@ pub fn check_rust_target(target: Target) -> Result<()> {
 }
 
 /// Builds the QEMU firmware for `target` to draw what `settings` say (every format given, none
-/// `auto`), and returns the path of its ELF image. Its build script proves every scene in
-/// every format (by the core's own scene build, as the host does) and writes them as words.
-pub fn build(target: Target, settings: &FirmwareSettings) -> Result<PathBuf> {
-    build_package("obscura-qemu", target.triple(), settings)
+/// `auto`) and copies its ELF image to `image` ([`build_package`]), whose absolute path it
+/// returns. Its build script proves every scene in every format (by the core's own scene
+/// build, as the host does) and writes them as words.
+pub fn build(target: Target, settings: &FirmwareSettings, image: &Path) -> Result<PathBuf> {
+    build_package("obscura-qemu", target.triple(), settings, image)
 }
 
 /// Builds the workspace's firmware crate `package` for `triple` to draw what `settings` say,
-/// and returns the path of its ELF image (named as the crate).
-pub fn build_package(package: &str, triple: &str, settings: &FirmwareSettings) -> Result<PathBuf> {
+/// and copies its ELF image to `image` (the run's own, which no other run replaces), whose
+/// absolute path it returns (QEMU runs in the frames' directory). Cargo
+/// writes each package's image for a target at one path, so the build and the copy hold a lock
+/// (`target/.obscura-build.lock`) that every run of the harness in the workspace takes: a second
+/// run started meanwhile (another terminal, a CI job beside) waits, and cannot put its image
+/// in place of this one before it is copied.
+pub fn build_package(
+    package: &str,
+    triple: &str,
+    settings: &FirmwareSettings,
+    image: &Path,
+) -> Result<PathBuf> {
+    let image =
+        std::path::absolute(image).with_context(|| format!("cannot place {}", image.display()))?;
     let workspace = workspace();
+    let target_dir = workspace.join("target");
+    std::fs::create_dir_all(&target_dir)
+        .with_context(|| format!("cannot create {}", target_dir.display()))?;
+    let lock_path = target_dir.join(".obscura-build.lock");
+    let lock = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&lock_path)
+        .with_context(|| format!("cannot open {}", lock_path.display()))?;
+    lock.lock()
+        .with_context(|| format!("cannot lock {}", lock_path.display()))?;
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
     let mut command = Command::new(cargo);
     command
@@ -375,11 +400,12 @@ pub fn build_package(package: &str, triple: &str, settings: &FirmwareSettings) -
     if !status.success() {
         bail!("building {package} for {triple} failed (see cargo's messages above)");
     }
-    Ok(workspace
-        .join("target")
-        .join(triple)
-        .join("release")
-        .join(package))
+    let built = target_dir.join(triple).join("release").join(package);
+    std::fs::copy(&built, &image)
+        .with_context(|| format!("cannot copy {} to {}", built.display(), image.display()))?;
+    // Dropping the file releases the lock.
+    drop(lock);
+    Ok(image)
 }
 
 /// One frame as the firmware reported it.

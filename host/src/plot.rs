@@ -1007,10 +1007,8 @@ impl StabilityPanel<'_, '_> {
                     .iter()
                     .enumerate()
                 {
-                    if *inside {
-                        if let Some(count) = crowd.get_mut(corner) {
-                            *count += 1;
-                        }
+                    if *inside && let Some(count) = crowd.get_mut(corner) {
+                        *count += 1;
                     }
                 }
             }

@@ -554,12 +554,11 @@ impl DrawTarget for Rgb565Frame<'_> {
         I: IntoIterator<Item = Pixel<Rgb565>>,
     {
         for Pixel(point, colour) in pixels {
-            if let (Ok(x), Ok(y)) = (u32::try_from(point.x), u32::try_from(point.y)) {
-                if x < self.width {
-                    if let Some(pixel) = self.pixels.get_mut((y * self.width + x) as usize) {
-                        *pixel = colour.into_storage();
-                    }
-                }
+            if let (Ok(x), Ok(y)) = (u32::try_from(point.x), u32::try_from(point.y))
+                && x < self.width
+                && let Some(pixel) = self.pixels.get_mut((y * self.width + x) as usize)
+            {
+                *pixel = colour.into_storage();
             }
         }
         Ok(())

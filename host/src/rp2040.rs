@@ -8,6 +8,27 @@ use serde::Deserialize;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
+/// What the emulated board's core 1 does: rp2040js emulates no core 1, and its mailboxes to core
+/// 1 (the SIO's FIFOs) read as unmapped.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum Core1 {
+    /// Missing, as rp2040js has it: the mailboxes' status reads all ones.
+    #[default]
+    Absent,
+    /// Mailboxes that work, to a core 1 that never answers (one that faulted).
+    Silent,
+}
+
+impl Core1 {
+    /// Its name, as `--core1` and `run.mjs` take it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Absent => "absent",
+            Self::Silent => "silent",
+        }
+    }
+}
+
 /// What the panel received in a run: its picture and what the commands set.
 #[derive(Debug, Deserialize)]
 pub struct Run {
@@ -96,17 +117,19 @@ pub fn prepare() -> Result<()> {
 }
 
 /// Runs the Pico image `elf` until `pixel_writes` pixels reach the panel (a frame in its row
-/// order), at most `timeout` seconds, writing the panel's picture into `out`.
+/// order), at most `timeout` seconds, its core 1 as `core1` says, writing the panel's picture
+/// into `out`.
 ///
 /// # Errors
 /// Where the emulator cannot run, or the frame never reaches the panel.
-pub fn run(elf: &Path, out: &Path, pixel_writes: u64, timeout: u64) -> Result<Run> {
+pub fn run(elf: &Path, out: &Path, pixel_writes: u64, timeout: u64, core1: Core1) -> Result<Run> {
     let output = Command::new("node")
         .arg(dir().join("run.mjs"))
         .arg(elf)
         .arg(out)
         .arg(pixel_writes.to_string())
         .arg(timeout.to_string())
+        .arg(core1.name())
         .stderr(Stdio::inherit())
         .output()
         .context("cannot run node")?;

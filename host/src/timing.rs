@@ -48,7 +48,7 @@ pub fn frame_ms(runs: u16, renders: &[Box<dyn crate::render::AnyFormat>]) -> Vec
 fn median(mut times: Vec<f64>) -> f64 {
     times.sort_by(f64::total_cmp);
     let mid = times.len() / 2;
-    if times.len() % 2 == 0 {
+    if times.len().is_multiple_of(2) {
         (times[mid - 1] + times[mid]) / 2.0
     } else {
         times[mid]

@@ -169,10 +169,10 @@ fn uses(modules: &BTreeMap<String, String>) -> BTreeMap<&str, BTreeSet<&str>> {
             });
         }
         for path in paths {
-            if let Some(target) = module_of(path.trim_end_matches(':')) {
-                if !related(module, target) {
-                    used.insert(target);
-                }
+            if let Some(target) = module_of(path.trim_end_matches(':'))
+                && !related(module, target)
+            {
+                used.insert(target);
             }
         }
         graph.insert(module.as_str(), used);
@@ -213,10 +213,10 @@ fn circle<'a>(graph: &BTreeMap<&'a str, BTreeSet<&'a str>>) -> Option<Vec<&'a st
     }
     let mut state = BTreeMap::new();
     for &module in graph.keys() {
-        if !state.contains_key(module) {
-            if let Some(found) = visit(module, graph, &mut state, &mut Vec::new()) {
-                return Some(found);
-            }
+        if !state.contains_key(module)
+            && let Some(found) = visit(module, graph, &mut state, &mut Vec::new())
+        {
+            return Some(found);
         }
     }
     None

@@ -12,8 +12,8 @@
 //!
 //! Both cores trace, sharing each frame's rows ([`obscura_firmware::two_cores`]), while DMA
 //! sends the rows traced to the display ([`obscura_firmware::dma_display`]); where core 1's
-//! mailboxes are missing (an emulator without core 1), core 0 traces every row and says so under
-//! each frame. Each configured frame is drawn in turn, its time and stack written across its
+//! mailboxes are missing (an emulator without core 1) or core 1 does not answer within 100 ms,
+//! core 0 traces every row and says so under each frame. Each configured frame is drawn in turn, its time and stack written across its
 //! bottom rows; a camera path's frames again and again, for good.
 #![no_std]
 #![no_main]
@@ -30,7 +30,7 @@ use obscura_firmware::clock::Clock;
 use obscura_firmware::dma_display::DmaInterface;
 use obscura_firmware::frames;
 use obscura_firmware::screen::Screen;
-use obscura_firmware::two_cores::{self, Mailbox, TwoCores};
+use obscura_firmware::two_cores::{self, TwoCores};
 use rp2040_hal::dma::DMAExt;
 use rp2040_hal::fugit::RateExtU32;
 use rp2040_hal::gpio::{FunctionSpi, Pins};
@@ -137,9 +137,23 @@ fn main() -> ! {
         spi_khz: Some(spi_khz),
         note: None,
     };
-    if !has_core1_fifo(&sio.fifo) {
-        // Core 0 traces every row; the frame says so.
-        screen.note = Some("one core: core 1's FIFO is missing");
+    // Core 1, reset, must answer within 100 ms.
+    pac.PSM.frce_off().modify(|_, w| w.proc1().set_bit());
+    while !pac.PSM.frce_off().read().proc1().bit_is_set() {}
+    pac.PSM.frce_off().modify(|_, w| w.proc1().clear_bit());
+    let asked = timer.get_counter();
+    let missing = if !has_core1_fifo(&sio.fifo) {
+        Some("one core: core 1's FIFO is missing")
+    } else if !two_cores::core1_answers(&mut Asking(&mut sio.fifo), || {
+        (timer.get_counter() - asked).to_millis() < 100
+    }) {
+        Some("one core: core 1 does not answer")
+    } else {
+        None
+    };
+    if let Some(why) = missing {
+        // Core 0 traces every row; the frame says why.
+        screen.note = Some(why);
         frames::show(&mut screen, &clock);
         halt();
     }
@@ -176,18 +190,7 @@ fn core1_traces_rows() {
     two_cores::core1_traces_rows(&mut Fifo(fifo));
 }
 
-/// A core's side of the SIO's mailboxes.
-struct Fifo(SioFifo);
-
-impl Mailbox for Fifo {
-    fn send(&mut self, word: u32) {
-        self.0.write_blocking(word);
-    }
-
-    fn receive(&mut self) -> u32 {
-        self.0.read_blocking()
-    }
-}
+obscura_firmware::rp_mailboxes!(rp2040_hal, cortex_m::asm::sev);
 
 /// Sleeps for good: the picture stays on the display.
 fn halt() -> ! {

@@ -15,9 +15,10 @@
 //! or `riscv32imac-unknown-none-elf`), as rp235x-hal's own examples do: the boot ROM reads which
 //! from the image's IMAGE_DEF block. Both cores trace, sharing each frame's rows
 //! ([`obscura_firmware::two_cores`]), while DMA sends the rows traced to the display
-//! ([`obscura_firmware::dma_display`]); rp235x-hal starts core 1 on the Cortex-M33, and on Hazard3,
-//! where its multicore module does not build, [`core1`] starts it by the boot ROM's protocol
-//! (the RP2350 datasheet, section 5.3). Each configured frame is drawn in turn, its time (in
+//! ([`obscura_firmware::dma_display`]); where core 1 does not answer within 100 ms, core 0
+//! traces every row and says so under each frame. rp235x-hal starts core 1 on the Cortex-M33;
+//! on Hazard3, where its multicore module does not build, [`core1`] starts it by the boot ROM's
+//! protocol (the RP2350 datasheet, section 5.3). Each configured frame is drawn in turn, its time (in
 //! core cycles: SysTick on the M33, `mcycle` on Hazard3) and stack written across its bottom
 //! rows; a camera path's frames again and again, for good.
 #![no_std]
@@ -41,7 +42,7 @@ use obscura_firmware::clock::Clock;
 use obscura_firmware::dma_display::DmaInterface;
 use obscura_firmware::frames;
 use obscura_firmware::screen::Screen;
-use obscura_firmware::two_cores::{self, Mailbox, TwoCores};
+use obscura_firmware::two_cores::{self, TwoCores};
 use rp235x_hal as hal;
 
 /// What the boot ROM looks for in the first 4 KiB of flash: a Secure executable for the
@@ -136,7 +137,15 @@ fn main() -> ! {
     };
     timer.delay_ms(10);
 
-    if core1::start(&mut pac.PSM, &mut pac.PPB, &mut sio.fifo).is_err() {
+    // Core 1, reset, must answer within 100 ms, else core 0 traces every row.
+    pac.PSM.frce_off().modify(|_, w| w.proc1().set_bit());
+    while !pac.PSM.frce_off().read().proc1().bit_is_set() {}
+    pac.PSM.frce_off().modify(|_, w| w.proc1().clear_bit());
+    let asked = timer.get_counter();
+    let answers = two_cores::core1_answers(&mut Asking(&mut sio.fifo), || {
+        (timer.get_counter() - asked).to_millis() < 100
+    });
+    if answers && core1::start(&mut pac.PSM, &mut pac.PPB, &mut sio.fifo).is_err() {
         halt();
     }
     #[cfg(target_arch = "arm")]
@@ -148,13 +157,19 @@ fn main() -> ! {
     };
     #[cfg(target_arch = "riscv32")]
     let clock = Clock::start();
+    let mut screen = Screen {
+        display: panel,
+        core_mhz,
+        spi_khz: Some(spi_khz),
+        note: None,
+    };
+    if !answers {
+        screen.note = Some("one core: core 1 does not answer");
+        frames::show(&mut screen, &clock);
+        halt();
+    }
     let mut board = TwoCores {
-        screen: Screen {
-            display: panel,
-            core_mhz,
-            spi_khz: Some(spi_khz),
-            note: None,
-        },
+        screen,
         mailbox: Fifo(sio.fifo),
     };
     frames::show(&mut board, &clock);
@@ -256,18 +271,7 @@ mod core1 {
     }
 }
 
-/// A core's side of the SIO's mailboxes.
-struct Fifo(SioFifo);
-
-impl Mailbox for Fifo {
-    fn send(&mut self, word: u32) {
-        self.0.write_blocking(word);
-    }
-
-    fn receive(&mut self) -> u32 {
-        self.0.read_blocking()
-    }
-}
+obscura_firmware::rp_mailboxes!(rp235x_hal, rp235x_hal::arch::sev);
 
 /// Sleeps for good: the picture stays on the display.
 fn halt() -> ! {

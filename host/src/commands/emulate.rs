@@ -1,6 +1,8 @@
-//! `obscura emulate`: the Raspberry Pi Pico's own image (`boards/pico`, as a user flashes it)
-//! run in an RP2040 emulator ([`crate::rp2040`]); the picture its SPI writes into the ST7789
-//! held to the host's RGB565 frame of the same scene, format, row order and dither, bit for bit.
+//! `obscura emulate`: the Raspberry Pi Pico's own image (`boards/pico`, as a user flashes it,
+//! or one given: a copy of `templates/pico`) run in an RP2040 emulator ([`crate::rp2040`]); the
+//! picture its SPI writes into the ST7789 held to the host's RGB565 frame of the same scene,
+//! format, row order and dither, bit for bit, and the SPI clock it set to the one the boards
+//! ask.
 
 use crate::cli::EmulateArgs;
 use crate::cost::Machine;
@@ -45,11 +47,21 @@ fn emulate(args: &EmulateArgs, named: &NamedScene) -> Result<()> {
         sampling,
         presentation: args.frame.presentation,
     };
-    // The Pico's image needs its Rust target, not QEMU.
-    firmware::check_rust_target(TARGET)?;
     rp2040::prepare()?;
     let board = TARGET.board();
-    let elf = firmware::build_package(board.package, TARGET.triple(), &settings)?;
+    let elf = match &args.image {
+        Some(image) if image.is_file() => image.clone(),
+        Some(image) => bail!(
+            "{} is not a file: give the ELF image cargo built (target/thumbv6m-none-eabi/release/NAME)",
+            image.display()
+        ),
+        None => {
+            // The Pico's image needs its Rust target, not QEMU.
+            firmware::check_rust_target(TARGET)?;
+            let image = args.out_dir.join("image.elf");
+            firmware::build_package(board.package, TARGET.triple(), &settings, &image)?
+        }
+    };
     let request = Request::new(scene.desc(), (SIDE, SIDE), methods);
     let expected = prepare(format, &request)?.rgb565_frame(presentation, &mut |_, _| {})?;
     let writes: u64 = presentation
@@ -58,7 +70,7 @@ fn emulate(args: &EmulateArgs, named: &NamedScene) -> Result<()> {
         .map(|(_, rows)| u64::from(rows) * u64::from(SIDE))
         .sum();
     eprintln!("running {} in rp2040js", elf.display());
-    let run = rp2040::run(&elf, &args.out_dir, writes, args.timeout)?;
+    let run = rp2040::run(&elf, &args.out_dir, writes, args.timeout, args.core1)?;
     super::save(
         &rgb565_image(&run.panel, SIDE),
         &args.out_dir.join("panel.png"),
@@ -105,12 +117,26 @@ fn emulate(args: &EmulateArgs, named: &NamedScene) -> Result<()> {
         presentation.order.name(),
         presentation.dither.name(),
     )?;
+    say!(
+        "core 1 {}: the image traced every row on core 0",
+        match args.core1 {
+            rp2040::Core1::Absent => "absent (its mailboxes' status reads all ones)",
+            rp2040::Core1::Silent => "silent (its mailboxes take words and never answer)",
+        }
+    )?;
+    let clock_as_documented = (run.spi_hz - f64::from(board.spi_hz)).abs() < 1.0;
+    say!(
+        "the SPI clock the image set: {:.2} MHz, {} the {:.2} MHz the boards ask and the docs give",
+        run.spi_hz / 1e6,
+        if clock_as_documented { "as" } else { "not" },
+        f64::from(board.spi_hz) / 1e6
+    )?;
     if let Some(e) = estimate {
         say!(
-            "the harness's estimate for the Pico: {:.0} cycles a pixel on each of its {} cores \
-             (the frame's rows shared), {}",
+            "the harness's estimate: {:.0} cycles a pixel, {:.2} s tracing a frame on one core; \
+             on both, as boards/pico shares the rows: {}",
             e.per_pixel.cycles,
-            e.board.cores,
+            e.tracing * f64::from(e.board.cores),
             e.board.describe(e.time(presentation.order))
         )?;
     }
@@ -127,6 +153,13 @@ fn emulate(args: &EmulateArgs, named: &NamedScene) -> Result<()> {
         run.core_hz / 1e6,
         args.out_dir.join("panel.png").display()
     )?;
+    if args.image.is_none() && !clock_as_documented {
+        bail!(
+            "boards/pico set its SPI to {:.2} MHz where it asks for {:.2}",
+            run.spi_hz / 1e6,
+            f64::from(board.spi_hz) / 1e6
+        );
+    }
     if !differing.is_empty() {
         let listed: Vec<String> = differing
             .iter()

@@ -133,7 +133,7 @@ pub fn run(args: &FirmwareArgs) -> Result<()> {
     }
     let (settings, configuration) = configure(args)?;
     firmware::check_prerequisites(args.target)?;
-    let elf = firmware::build(args.target, &settings)?;
+    let elf = firmware::build(args.target, &settings, &dir.join("image.elf"))?;
     let size = firmware::image_size(&elf)?;
     let (frames, counts) = run_qemu(args, &elf, &dir)?;
     let (reports, mismatched) = compare(args.target, &configuration, &frames, &counts, size, &dir)?;
@@ -416,7 +416,8 @@ fn print_path_flash(
         std::fs::write(&path, toml).with_context(|| format!("cannot write {}", path.display()))?;
         *name = path.display().to_string();
     }
-    let still_flash = firmware::image_size(&firmware::build(args.target, &still)?)?.flash;
+    let still_image = firmware::build(args.target, &still, &dir.join("still.elf"))?;
+    let still_flash = firmware::image_size(&still_image)?.flash;
     let frames = reports
         .iter()
         .filter(|r| obscura_scene::path_frame(&r.scene).is_some())

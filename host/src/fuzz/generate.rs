@@ -178,10 +178,10 @@ impl Generator {
         let size = self.size();
         // Drawn last, so that every other draw is what it was before scenes had an up.
         let mut scene = scene;
-        if let BackgroundDesc::Gradient { up, .. } = &mut scene.background {
-            if self.chance(0.5) {
-                *up = f32s(self.direction());
-            }
+        if let BackgroundDesc::Gradient { up, .. } = &mut scene.background
+            && self.chance(0.5)
+        {
+            *up = f32s(self.direction());
         }
         // A quarter of the scenes anti-aliased, by a few samples: the tries stay quick.
         if self.chance(0.25) {

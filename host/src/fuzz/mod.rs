@@ -435,16 +435,17 @@ fn try_methods(
         }
     }
     let analysis = Analysis::with_reference(scene, methods, &reference);
-    if methods == Methods::LECTURE && stable {
-        if let Some(broken) = scaled_prediction(scene, &request, &analysis) {
-            tally.check("scale prediction");
-            if let Some(message) = broken {
-                let relation = "scale prediction";
-                tally.record(finding(
-                    Format::F32,
-                    Failure::Metamorphic { relation, message },
-                ));
-            }
+    if methods == Methods::LECTURE
+        && stable
+        && let Some(broken) = scaled_prediction(scene, &request, &analysis)
+    {
+        tally.check("scale prediction");
+        if let Some(message) = broken {
+            let relation = "scale prediction";
+            tally.record(finding(
+                Format::F32,
+                Failure::Metamorphic { relation, message },
+            ));
         }
     }
     for &format in FORMATS {

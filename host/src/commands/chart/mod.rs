@@ -131,10 +131,10 @@ fn firmware_costs(args: &ChartArgs) -> Result<Costs> {
                 },
                 ..FirmwareSettings::default()
             };
-            let elf = firmware::build(target, &settings)?;
             let dir = args.frames_dir.join(format!("{}-{i}", target.name()));
             std::fs::create_dir_all(&dir)
                 .with_context(|| format!("cannot create {}", dir.display()))?;
+            let elf = firmware::build(target, &settings, &dir.join("image.elf"))?;
             eprintln!(
                 "running the chart firmware for {} ({}) under QEMU; this takes minutes",
                 target.name(),
@@ -250,17 +250,17 @@ fn points(args: &ChartArgs, host: &HostMeasurements<'_>, costs: &Costs) -> Resul
             object_mismatch_pct: acc.object_mismatch_pct,
         })
         .collect();
-    if !args.no_firmware {
-        if let Some(missing) = points.iter().find(|p| {
+    if !args.no_firmware
+        && let Some(missing) = points.iter().find(|p| {
             p.m4f_instructions_per_pixel.is_none() || p.m0_instructions_per_pixel.is_none()
-        }) {
-            bail!(
-                "the firmware reported no frame of {} in {} by {}",
-                missing.scene,
-                missing.format,
-                missing.variant
-            );
-        }
+        })
+    {
+        bail!(
+            "the firmware reported no frame of {} in {} by {}",
+            missing.scene,
+            missing.format,
+            missing.variant
+        );
     }
     Ok(points)
 }
@@ -433,10 +433,10 @@ fn print_recommendations(measured: &[&Variant], points: &[SpeedPoint]) -> io::Re
             let Some(runs) = runs else { continue };
             let total: Option<f64> = runs.iter().map(|p| cost(p)).sum();
             let good = runs.iter().all(|p| p.psnr_db >= TARGET_PSNR);
-            if let (Some(total), true) = (total, good) {
-                if best.is_none_or(|(b, _, _)| total < b) {
-                    best = Some((total, format, methods));
-                }
+            if let (Some(total), true) = (total, good)
+                && best.is_none_or(|(b, _, _)| total < b)
+            {
+                best = Some((total, format, methods));
             }
         }
         match best {

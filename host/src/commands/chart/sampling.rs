@@ -262,7 +262,6 @@ impl Axis {
                     sampling,
                     ..FirmwareSettings::default()
                 };
-                let elf = firmware::build(target, &settings)?;
                 let dir = args.frames_dir.join(format!(
                     "{}-{}-{}",
                     target.name(),
@@ -271,6 +270,7 @@ impl Axis {
                 ));
                 std::fs::create_dir_all(&dir)
                     .with_context(|| format!("cannot create {}", dir.display()))?;
+                let elf = firmware::build(target, &settings, &dir.join("image.elf"))?;
                 eprintln!(
                     "running {} by {} {label} on the {} under QEMU",
                     self.scenes.join(", "),
