@@ -8,6 +8,19 @@
 //! [`DrawTarget`](embedded_graphics_core::draw_target::DrawTarget) through a single line
 //! buffer.
 //!
+//! A firmware proves its scene when it is built, on the computer: its build script's
+//! `obscura_scene::build::Proof` writes `scene.rs`, and the chip draws the proven scene in one
+//! call, keeping only its numbers in flash (the repository's `templates/pico` is such a firmware):
+//!
+//! ```ignore
+//! mod scene {
+//!     include!(concat!(env!("OUT_DIR"), "/scene.rs"));
+//! }
+//! scene::draw(&mut display)?; // any DrawTarget<Color = Rgb565>; errors are RenderError
+//! ```
+//!
+//! A scene can also be built and proven where it is drawn, as here on the desktop:
+//!
 //! ```
 //! use embedded_graphics::{mock_display::MockDisplay, pixelcolor::Rgb565};
 //! use obscura::{I16F16, Presentation, Scene, render_frame, scenes};
@@ -150,6 +163,9 @@ pub use desc::{
     BackgroundDesc, CameraDesc, CheckerDesc, LightDesc, MaterialDesc, MeshesDesc, NodeDesc,
     ObjectDesc, Pixels, SceneDesc, ShapeDesc, Y_UP,
 };
+/// embedded-graphics' core, whose `DrawTarget` every frame is drawn onto: the version the core
+/// draws with, for code (such as the source `obscura_scene::build::Proof` writes) that names it.
+pub use embedded_graphics_core;
 /// The `fixed` crate, whose types give [`Fx`] its binary point: `Fx<fixed::types::I12F20>`.
 pub use fixed;
 pub use methods::{

@@ -15,6 +15,7 @@ use crate::ray::Ray;
 use crate::scalar::Scalar;
 use crate::scene::Scene;
 use crate::shade::{Task, Tracer};
+use crate::words::WordsError;
 use crate::shape::mesh::Meshes;
 use crate::uses::{Parts, Uses};
 use crate::vec3::Vec3;
@@ -60,6 +61,10 @@ pub enum RenderError<E> {
         /// The parts the tracer lacks.
         missing: Uses,
     },
+    /// The proven words do not read back as the scene and camera asked for: words written by
+    /// another version of obscura, or for another format or scene. Prove the scene again
+    /// (`obscura_scene::build::Proof`).
+    Words(WordsError),
     /// The draw target failed.
     Target(E),
 }
@@ -92,6 +97,7 @@ impl<E: fmt::Debug> fmt::Display for RenderError<E> {
                 "the camera uses a part the scene's tracer leaves out (a lens, or another method \
                  for its rays); make the camera with the scene's own Scene::camera",
             ),
+            Self::Words(e) => e.fmt(f),
             Self::Target(e) => write!(f, "the display failed: {e:?}"),
         }
     }
@@ -113,6 +119,7 @@ impl RenderError<Infallible> {
             }
             Self::RowsOutOfRange { end, height } => RenderError::RowsOutOfRange { end, height },
             Self::TracerLacks { missing } => RenderError::TracerLacks { missing },
+            Self::Words(error) => RenderError::Words(error),
             Self::Target(never) => match never {},
         }
     }

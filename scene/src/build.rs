@@ -19,13 +19,15 @@
 //! mod scene {
 //!     include!(concat!(env!("OUT_DIR"), "/scene.rs"));
 //! }
-//! let (scene, camera) = scene::Scene::from_proven(scene::PROVEN)?;
-//! let mut line = [Rgb565::BLACK; scene::WIDTH as usize];
-//! let mut corners = [obscura::Corner::ZERO; scene::CORNER_ROWS];
-//! obscura::render_frame(&scene, &camera, Presentation::default(), &mut line, &mut corners, &mut display)?;
+//! scene::draw(&mut display)?; // any embedded-graphics DrawTarget<Color = Rgb565>
 //! ```
 //!
 //! The source defines, for the scene as proven:
+//! - `draw(&mut display)`, which draws the first frame, top down and undithered, and
+//!   `draw_frame(frame, presentation, &mut display)`, which draws any of `FRAMES` in any row
+//!   order and dither: each reads the scene and camera back (`Scene::from_proven`) and traces
+//!   them through a line buffer and the corner rows on the stack ([`obscura::render_frame`]),
+//!   and fails with one error type, [`obscura::RenderError`];
 //! - `Scene`, the core's scene in the format with storage sized to exactly its objects, lights
 //!   and ray tree and a tracer of only the parts it uses (`Parts`, an [`obscura::Parts`]), its
 //!   meshes read in place from flash;
@@ -151,8 +153,9 @@ impl Proof {
         let _ = writeln!(
             out,
             "];\n\n/// The first frame: `Scene::from_proven(PROVEN)`.\npub static PROVEN: \
-             &obscura::ProvenScene<'static> = &FRAMES[0];"
+             &obscura::ProvenScene<'static> = &FRAMES[0];\n"
         );
+        out.push_str(DRAW_SOURCE);
         Ok(out)
     }
 
@@ -176,6 +179,46 @@ impl Proof {
         }
     }
 }
+
+/// The end of the source [`Proof`] writes: the functions that draw a frame in one call.
+const DRAW_SOURCE: &str = "\
+/// Draws the first frame ([`PROVEN`]) onto `display`, its rows top down and undithered: the
+/// scene and camera read back from their words and traced row by row through a line buffer and
+/// the corner rows, on the stack. A frame in one call; [`draw_frame`] takes another frame and
+/// another presentation.
+///
+/// # Errors
+/// The display's error, or words that do not read back ([`obscura::RenderError`]).
+#[allow(dead_code, reason = \"a firmware may draw its frames with draw_frame alone\")]
+pub fn draw<D>(display: &mut D) -> Result<(), obscura::RenderError<D::Error>>
+where
+    D: obscura::embedded_graphics_core::draw_target::DrawTarget<
+            Color = obscura::embedded_graphics_core::pixelcolor::Rgb565,
+        >,
+{
+    draw_frame(PROVEN, obscura::Presentation::default(), display)
+}
+
+/// Draws `frame` (one of [`FRAMES`]) onto `display`, its rows in `presentation`'s order and its
+/// colours rounded by its dither, as [`draw`] draws the first.
+///
+/// # Errors
+/// The display's error, or words that do not read back ([`obscura::RenderError`]).
+pub fn draw_frame<C, D>(
+    frame: &obscura::ProvenScene<'_>,
+    presentation: obscura::Presentation,
+    display: &mut D,
+) -> Result<(), obscura::RenderError<D::Error>>
+where
+    C: obscura::DisplayColor,
+    D: obscura::embedded_graphics_core::draw_target::DrawTarget<Color = C>,
+{
+    let (scene, camera) = Scene::from_proven(frame).map_err(obscura::RenderError::Words)?;
+    let mut line = [C::BLACK; WIDTH as usize];
+    let mut corners = [obscura::Corner::ZERO; CORNER_ROWS];
+    obscura::render_frame(&scene, &camera, presentation, &mut line, &mut corners, display)
+}
+";
 
 /// A frame's scene and camera, proven on the host, as the words the firmware reads them from
 /// ([`obscura::ProvenScene`]), and the tracer's parts they use.
@@ -321,6 +364,7 @@ mod tests {
             "pub const CORNER_ROWS: usize = 0;",
             "pub static FRAMES: [obscura::ProvenScene<'static>; 1] = [",
             "pub static PROVEN: &obscura::ProvenScene<'static> = &FRAMES[0];",
+            "pub fn draw<D>(display: &mut D) -> Result<(), obscura::RenderError<D::Error>>",
         ] {
             assert!(source.contains(expected), "{expected} in {source}");
         }

@@ -7,7 +7,8 @@ use std::path::PathBuf;
 use std::{env, fs};
 
 fn main() {
-    // `obscura analyze scene.toml` names the cheapest format that holds your scene.
+    // i16f16 suits the Pico's Cortex-M0+, which has no FPU. `obscura firmware --target m0 --scene
+    // scene.toml --format auto` names the cheapest format that holds your scene on that core.
     Proof::new("scene.toml", Format::I16f16, (240, 240)).write("scene.rs");
 
     let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
