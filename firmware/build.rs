@@ -25,10 +25,7 @@ fn main() {
             fs::write(out.join("frames.rs"), generated.source).expect("OUT_DIR is writable");
         }
         Err(error) => {
-            let text = obscura_scene::error_text(&error);
-            for line in text.strip_prefix("error: ").unwrap_or(&text).lines() {
-                println!("cargo::error={line}");
-            }
+            obscura_scene::build::fail(&error);
             return;
         }
     }

@@ -123,12 +123,7 @@ impl Proof {
             "/// The width of the image the camera was placed for.\npub const WIDTH: u32 = \
              {width};\n/// Its height.\npub const HEIGHT: u32 = {height};\n"
         );
-        let corners = corners_kept([&desc], width);
-        let _ = writeln!(
-            out,
-            "/// The corners adaptive samples or pixels keep: the corner rows `render_frame` \
-             takes (0: the scene takes neither).\npub const CORNER_ROWS: usize = {corners};\n"
-        );
+        let _ = writeln!(out, "{}", corner_rows_source([&desc], width));
         let _ = writeln!(
             out,
             "/// Each frame's scene and camera as proven words: {}.\npub static FRAMES: \
@@ -172,10 +167,7 @@ impl Proof {
                 .with_context(|| format!("cannot write {}", path.display()))
         });
         if let Err(error) = written {
-            let text = crate::error_text(&error);
-            for line in text.strip_prefix("error: ").unwrap_or(&text).lines() {
-                println!("cargo::error={line}");
-            }
+            fail(&error);
         }
     }
 }
@@ -312,6 +304,28 @@ pub fn corners_kept<'a>(scenes: impl IntoIterator<Item = &'a SceneDesc<'a>>, wid
         .map(|desc| desc.corner_rows(width))
         .max()
         .unwrap_or(0)
+}
+
+/// The Rust source of `CORNER_ROWS`, the corners a frame `width` pixels wide of any of `scenes`
+/// keeps ([`corners_kept`]): the length of the corner rows `render_frame` takes.
+pub(crate) fn corner_rows_source<'a>(
+    scenes: impl IntoIterator<Item = &'a SceneDesc<'a>>,
+    width: u32,
+) -> String {
+    format!(
+        "/// The corners adaptive samples or pixels keep: the corner rows `render_frame` takes \
+         (0: no scene takes either).\npub const CORNER_ROWS: usize = {};\n",
+        corners_kept(scenes, width)
+    )
+}
+
+/// Fails a build script with `error`: each line of its text (placed in the scene file where it
+/// has a place, as `obscura` places it) a `cargo::error`.
+pub fn fail(error: &anyhow::Error) {
+    let text = crate::error_text(error);
+    for line in text.strip_prefix("error: ").unwrap_or(&text).lines() {
+        println!("cargo::error={line}");
+    }
 }
 
 /// The Rust source of a type `name` of the tracer's parts `uses` ([`obscura::Parts`]).

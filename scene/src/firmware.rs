@@ -12,8 +12,8 @@
 //! ([`FirmwareSettings::environment`]).
 
 use crate::build::{
-    Words, array_source, corners_kept, parts_source, parts_used, prove, refused, scene_generics,
-    words_source,
+    Words, array_source, corner_rows_source, parts_source, parts_used, prove, refused,
+    scene_generics, words_source,
 };
 use crate::{
     FirmwareSettings, Format, FormatChoice, MAX_LIGHTS, MAX_OBJECTS, NamedScene, RAY_STACK,
@@ -218,12 +218,7 @@ impl Configuration {
             self.loops
         );
         let descs: Vec<_> = self.scenes.iter().map(|s| s.scene.desc()).collect();
-        let _ = writeln!(
-            out,
-            "/// The corner rows adaptive samples or pixels keep (none if no scene takes \
-             either).\npub const CORNER_ROWS: usize = {};\n",
-            corners_kept(&descs, SIDE)
-        );
+        let _ = writeln!(out, "{}", corner_rows_source(&descs, SIDE));
         // One tracer per format: of the parts its frames use between them.
         for &format in &self.formats {
             let _ = writeln!(
