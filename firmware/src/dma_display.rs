@@ -13,9 +13,17 @@
 //! The DMA channel and SPI are the board's HAL's ([`DmaSpi`]); [`rp_spi_dma!`] implements it
 //! for rp2040-hal and rp235x-hal, whose DMA and SPI modules agree.
 
+use crate::SIDE;
 use core::mem;
 use embedded_hal::digital::OutputPin;
 use mipidsi::interface::{Interface, InterfaceKind};
+
+/// A row of the board's `SIDE`×`SIDE` panel, two bytes a pixel: one buffer, one transfer.
+pub const ROW_BYTES: usize = 2 * SIDE as usize;
+
+/// The panel's last row as mipidsi addresses a `SIDE`×`SIDE` panel with no offset, in its
+/// default orientation ([`DmaInterface::new`]'s `last_row`).
+pub const LAST_ROW: u16 = SIDE as u16 - 1;
 
 /// What a board's HAL gives a display interface: an SPI that writes bytes while the CPU waits,
 /// and sends a buffer by DMA while it does not. Each call that waits for the transfer in flight

@@ -47,6 +47,9 @@ pub trait Probe {
     fn try_receive(&mut self) -> Option<u32>;
 }
 
+/// How long core 0 waits for core 1's first answer before tracing alone, in milliseconds.
+pub const CORE1_ANSWER_MS: u64 = 100;
+
 /// Whether core 1, just reset and waiting in the boot ROM, answers the first word of the ROM's
 /// start sequence (a 0, which it echoes; the RP2040 datasheet, section 2.8.2, and the RP2350's,
 /// 5.3) while `waiting` says to wait. Starting a core 1 that does not answer (faulted, or
@@ -219,7 +222,8 @@ impl<D: DrawTarget<Color = Rgb565, Error: fmt::Debug>, M: Mailbox> Backend for T
 
 /// Defines the board's sides of the SIO's mailboxes for the HAL `$hal` (`rp2040_hal` or
 /// `rp235x_hal`, whose `SioFifo`s agree), `$sev` waking the other core: `Fifo`, a core's side
-/// ([`Mailbox`]), and `Asking`, core 0's as it asks whether core 1 answers ([`Probe`]).
+/// ([`Mailbox`]), `Asking`, core 0's as it asks whether core 1 answers ([`Probe`]), and
+/// `core1_answers`, which resets core 1 and asks.
 #[macro_export]
 macro_rules! rp_mailboxes {
     ($hal:ident, $sev:path) => {
@@ -234,6 +238,22 @@ macro_rules! rp_mailboxes {
             fn receive(&mut self) -> u32 {
                 self.0.read_blocking()
             }
+        }
+
+        /// Resets core 1 and asks whether it answers within
+        /// [`CORE1_ANSWER_MS`]($crate::two_cores::CORE1_ANSWER_MS), `elapsed_ms` counting the
+        /// milliseconds since it was called (`obscura_firmware::rp_mailboxes`).
+        fn core1_answers(
+            psm: &mut $hal::pac::PSM,
+            fifo: &mut $hal::sio::SioFifo,
+            mut elapsed_ms: impl FnMut() -> u64,
+        ) -> bool {
+            psm.frce_off().modify(|_, w| w.proc1().set_bit());
+            while !psm.frce_off().read().proc1().bit_is_set() {}
+            psm.frce_off().modify(|_, w| w.proc1().clear_bit());
+            $crate::two_cores::core1_answers(&mut Asking(fifo), || {
+                elapsed_ms() < $crate::two_cores::CORE1_ANSWER_MS
+            })
         }
 
         /// Core 0's side of the SIO's mailboxes, asking whether core 1 answers

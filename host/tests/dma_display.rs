@@ -6,6 +6,10 @@
 #[path = "../../firmware/src/dma_display.rs"]
 mod dma_display;
 
+/// The panel's side, which the module's constants derive from: the firmware's
+/// (`obscura_firmware::SIDE` is this).
+use obscura_scene::firmware::SIDE;
+
 use dma_display::{DmaInterface, DmaSpi};
 use mipidsi::interface::Interface;
 use std::cell::RefCell;
@@ -81,7 +85,7 @@ impl embedded_hal::digital::OutputPin for DataCommand {
     }
 }
 
-/// An interface with two buffers of a row of `width` pixels, on a panel of 240 rows, and
+/// An interface with two buffers of a row of `width` pixels, on the firmware's panel, and
 /// what it sends.
 fn interface(width: usize) -> (DmaInterface<Recorder, DataCommand>, Rc<RefCell<Wire>>) {
     let wire = Rc::new(RefCell::new(Wire::default()));
@@ -94,7 +98,7 @@ fn interface(width: usize) -> (DmaInterface<Recorder, DataCommand>, Rc<RefCell<W
         recorder,
         DataCommand(Rc::clone(&wire)),
         [buffer(), buffer()],
-        239,
+        dma_display::LAST_ROW,
     );
     (interface, wire)
 }
@@ -164,7 +168,7 @@ fn rows_that_follow_one_another_go_by_dma_in_one_window() {
         .filter(|(dma, _)| *dma)
         .map(|&(_, n)| n)
         .collect();
-    assert_eq!(by_dma, [480; 4]);
+    assert_eq!(by_dma, [dma_display::ROW_BYTES; 4]);
 }
 
 #[test]

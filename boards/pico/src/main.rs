@@ -27,7 +27,7 @@ use embedded_hal::digital::OutputPin;
 use mipidsi::models::ST7789;
 use mipidsi::options::ColorInversion;
 use obscura_firmware::clock::Clock;
-use obscura_firmware::dma_display::DmaInterface;
+use obscura_firmware::dma_display::{DmaInterface, LAST_ROW, ROW_BYTES};
 use obscura_firmware::frames;
 use obscura_firmware::screen::Screen;
 use obscura_firmware::two_cores::{self, TwoCores};
@@ -48,12 +48,6 @@ static BOOT2: [u8; 256] = rp2040_boot2::BOOT_LOADER_W25Q080;
 /// what is asked: 62 MHz would give 31.25).
 const XTAL_HZ: u32 = 12_000_000;
 const SPI_HZ: u32 = 62_500_000;
-
-/// A row of the display's pixels, two bytes each: one DMA transfer.
-const ROW_BYTES: usize = 2 * obscura_firmware::SIDE as usize;
-
-/// The panel's last row as mipidsi addresses it: 240 rows, no offset.
-const LAST_ROW: u16 = obscura_firmware::SIDE as u16 - 1;
 
 obscura_firmware::rp_spi_dma!(rp2040_hal);
 
@@ -137,15 +131,11 @@ fn main() -> ! {
         spi_khz: Some(spi_khz),
         note: None,
     };
-    // Core 1, reset, must answer within 100 ms.
-    pac.PSM.frce_off().modify(|_, w| w.proc1().set_bit());
-    while !pac.PSM.frce_off().read().proc1().bit_is_set() {}
-    pac.PSM.frce_off().modify(|_, w| w.proc1().clear_bit());
     let asked = timer.get_counter();
     let missing = if !has_core1_fifo(&sio.fifo) {
         Some("one core: core 1's FIFO is missing")
-    } else if !two_cores::core1_answers(&mut Asking(&mut sio.fifo), || {
-        (timer.get_counter() - asked).to_millis() < 100
+    } else if !core1_answers(&mut pac.PSM, &mut sio.fifo, || {
+        (timer.get_counter() - asked).to_millis()
     }) {
         Some("one core: core 1 does not answer")
     } else {

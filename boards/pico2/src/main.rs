@@ -39,7 +39,7 @@ use hal::{Timer, Watchdog, clocks, pac, spi};
 use mipidsi::models::ST7789;
 use mipidsi::options::ColorInversion;
 use obscura_firmware::clock::Clock;
-use obscura_firmware::dma_display::DmaInterface;
+use obscura_firmware::dma_display::{DmaInterface, LAST_ROW, ROW_BYTES};
 use obscura_firmware::frames;
 use obscura_firmware::screen::Screen;
 use obscura_firmware::two_cores::{self, TwoCores};
@@ -58,12 +58,6 @@ static IMAGE_DEF: hal::block::ImageDef = hal::block::ImageDef::secure_exe();
 /// asked).
 const XTAL_HZ: u32 = 12_000_000;
 const SPI_HZ: u32 = 62_500_000;
-
-/// A row of the display's pixels, two bytes each: one DMA transfer.
-const ROW_BYTES: usize = 2 * obscura_firmware::SIDE as usize;
-
-/// The panel's last row as mipidsi addresses it: 240 rows, no offset.
-const LAST_ROW: u16 = obscura_firmware::SIDE as u16 - 1;
 
 obscura_firmware::rp_spi_dma!(rp235x_hal);
 
@@ -137,13 +131,10 @@ fn main() -> ! {
     };
     timer.delay_ms(10);
 
-    // Core 1, reset, must answer within 100 ms, else core 0 traces every row.
-    pac.PSM.frce_off().modify(|_, w| w.proc1().set_bit());
-    while !pac.PSM.frce_off().read().proc1().bit_is_set() {}
-    pac.PSM.frce_off().modify(|_, w| w.proc1().clear_bit());
+    // Else core 0 traces every row.
     let asked = timer.get_counter();
-    let answers = two_cores::core1_answers(&mut Asking(&mut sio.fifo), || {
-        (timer.get_counter() - asked).to_millis() < 100
+    let answers = core1_answers(&mut pac.PSM, &mut sio.fifo, || {
+        (timer.get_counter() - asked).to_millis()
     });
     if answers && core1::start(&mut pac.PSM, &mut pac.PPB, &mut sio.fifo).is_err() {
         halt();
